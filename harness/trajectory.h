@@ -1,0 +1,63 @@
+// What every simulator returns: sampled tip motion, the exact extrema between samples, and one record
+// per contact episode. Plain records; the metrics are computed from these alone (rig.md section 5).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace ib {
+
+// One contact episode: from the first onset to the separation (rig.md section 5).
+// For the instantaneous Newton law onset == end and the peak force is not defined (NaN).
+struct ContactEvent {
+  double onset_time_s = 0;
+  double end_time_s = 0;
+  double approach_velocity_m_s = 0;   // delta' at onset (> 0: closing)
+  double rebound_velocity_m_s = 0;    // -delta' at separation (> 0: opening)
+  double restitution = 0;             // rebound / approach [-]
+  double peak_force_n = 0;            // max contact force [N]
+  double impulse_n_s = 0;             // integral of the contact force [N s]
+  double max_indentation_m = 0;       // max delta [m]
+};
+
+// Uniform samples at output_rate_hz from start_time_s; column k of frame f is series[f][k].
+// The peak_* columns hold the exact maximum over the interval that ends at the sample,
+// (t_{k-1}, t_k], so that true peaks between samples are not lost; at k = 0 they hold the sample value.
+struct Trajectory {
+  double output_rate_hz = 0;
+  double start_time_s = 0;
+  std::vector<double> time_s;
+  std::array<std::vector<double>, 2> displacement_m;      // tip displacement, positive toward frame 2
+  std::array<std::vector<double>, 2> velocity_m_s;
+  std::array<std::vector<double>, 2> acceleration_m_s2;
+  std::vector<double> contact_force_n;
+  std::array<std::vector<double>, 2> peak_abs_acceleration_m_s2;
+  std::vector<double> peak_contact_force_n;
+
+  std::vector<ContactEvent> events;   // every contact episode of the whole run, in time order
+
+  std::size_t size() const { return time_s.size(); }
+  void reserve(std::size_t n);
+};
+
+// Where a run ended and why; an unstable or failed run still returns what it computed.
+enum class RunStatus { ok, unstable, failed };
+const char* to_string(RunStatus status);
+
+struct RunCost {
+  double wall_time_s = 0;
+  double cpu_time_s = 0;
+  long long steps = 0;                // time steps (engines) or accepted integrator steps (reference)
+};
+
+struct RunResult {
+  Trajectory trajectory;
+  RunStatus status = RunStatus::ok;
+  std::string reason;                 // why the run is not ok, in words a person can check
+  RunCost cost;
+  std::vector<std::pair<std::string, double>> diagnostics;  // simulator-specific figures (named, SI)
+};
+
+}  // namespace ib

@@ -1,0 +1,130 @@
+#include "reference_simulator.h"
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <stdexcept>
+#include <string>
+
+namespace ib {
+namespace {
+
+const std::vector<std::pair<std::string, std::string>> kOptions = {
+    {"modes", "mode set: beam (continuous beam, default), beam_paper (the paper's eq. 2.5 shapes), chain (the engines' K-link chain)"},
+    {"n", "modes per frame for the beam mode sets, 1..200 (default 10)"},
+    {"links", "links K per frame for the chain mode set, 1..1000 (default 16)"},
+    {"rtol", "relative tolerance of the contact integrator, > 0 (default 1e-9)"},
+    {"atol", "absolute tolerance on modal coordinates, > 0 (default 1e-12)"},
+    {"grid", "free-flight scan points per period of the fastest mode, >= 4 (default 8)"},
+    {"accumulation_time", "Newton law: stick when impacts would accumulate within this time [s], >= 0 (default 1e-6)"},
+    {"energy", "keep the energy ledger: on (default) or off"},
+};
+
+double parse_number(const std::string& key, const std::string& text, const std::string& allowed) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !std::isfinite(value))
+    throw std::invalid_argument("reference option " + key + "=" + text + ": not a number; allowed: " + allowed);
+  return value;
+}
+
+void require(bool ok, const std::string& key, const std::string& text, const std::string& allowed) {
+  if (!ok) throw std::invalid_argument("reference option " + key + "=" + text + ": out of range; allowed: " + allowed);
+}
+
+int parse_integer(const std::string& key, const std::string& text, int low, int high) {
+  const std::string allowed = "an integer " + std::to_string(low) + ".." + std::to_string(high);
+  const double value = parse_number(key, text, allowed);
+  require(value == std::floor(value) && value >= low && value <= high, key, text, allowed);
+  return static_cast<int>(value);
+}
+
+class ReferenceSimulator final : public Simulator {
+ public:
+  std::string name() const override { return "reference"; }
+  std::string version() const override { return "impactbench reference (modal, Dormand-Prince 5(4))"; }
+  std::vector<std::pair<std::string, std::string>> option_help() const override { return kOptions; }
+
+  RunResult run(const Scenario& scenario, const RunSettings& run) override {
+    const ReferenceSettings settings = reference_settings_from_options(run.options);
+    const auto wall_start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
+    const ModalModel model = build_modal_model(scenario, run.law, settings.modes);
+    OutputWindow window;
+    window.start_s = run.series_start_s >= 0 ? run.series_start_s : scenario.scoring_start_s();
+    window.end_s = scenario.duration_s;
+    window.rate_hz = run.output_rate_hz;
+    ReferenceSolution solution = solve_reference(model, initial_state(scenario, model), scenario.duration_s, window, settings);
+    RunResult result;
+    result.cost.cpu_time_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    result.cost.steps = solution.integrator_steps + solution.grid_intervals;
+    result.trajectory = std::move(solution.trajectory);
+    result.status = solution.status;
+    result.reason = solution.reason;
+    auto& d = result.diagnostics;
+    d.emplace_back("frame1_first_frequency_hz", model.frames[0].omega_rad_s[0] / (2 * M_PI));
+    d.emplace_back("frame2_first_frequency_hz", model.frames[1].omega_rad_s[0] / (2 * M_PI));
+    d.emplace_back("motor_frequency_hz", motor_frequency_hz(scenario));
+    d.emplace_back("modes_per_frame", model.frame_mode_count(0));
+    d.emplace_back("grid_step_s", solution.grid_step_s);
+    d.emplace_back("integrator_steps", static_cast<double>(solution.integrator_steps));
+    d.emplace_back("grid_intervals", static_cast<double>(solution.grid_intervals));
+    d.emplace_back("sticking_phases", static_cast<double>(solution.sticking_phases));
+    if (settings.track_energy) {
+      const EnergyLedger& e = solution.energy;
+      d.emplace_back("energy_initial_j", e.initial_energy_j);
+      d.emplace_back("energy_final_j", e.final_energy_j);
+      d.emplace_back("motor_work_j", e.motor_work_j);
+      d.emplace_back("structural_dissipation_j", e.structural_dissipation_j);
+      d.emplace_back("contact_dissipation_j", e.contact_dissipation_j);
+      d.emplace_back("energy_balance_relative_residual", e.relative_residual());
+    }
+    return result;
+  }
+};
+
+}  // namespace
+
+ReferenceSettings reference_settings_from_options(const std::map<std::string, std::string>& options) {
+  ReferenceSettings s;
+  for (const auto& [key, text] : options) {
+    if (key == "modes") {
+      if (text == "beam") s.modes.set = ModeSet::beam;
+      else if (text == "beam_paper") s.modes.set = ModeSet::beam_paper;
+      else if (text == "chain") s.modes.set = ModeSet::chain;
+      else throw std::invalid_argument("reference option modes=" + text + ": unknown mode set; allowed: beam, beam_paper, chain");
+    } else if (key == "n") {
+      s.modes.modes_per_frame = parse_integer(key, text, 1, 200);
+    } else if (key == "links") {
+      s.modes.chain_links = parse_integer(key, text, 1, 1000);
+    } else if (key == "rtol" || key == "atol") {
+      const double v = parse_number(key, text, "a number > 0");
+      require(v > 0, key, text, "a number > 0");
+      (key == "rtol" ? s.relative_tolerance : s.absolute_tolerance) = v;
+    } else if (key == "grid") {
+      s.grid_points_per_period = parse_integer(key, text, 4, 1000);
+    } else if (key == "accumulation_time") {
+      s.accumulation_time_s = parse_number(key, text, "a time >= 0 [s]");
+      require(s.accumulation_time_s >= 0, key, text, "a time >= 0 [s]");
+    } else if (key == "energy") {
+      if (text != "on" && text != "off")
+        throw std::invalid_argument("reference option energy=" + text + ": allowed: on, off");
+      s.track_energy = text == "on";
+    } else {
+      std::string names;
+      for (const auto& option : kOptions) names += (names.empty() ? "" : ", ") + option.first;
+      throw std::invalid_argument("unknown reference option '" + key + "'; allowed: " + names);
+    }
+  }
+  return s;
+}
+
+std::unique_ptr<Simulator> make_reference_simulator() { return std::make_unique<ReferenceSimulator>(); }
+
+}  // namespace ib

@@ -1,0 +1,18 @@
+// The reference behind the one Simulator interface: options in RunSettings::options select the mode
+// set and the integrator's accuracy (see option_help()).
+#pragma once
+
+#include <memory>
+
+#include "reference_solver.h"
+#include "simulator.h"
+
+namespace ib {
+
+// The reference settings a run's options ask for; throws std::invalid_argument naming the option,
+// the value and what is allowed.
+ReferenceSettings reference_settings_from_options(const std::map<std::string, std::string>& options);
+
+std::unique_ptr<Simulator> make_reference_simulator();
+
+}  // namespace ib

@@ -1,0 +1,576 @@
+#include "reference_solver.h"
+
+#include <algorithm>
+#include <array>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <boost/numeric/odeint.hpp>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "free_flight.h"
+
+namespace ib {
+
+double EnergyLedger::relative_residual() const {
+  const double change = final_energy_j - initial_energy_j;
+  const double residual = motor_work_j - (change + structural_dissipation_j + contact_dissipation_j);
+  const double scale = std::max({std::abs(motor_work_j), std::abs(change), std::abs(structural_dissipation_j),
+                                 std::abs(contact_dissipation_j), std::abs(initial_energy_j), 1e-300});
+  return std::abs(residual) / scale;
+}
+
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+using OdeState = std::vector<double>;  // [q (M), v (M), motor work, structural dissipation, contact dissipation, impulse]
+using Dopri = odeint::runge_kutta_dopri5<OdeState>;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kTwoPi = 6.28318530717958647692;
+
+// What force acts between the tips in the current phase.
+enum class Phase { free, compliant, sticking };
+
+// Kinematics of both tips and the contact at one instant; derivatives included so that extrema
+// between samples can be located (jerk for acceleration peaks, dF/dt for force peaks).
+struct TipState {
+  double t = 0;
+  std::array<double, 2> displacement{}, velocity{}, acceleration{}, jerk{};
+  double indentation = 0, indentation_rate = 0;  // delta [m], delta' [m/s]
+  double force = 0, force_rate = 0;              // F_c [N], dF_c/dt [N/s]
+};
+
+// First root of f on [a, b] given f(a), f(b) of opposite signs (or one of them zero).
+template <class F>
+double find_root(F&& f, double a, double b, double fa, double fb) {
+  if (fa == 0) return a;
+  if (fb == 0) return b;
+  if ((fa > 0) == (fb > 0)) return std::abs(fa) < std::abs(fb) ? a : b;  // no sign change: nearest end
+  std::uintmax_t iterations = 60;
+  const auto bracket =
+      boost::math::tools::toms748_solve(f, a, b, fa, fb, boost::math::tools::eps_tolerance<double>(50), iterations);
+  return 0.5 * (bracket.first + bracket.second);
+}
+
+// Samples the output series and keeps the exact maximum of |acceleration| and of the force over
+// each output interval (t_{k-1}, t_k] from every value it is fed in time order.
+class SeriesRecorder {
+ public:
+  SeriesRecorder(const OutputWindow& window, Trajectory& out) : window_(window), out_(out) {
+    out_.output_rate_hz = window.rate_hz;
+    out_.start_time_s = window.start_s;
+    const double count = std::floor((window.end_s - window.start_s) * window.rate_hz + 1e-9) + 1;
+    total_ = window.end_s >= window.start_s ? static_cast<long long>(count) : 0;
+    out_.reserve(static_cast<std::size_t>(total_));
+  }
+  double next_sample_time() const {
+    return index_ < total_ ? window_.start_s + static_cast<double>(index_) / window_.rate_hz : kInf;
+  }
+  bool wants_peaks_before(double t) const { return index_ > 0 || t >= window_.start_s; }
+  void feed(const TipState& s) {
+    if (index_ == 0) return;  // peaks count from the first sample on
+    for (int f = 0; f < 2; ++f) peak_acc_[f] = std::max(peak_acc_[f], std::abs(s.acceleration[f]));
+    peak_force_ = std::max(peak_force_, s.force);
+  }
+  void sample(const TipState& s) {
+    out_.time_s.push_back(s.t);
+    for (int f = 0; f < 2; ++f) {
+      out_.displacement_m[f].push_back(s.displacement[f]);
+      out_.velocity_m_s[f].push_back(s.velocity[f]);
+      out_.acceleration_m_s2[f].push_back(s.acceleration[f]);
+      const double a = std::abs(s.acceleration[f]);
+      out_.peak_abs_acceleration_m_s2[f].push_back(index_ == 0 ? a : std::max(peak_acc_[f], a));
+      peak_acc_[f] = a;  // the sample opens the next interval
+    }
+    out_.contact_force_n.push_back(s.force);
+    out_.peak_contact_force_n.push_back(index_ == 0 ? s.force : std::max(peak_force_, s.force));
+    peak_force_ = s.force;
+    ++index_;
+  }
+
+ private:
+  OutputWindow window_;
+  Trajectory& out_;
+  long long index_ = 0, total_ = 0;
+  std::array<double, 2> peak_acc_{};
+  double peak_force_ = 0;
+};
+
+class Solver {
+ public:
+  Solver(const ModalModel& model, const OutputWindow& output, const ReferenceSettings& settings,
+         ReferenceSolution& solution)
+      : model_(model),
+        settings_(settings),
+        solution_(solution),
+        flight_(model),
+        recorder_(output, solution.trajectory),
+        m_(model.mode_count()),
+        n1_(model.frame_mode_count(0)) {
+    omega2_ = model.omega_rad_s.array().square();
+    two_zeta_omega_ = 2 * model.zeta.array() * model.omega_rad_s.array();
+    lever_norm2_ = model.contact_lever.squaredNorm();
+    // Scan grid and the integrator's largest step: a fraction of the fastest period (the motor's too).
+    double fastest = model.omega_rad_s.maxCoeff();
+    if (model.motor) fastest = std::max(fastest, model.motor->omega_rad_s);
+    grid_step_ = kTwoPi / fastest / settings.grid_points_per_period;
+    solution.grid_step_s = grid_step_;
+    grid_transition_ = flight_.transition(grid_step_);
+    for (int i = 0; i < 5; ++i) node_transition_[i] = flight_.transition(grid_step_ * kGaussNode[i]);
+  }
+
+  void run(const ModalState& initial, double duration) {
+    end_time_ = duration;
+    double t = 0;
+    ModalState x = initial;
+    const TipState s0 = tip_state(x.q.data(), x.v.data(), 0, Phase::free);
+    solution_.energy.initial_energy_j = mechanical_energy(x.q.data(), x.v.data(), s0.indentation);
+    Phase phase = Phase::free;
+    bool after_contact = false;
+    if (s0.indentation > 0 || (s0.indentation == 0 && s0.indentation_rate > 0)) {
+      if (is_instantaneous(model_.contact)) {
+        if (s0.indentation > 0)
+          return fail(RunStatus::failed, "the Newton law cannot start with the tips interpenetrating (delta = " +
+                                             std::to_string(s0.indentation) + " m at t = 0)");
+        phase = Phase::sticking;  // touching and closing: treated as an impact below
+      } else {
+        phase = Phase::compliant;
+      }
+    }
+    if (phase == Phase::sticking) {  // Newton, touching at t = 0
+      if (!newton_impact(t, x)) phase = Phase::free, after_contact = true;
+    }
+    while (t < end_time_) {
+      if (solution_.impacts > settings_.max_contact_episodes)
+        return fail(RunStatus::failed, "more than " + std::to_string(settings_.max_contact_episodes) +
+                                           " contact episodes by t = " + std::to_string(t) + " s: chatter not resolved");
+      if (chatter_guard(t)) return;
+      switch (phase) {
+        case Phase::free: {
+          if (!free_flight(t, x, after_contact)) break;  // reached the end
+          if (is_instantaneous(model_.contact)) {
+            phase = newton_impact(t, x) ? Phase::sticking : Phase::free;
+            after_contact = true;
+          } else {
+            phase = Phase::compliant;
+          }
+          break;
+        }
+        case Phase::compliant:
+          if (!integrate_contact(t, x, Phase::compliant)) return;
+          phase = Phase::free;
+          after_contact = true;
+          break;
+        case Phase::sticking:
+          if (!integrate_contact(t, x, Phase::sticking)) return;
+          phase = Phase::free;
+          after_contact = true;
+          break;
+      }
+    }
+    const TipState s = tip_state(x.q.data(), x.v.data(), t, phase == Phase::free ? Phase::free : phase);
+    solution_.energy.final_energy_j = mechanical_energy(x.q.data(), x.v.data(), s.indentation);
+  }
+
+ private:
+  static constexpr std::array<double, 5> kGaussNode = {0.04691007703066800, 0.23076534494715845, 0.5,
+                                                       0.76923465505284155, 0.95308992296933200};
+  static constexpr std::array<double, 5> kGaussWeight = {0.11846344252809454, 0.23931433524968324,
+                                                         0.28444444444444444, 0.23931433524968324,
+                                                         0.11846344252809454};
+
+  void fail(RunStatus status, const std::string& reason) {
+    solution_.status = status;
+    solution_.reason = reason;
+  }
+
+  // Stops a run whose contact episodes pile up without time advancing (a guard; physics never needs it).
+  bool chatter_guard(double t) {
+    if (solution_.impacts - guard_impacts_ < 100000) return false;
+    if (t - guard_time_ < 1e-9) {
+      std::ostringstream why;
+      why << "100000 contact episodes within " << (t - guard_time_) << " s at t = " << t << " s: chatter not resolved";
+      fail(RunStatus::failed, why.str());
+      return true;
+    }
+    guard_impacts_ = solution_.impacts;
+    guard_time_ = t;
+    return false;
+  }
+
+  // ---- kinematics -------------------------------------------------------------------------
+  TipState tip_state(const double* qp, const double* vp, double t, Phase phase) const {
+    using Eigen::Map;
+    const Map<const Eigen::VectorXd> q(qp, m_), v(vp, m_);
+    TipState s;
+    s.t = t;
+    const double motor = model_.motor ? model_.motor->at(t) : 0;
+    const double motor_rate = model_.motor ? model_.motor->rate_at(t) : 0;
+    const Eigen::VectorXd& b = model_.contact_lever;
+    s.indentation = b.dot(q) - model_.gap_m;
+    s.indentation_rate = b.dot(v);
+    const Eigen::ArrayXd restoring = two_zeta_omega_ * v.array() + omega2_ * q.array();
+    Eigen::ArrayXd driven = model_.motor_lever.array() * motor - restoring;  // modal acceleration without F_c
+    if (phase == Phase::compliant)
+      s.force = contact_force_continued(model_.contact, s.indentation, s.indentation_rate);
+    else if (phase == Phase::sticking)
+      s.force = b.dot(driven.matrix()) / lever_norm2_;
+    const Eigen::ArrayXd acc = driven - b.array() * s.force;
+    const double indentation_acc = b.dot(acc.matrix());
+    const Eigen::ArrayXd jerk_free = model_.motor_lever.array() * motor_rate - two_zeta_omega_ * acc - omega2_ * v.array();
+    if (phase == Phase::compliant)
+      s.force_rate = contact_force_rate(model_.contact, s.indentation, s.indentation_rate, indentation_acc);
+    else if (phase == Phase::sticking)
+      s.force_rate = b.dot(jerk_free.matrix()) / lever_norm2_;
+    const Eigen::ArrayXd jerk = jerk_free - b.array() * s.force_rate;
+    const int n2 = m_ - n1_;
+    const Eigen::VectorXd& tip1 = model_.frames[0].tip;
+    const Eigen::VectorXd& tip2 = model_.frames[1].tip;
+    s.displacement = {tip1.dot(q.head(n1_)), tip2.dot(q.tail(n2))};
+    s.velocity = {tip1.dot(v.head(n1_)), tip2.dot(v.tail(n2))};
+    s.acceleration = {tip1.dot(acc.head(n1_).matrix()), tip2.dot(acc.tail(n2).matrix())};
+    s.jerk = {tip1.dot(jerk.head(n1_).matrix()), tip2.dot(jerk.tail(n2).matrix())};
+    return s;
+  }
+
+  double mechanical_energy(const double* qp, const double* vp, double indentation) const {
+    const Eigen::Map<const Eigen::ArrayXd> q(qp, m_), v(vp, m_);
+    return 0.5 * (v.square() + omega2_ * q.square()).sum() + elastic_contact_energy(model_.contact, indentation);
+  }
+
+  // Power of the motor on frame 1's tip and of the structural damping [W].
+  double motor_power(const double* vp, double t) const {
+    if (!model_.motor) return 0;
+    const Eigen::Map<const Eigen::VectorXd> v(vp, m_);
+    return model_.motor->at(t) * model_.motor_lever.dot(v);
+  }
+  double structural_power(const double* vp) const {
+    const Eigen::Map<const Eigen::ArrayXd> v(vp, m_);
+    return (two_zeta_omega_ * v.square()).sum();
+  }
+
+  // ---- series and peaks ---------------------------------------------------------------------
+  // Feeds the recorder everything of [a, b] in time order: interior extrema of both tip
+  // accelerations and of the force, the samples that fall in (a, b], and the value at b.
+  template <class Eval>
+  void record_interval(const TipState& sa, const TipState& sb, Eval&& eval) {
+    if (!recorder_.wants_peaks_before(sb.t) && recorder_.next_sample_time() > sb.t) return;
+    std::array<TipState, 8> points;
+    int count = 0;
+    for (int f = 0; f < 2; ++f) {
+      if (sa.jerk[f] * sb.jerk[f] < 0) {
+        const double c = find_root([&](double t) { return eval(t).jerk[f]; }, sa.t, sb.t, sa.jerk[f], sb.jerk[f]);
+        points[count++] = eval(c);
+      }
+    }
+    if (sa.force_rate * sb.force_rate < 0) {
+      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate, sb.force_rate);
+      points[count++] = eval(c);
+    }
+    std::sort(points.begin(), points.begin() + count, [](const TipState& x, const TipState& y) { return x.t < y.t; });
+    int next = 0;
+    for (double ts = recorder_.next_sample_time(); ts <= sb.t; ts = recorder_.next_sample_time()) {
+      while (next < count && points[next].t <= ts) recorder_.feed(points[next++]);
+      recorder_.sample(ts == sb.t ? sb : eval(ts));
+    }
+    while (next < count) recorder_.feed(points[next++]);
+    recorder_.feed(sb);
+  }
+
+  // ---- free flight ----------------------------------------------------------------------------
+  // Advances in closed form until a contact onset (returns true, t and x at the onset) or the end
+  // of the run (returns false). after_contact: t is where a contact ended, so delta(t) is zero and
+  // a re-contact counts only after the tips have really moved apart.
+  bool free_flight(double& t, ModalState& x, bool after_contact) {
+    TipState sa = tip_state(x.q.data(), x.v.data(), t, Phase::free);
+    ModalState xb, xs;
+    bool first = true;
+    while (t < end_time_) {
+      const double step = std::min(grid_step_, end_time_ - t);
+      const bool standard = step == grid_step_;
+      const FreeFlight::Transition local = standard ? FreeFlight::Transition{} : flight_.transition(step);
+      flight_.advance(standard ? grid_transition_ : local, x, t, xb);
+      const double tb = (step == end_time_ - t) ? end_time_ : t + step;
+      TipState sb = tip_state(xb.q.data(), xb.v.data(), tb, Phase::free);
+      ++solution_.grid_intervals;
+      const double t0 = t;
+      auto eval = [&](double ts) {
+        flight_.advance(x, t0, ts - t0, xs);
+        return tip_state(xs.q.data(), xs.v.data(), ts, Phase::free);
+      };
+      const double onset = find_onset(sa, sb, eval, first && after_contact);
+      first = false;
+      if (onset < kInf) {
+        ModalState x_onset;
+        flight_.advance(x, t0, onset - t0, x_onset);
+        const TipState sc = tip_state(x_onset.q.data(), x_onset.v.data(), onset, Phase::free);
+        record_interval(sa, sc, eval);
+        if (settings_.track_energy) add_free_flight_energy(x, t0, onset - t0, nullptr);
+        t = onset;
+        x = x_onset;
+        return true;
+      }
+      record_interval(sa, sb, eval);
+      if (settings_.track_energy) add_free_flight_energy(x, t0, step, standard ? node_transition_.data() : nullptr);
+      t = tb;
+      x = xb;
+      sa = sb;
+    }
+    return false;
+  }
+
+  // The contact onset in (a, b], or infinity. The grid is fine enough that delta' changes sign at
+  // most once per interval, so a crossing is either seen at b or hides behind one interior maximum.
+  template <class Eval>
+  double find_onset(const TipState& sa, const TipState& sb, Eval&& eval, bool starts_at_contact) {
+    auto delta = [&](double t) { return eval(t).indentation; };
+    auto delta_rate = [&](double t) { return eval(t).indentation_rate; };
+    // At a contact end delta(a) is zero up to rounding: treat it as just negative.
+    const double delta_a = starts_at_contact ? -std::numeric_limits<double>::min() : sa.indentation;
+    if (sb.indentation >= 0) {
+      double lo = sa.t, f_lo = delta_a;
+      if (sa.indentation_rate < 0 && sb.indentation_rate > 0) {  // a minimum inside: cross after it
+        const double c = find_root(delta_rate, sa.t, sb.t, sa.indentation_rate, sb.indentation_rate);
+        const double f_c = delta(c);
+        if (f_c < 0) lo = c, f_lo = f_c;
+      }
+      return find_root(delta, lo, sb.t, f_lo, sb.indentation);
+    }
+    // Leaving a contact with (numerically) zero relative velocity: no maximum can follow at once.
+    if (starts_at_contact && sa.indentation_rate <= 1e-12) return kInf;
+    if (sa.indentation_rate > 0 && sb.indentation_rate < 0) {  // a maximum inside: grazing contact?
+      const double c = find_root(delta_rate, sa.t, sb.t, sa.indentation_rate, sb.indentation_rate);
+      const double f_c = delta(c);
+      if (f_c >= 0) return find_root(delta, sa.t, c, delta_a, f_c);
+    }
+    return kInf;
+  }
+
+  // Motor work and structural dissipation over [t0, t0 + tau] by 5-point Gauss-Legendre on the
+  // closed form (the grid resolves the fastest mode, so this is accurate to ~1e-10 per interval).
+  void add_free_flight_energy(const ModalState& x0, double t0, double tau, const FreeFlight::Transition* nodes) {
+    ModalState xs;
+    double work = 0, dissipation = 0;
+    for (int i = 0; i < 5; ++i) {
+      const double ts = t0 + tau * kGaussNode[i];
+      if (nodes) flight_.advance(nodes[i], x0, t0, xs);
+      else flight_.advance(x0, t0, tau * kGaussNode[i], xs);
+      work += kGaussWeight[i] * motor_power(xs.v.data(), ts);
+      dissipation += kGaussWeight[i] * structural_power(xs.v.data());
+    }
+    solution_.energy.motor_work_j += tau * work;
+    solution_.energy.structural_dissipation_j += tau * dissipation;
+  }
+
+  // ---- Newton impacts ---------------------------------------------------------------------------
+  // Applies the impulse at an onset; returns true when the impacts accumulate and the tips stick.
+  bool newton_impact(double t, ModalState& x) {
+    const double e = std::get<NewtonLaw>(model_.contact).restitution;
+    const Eigen::VectorXd& b = model_.contact_lever;
+    const double approach = std::max(0.0, b.dot(x.v));
+    const double impulse = (1 + e) * approach / lever_norm2_;
+    x.v -= b * impulse;
+    const double meff = 1 / lever_norm2_;
+    solution_.energy.contact_dissipation_j += 0.5 * meff * (1 - e * e) * approach * approach;
+    ContactEvent event;
+    event.onset_time_s = event.end_time_s = t;
+    event.approach_velocity_m_s = approach;
+    event.rebound_velocity_m_s = e * approach;
+    event.restitution = approach > 0 ? e : 0;
+    event.peak_force_n = std::numeric_limits<double>::quiet_NaN();
+    event.impulse_n_s = impulse;
+    event.max_indentation_m = 0;
+    ++solution_.impacts;
+    // Relative acceleration with no contact force: > 0 pushes the tips back together.
+    const TipState s = tip_state(x.q.data(), x.v.data(), t, Phase::free);
+    const double closing_acc = model_.contact_lever.dot(acceleration_without_contact(x, t));
+    const double rebound = -s.indentation_rate;
+    bool accumulate = false;
+    if (closing_acc > 0) {
+      // A bouncing tip under constant closing acceleration stops after sum 2 e^k v / a = 2 v / ((1 - e) a).
+      accumulate = e < 1 && 2 * rebound / ((1 - e) * closing_acc) < settings_.accumulation_time_s;
+    }
+    if (accumulate) {
+      const double plastic = b.dot(x.v) / lever_norm2_;  // removes the remaining rebound velocity
+      x.v -= b * plastic;
+      solution_.energy.contact_dissipation_j += 0.5 * meff * rebound * rebound;
+      event.impulse_n_s += plastic;
+      event.rebound_velocity_m_s = 0;
+      event.restitution = 0;
+      stick_impulse_ = event.impulse_n_s;
+    }
+    solution_.trajectory.events.push_back(event);
+    return accumulate;
+  }
+
+  Eigen::VectorXd acceleration_without_contact(const ModalState& x, double t) const {
+    const double motor = model_.motor ? model_.motor->at(t) : 0;
+    return (model_.motor_lever.array() * motor - two_zeta_omega_ * x.v.array() - omega2_ * x.q.array()).matrix();
+  }
+
+  // ---- compliant contact and sticking -----------------------------------------------------------
+  // Integrates a contact phase with Dormand-Prince until it ends (separation, or release from
+  // sticking) or the run ends. Returns false when the run cannot go on (status set).
+  bool integrate_contact(double& t, ModalState& x, Phase phase) {
+    OdeState y(2 * m_ + 4, 0.0);
+    std::copy(x.q.data(), x.q.data() + m_, y.begin());
+    std::copy(x.v.data(), x.v.data() + m_, y.begin() + m_);
+    auto rhs = [&](const OdeState& s, OdeState& ds, double ts) {
+      const TipState k = tip_state(s.data(), s.data() + m_, ts, phase);
+      const Eigen::Map<const Eigen::ArrayXd> q(s.data(), m_), v(s.data() + m_, m_);
+      Eigen::Map<Eigen::ArrayXd> dq(ds.data(), m_), dv(ds.data() + m_, m_);
+      const double motor = model_.motor ? model_.motor->at(ts) : 0;
+      dq = v;
+      dv = model_.motor_lever.array() * motor - two_zeta_omega_ * v - omega2_ * q - model_.contact_lever.array() * k.force;
+      ds[2 * m_] = motor_power(s.data() + m_, ts);
+      ds[2 * m_ + 1] = structural_power(s.data() + m_);
+      ds[2 * m_ + 2] = (k.force - elastic_contact_force(model_.contact, k.indentation)) * k.indentation_rate;
+      ds[2 * m_ + 3] = k.force;
+    };
+    // The integrator's step never exceeds the scan grid, so extrema stay one per step.
+    auto dense = odeint::make_dense_output(settings_.absolute_tolerance, settings_.relative_tolerance, grid_step_, Dopri());
+    dense.initialize(y, t, std::min(grid_step_, 1e-6));
+    TipState sa = tip_state(y.data(), y.data() + m_, t, phase);
+    ContactEvent event;
+    event.onset_time_s = t;
+    event.approach_velocity_m_s = sa.indentation_rate;
+    event.impulse_n_s = phase == Phase::sticking ? stick_impulse_ : 0;
+    event.peak_force_n = sa.force;
+    event.max_indentation_m = std::max(0.0, sa.indentation);
+    OdeState ys(y.size());
+    auto eval = [&](double ts) {
+      dense.calc_state(ts, ys);
+      return tip_state(ys.data(), ys.data() + m_, ts, phase);
+    };
+    // The quantity whose sign change ends the phase: delta for a compliant contact, F_c for sticking.
+    auto ending = [&](const TipState& s) { return phase == Phase::compliant ? s.indentation : s.force; };
+    while (true) {
+      try {
+        dense.do_step(rhs);
+      } catch (const std::exception& error) {
+        fail(RunStatus::failed, std::string("reference integrator failed at t = ") + std::to_string(t) + " s: " + error.what());
+        return false;
+      }
+      ++solution_.integrator_steps;
+      const double ta = dense.previous_time(), tb = dense.current_time();
+      const OdeState& yb = dense.current_state();
+      if (!std::isfinite(yb[0]) || !std::isfinite(yb[m_])) {
+        fail(RunStatus::failed, "reference integrator produced a non-finite state at t = " + std::to_string(tb) + " s");
+        return false;
+      }
+      TipState sb = tip_state(yb.data(), yb.data() + m_, tb, phase);
+      double t_stop = tb;
+      bool ended = false;
+      if (ending(sb) < 0) {
+        // Locate the end on the dense output, after the last interior maximum of the ending quantity.
+        double lo = ta, f_lo = ending(sa);
+        if (f_lo <= 0) {
+          const double c = phase == Phase::compliant
+                               ? find_root([&](double s) { return eval(s).indentation_rate; }, ta, tb, sa.indentation_rate, sb.indentation_rate)
+                               : ta;
+          lo = c;
+          f_lo = ending(eval(c));
+        }
+        t_stop = f_lo > 0 ? find_root([&](double s) { return ending(eval(s)); }, lo, tb, f_lo, ending(sb)) : lo;
+        ended = true;
+      }
+      if (t_stop > end_time_) t_stop = end_time_, ended = false;
+      OdeState y_stop = yb;
+      if (t_stop < tb) {
+        // Retake the step exactly to the stop time: the force is smooth on [ta, t_stop].
+        Dopri().do_step(rhs, dense.previous_state(), ta, y_stop, t_stop - ta);
+        sb = tip_state(y_stop.data(), y_stop.data() + m_, t_stop, phase);
+      }
+      record_interval(sa, sb, eval);
+      track_event(event, sa, sb, eval);
+      if (ended || t_stop >= end_time_) {
+        t = t_stop;
+        x.q = Eigen::Map<const Eigen::VectorXd>(y_stop.data(), m_);
+        x.v = Eigen::Map<const Eigen::VectorXd>(y_stop.data() + m_, m_);
+        if (phase == Phase::sticking) project_onto_contact(x);
+        solution_.energy.motor_work_j += y_stop[2 * m_];
+        solution_.energy.structural_dissipation_j += y_stop[2 * m_ + 1];
+        solution_.energy.contact_dissipation_j += y_stop[2 * m_ + 2];
+        event.end_time_s = t;
+        event.impulse_n_s += y_stop[2 * m_ + 3];
+        event.rebound_velocity_m_s = -sb.indentation_rate;
+        event.restitution = event.approach_velocity_m_s > 0 ? event.rebound_velocity_m_s / event.approach_velocity_m_s : 0;
+        if (phase == Phase::sticking) {
+          ++solution_.sticking_phases;
+          // the sticking phase continues the impact episode that started it
+          ContactEvent& start = solution_.trajectory.events.back();
+          start.end_time_s = event.end_time_s;
+          start.impulse_n_s = event.impulse_n_s;
+          start.peak_force_n = event.peak_force_n;
+          start.rebound_velocity_m_s = event.rebound_velocity_m_s;
+          start.restitution = event.restitution;
+        } else {
+          ++solution_.impacts;
+          solution_.trajectory.events.push_back(event);
+        }
+        return true;
+      }
+      sa = sb;
+    }
+  }
+
+  // Keeps the sticking tips exactly on delta = 0, delta' = 0 (removes integration drift) with the
+  // smallest mass-weighted correction.
+  void project_onto_contact(ModalState& x) const {
+    const Eigen::VectorXd& b = model_.contact_lever;
+    x.q -= b * ((b.dot(x.q) - model_.gap_m) / lever_norm2_);
+    x.v -= b * (b.dot(x.v) / lever_norm2_);
+  }
+
+  // Peak force and maximum indentation of a contact episode, exact between steps.
+  template <class Eval>
+  void track_event(ContactEvent& event, const TipState& sa, const TipState& sb, Eval&& eval) const {
+    event.peak_force_n = std::max({event.peak_force_n, sa.force, sb.force});
+    event.max_indentation_m = std::max({event.max_indentation_m, sa.indentation, sb.indentation});
+    if (sa.force_rate > 0 && sb.force_rate < 0) {
+      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate, sb.force_rate);
+      event.peak_force_n = std::max(event.peak_force_n, eval(c).force);
+    }
+    if (sa.indentation_rate > 0 && sb.indentation_rate < 0) {
+      const double c = find_root([&](double t) { return eval(t).indentation_rate; }, sa.t, sb.t, sa.indentation_rate,
+                                 sb.indentation_rate);
+      event.max_indentation_m = std::max(event.max_indentation_m, eval(c).indentation);
+    }
+  }
+
+  const ModalModel& model_;
+  const ReferenceSettings& settings_;
+  ReferenceSolution& solution_;
+  FreeFlight flight_;
+  SeriesRecorder recorder_;
+  int m_, n1_;
+  Eigen::ArrayXd omega2_, two_zeta_omega_;
+  double lever_norm2_ = 0;
+  double grid_step_ = 0;
+  double end_time_ = 0;
+  FreeFlight::Transition grid_transition_;
+  std::array<FreeFlight::Transition, 5> node_transition_;
+  double stick_impulse_ = 0;
+  long long guard_impacts_ = 0;
+  double guard_time_ = 0;
+};
+
+}  // namespace
+
+ReferenceSolution solve_reference(const ModalModel& model, const ModalState& initial, double duration_s,
+                                  const OutputWindow& output, const ReferenceSettings& settings) {
+  if (!(settings.relative_tolerance > 0) || !(settings.absolute_tolerance > 0))
+    throw std::invalid_argument("reference tolerances must be > 0");
+  if (settings.grid_points_per_period < 4)
+    throw std::invalid_argument("grid_points_per_period must be >= 4");
+  ReferenceSolution solution;
+  Solver solver(model, output, settings, solution);
+  solver.run(initial, duration_s);
+  return solution;
+}
+
+}  // namespace ib
