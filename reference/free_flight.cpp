@@ -1,6 +1,7 @@
 #include "free_flight.h"
 
 #include <cmath>
+#include <boost/math/quadrature/gauss.hpp>
 #include <complex>
 #include <stdexcept>
 #include <string>
@@ -63,9 +64,12 @@ FreeFlight::Transition FreeFlight::transition(double tau) const {
 }
 
 void FreeFlight::steady_state(double t, ModalState& x) const {
+  const int n = model_.mode_count();
+  x.q.resize(n);
+  x.v.resize(n);
   if (!model_.motor) {
-    x.q.setZero(model_.mode_count());
-    x.v.setZero(model_.mode_count());
+    x.q.setZero();
+    x.v.setZero();
     return;
   }
   const double w = model_.motor->omega_rad_s, c = std::cos(w * t), s = std::sin(w * t);
@@ -73,19 +77,110 @@ void FreeFlight::steady_state(double t, ModalState& x) const {
   x.v = (-w * (forced_cos_ * s + forced_sin_ * c)).matrix();
 }
 
-void FreeFlight::advance(const Transition& tr, const ModalState& x0, double t0, ModalState& x) const {
-  if (!model_.motor) {
-    const Eigen::ArrayXd q = x0.q.array(), v = x0.v.array();
-    x.q = (tr.qq * q + tr.qv * v).matrix();
-    x.v = (tr.vq * q + tr.vv * v).matrix();
-    return;
+FreeFlight::MotorPhase FreeFlight::motor_phase(double t) const {
+  if (!model_.motor) return {t, 1, 0};
+  const double angle = model_.motor->omega_rad_s * t;
+  return {t, std::cos(angle), std::sin(angle)};
+}
+
+void FreeFlight::advance(const Transition& tr, const MotorPhase& from, const MotorPhase& to, const ModalState& x0,
+                         ModalState& x, const EnergyForms* forms, double* motor_work_j,
+                         double* structural_dissipation_j) const {
+  const int n = model_.mode_count();
+  x.q.resize(n);
+  x.v.resize(n);
+  const double w = model_.motor ? model_.motor->omega_rad_s : 0;
+  const double c0 = from.cos, s0 = from.sin, c1 = to.cos, s1 = to.sin;
+  double work = 0, dissipation = 0;
+  // A plain loop: this is the reference's innermost loop, run millions of times, without temporaries.
+  for (int m = 0; m < n; ++m) {
+    const double a = forced_cos_[m], b = forced_sin_[m];
+    // the free part (x - x_p) at the start, and the steady-state velocity v_p(t0 + s) = P cos + Q sin
+    const double p = -w * (a * s0 + b * c0), q = -w * (a * c0 - b * s0);
+    const double q_free = x0.q[m] - (a * c0 - b * s0), v_free = x0.v[m] - p;
+    x.q[m] = (a * c1 - b * s1) + tr.qq[m] * q_free + tr.qv[m] * v_free;
+    x.v[m] = -w * (a * s1 + b * c1) + tr.vq[m] * q_free + tr.vv[m] * v_free;
+    if (!forms) continue;
+    const EnergyForms& f = *forms;
+    const double hom_sq = f.vv_qq[m] * q_free * q_free + 2 * f.vv_qv[m] * q_free * v_free + f.vv_vv[m] * v_free * v_free;
+    const double cos_hom = f.cos_q[m] * q_free + f.cos_v[m] * v_free;
+    const double sin_hom = f.sin_q[m] * q_free + f.sin_v[m] * v_free;
+    const double part_sq = p * p * f.cos_cos + 2 * p * q * f.cos_sin + q * q * f.sin_sin;
+    dissipation += 2 * model_.zeta[m] * model_.omega_rad_s[m] * (hom_sq + 2 * (p * cos_hom + q * sin_hom) + part_sq);
+    if (model_.motor_lever[m] != 0) {
+      // F_m(t0 + s) = F (c0 cos(Omega s) - s0 sin(Omega s))
+      const double cos_v = p * f.cos_cos + q * f.cos_sin + cos_hom;
+      const double sin_v = p * f.cos_sin + q * f.sin_sin + sin_hom;
+      work += model_.motor->amplitude_n * model_.motor_lever[m] * (c0 * cos_v - s0 * sin_v);
+    }
   }
-  ModalState p0, p1;
-  steady_state(t0, p0);
-  steady_state(t0 + tr.tau_s, p1);
-  const Eigen::ArrayXd q = x0.q.array() - p0.q.array(), v = x0.v.array() - p0.v.array();
-  x.q = p1.q + (tr.qq * q + tr.qv * v).matrix();
-  x.v = p1.v + (tr.vq * q + tr.vv * v).matrix();
+  if (forms) {
+    *motor_work_j += work;
+    *structural_dissipation_j += dissipation;
+  }
+}
+
+FreeFlight::EnergyForms FreeFlight::energy_forms(double tau) const {
+  const int n = model_.mode_count();
+  const double w = model_.motor ? model_.motor->omega_rad_s : 0;
+  EnergyForms f;
+  f.tau_s = tau;
+  for (Eigen::ArrayXd* a : {&f.vv_qq, &f.vv_qv, &f.vv_vv, &f.cos_q, &f.cos_v, &f.sin_q, &f.sin_v}) a->setZero(n);
+  // 20-point Gauss-Legendre on panels short against the fastest period: exact to rounding.
+  // Panels of at most 1/8 of the fastest period, 16 at least.
+  const double fastest_period = 2 * M_PI / model_.omega_rad_s.maxCoeff();
+  const int panels = std::max(16, static_cast<int>(std::ceil(8 * tau / fastest_period)));
+  const double width = tau / panels;
+  const auto& nodes = boost::math::quadrature::gauss<double, 20>::abscissa();
+  const auto& weights = boost::math::quadrature::gauss<double, 20>::weights();
+  auto add = [&](double s, double weight) {
+    const Transition t = transition(s);
+    const double c = std::cos(w * s), sn = std::sin(w * s);
+    f.vv_qq += weight * t.vq * t.vq;
+    f.vv_qv += weight * t.vq * t.vv;
+    f.vv_vv += weight * t.vv * t.vv;
+    f.cos_q += weight * c * t.vq;
+    f.cos_v += weight * c * t.vv;
+    f.sin_q += weight * sn * t.vq;
+    f.sin_v += weight * sn * t.vv;
+    f.cos_cos += weight * c * c;
+    f.cos_sin += weight * c * sn;
+    f.sin_sin += weight * sn * sn;
+  };
+  for (int p = 0; p < panels; ++p) {
+    const double mid = (p + 0.5) * width, half = 0.5 * width;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      // boost stores the non-negative abscissae; the zero node (odd order only) counts once
+      add(mid + half * nodes[i], half * weights[i]);
+      if (nodes[i] != 0) add(mid - half * nodes[i], half * weights[i]);
+    }
+  }
+  return f;
+}
+
+double FreeFlight::displacement_bound(const ModalState& x0, const MotorPhase& phase, const Eigen::VectorXd& lever,
+                                      int first, int last) const {
+  const double w = model_.motor ? model_.motor->omega_rad_s : 0;
+  double bound = 0;
+  for (int m = first; m < last; ++m) {
+    const double a = forced_cos_[m], b = forced_sin_[m];
+    const double q0 = x0.q[m] - (a * phase.cos - b * phase.sin);
+    const double v0 = x0.v[m] + w * (a * phase.sin + b * phase.cos);
+    const double sigma = decay_[m], k = oscillation_[m];
+    double envelope;
+    if (regime_[m] < 0) {
+      // e^{sigma t} (q0 cos + (v0 - sigma q0)/w_d sin) never exceeds its amplitude
+      const double s0 = (v0 - sigma * q0) / k;
+      envelope = std::sqrt(q0 * q0 + s0 * s0);
+    } else {
+      // |e^{sigma t} C| <= 1 and e^{sigma t} S <= min(1/(2k), 1/(e |sigma + k|)) (t e^{sigma t} for k = 0)
+      const double s_max = regime_[m] > 0 ? std::min(0.5 / k, 1 / (std::exp(1.0) * std::abs(sigma + k)))
+                                          : 1 / (std::exp(1.0) * std::abs(sigma));
+      envelope = std::abs(q0) + std::abs(v0 - sigma * q0) * s_max;
+    }
+    bound += std::abs(lever[m]) * (std::sqrt(a * a + b * b) + envelope);
+  }
+  return bound;
 }
 
 }  // namespace ib

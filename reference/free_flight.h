@@ -26,11 +26,40 @@ class FreeFlight {
   // Steady-state response to the motor at time t (zero without a motor).
   void steady_state(double t, ModalState& x) const;
 
-  // x at t0 + T.tau from x0 at t0.
-  void advance(const Transition& transition, const ModalState& x0, double t0, ModalState& x) const;
+  // The motor's phase at a time: cos and sin of Omega t (1 and 0 without a motor). Computed once
+  // per time and handed on, since the trigonometry dominates the cost of a step.
+  struct MotorPhase {
+    double t_s = 0, cos = 1, sin = 0;
+  };
+  MotorPhase motor_phase(double t_s) const;
+
+  struct EnergyForms;
+  // x at to.t_s = from.t_s + transition.tau_s from x0 at from.t_s (x may not be x0). With forms
+  // (made for the same tau), also adds the motor work and structural dissipation over the step [J].
+  void advance(const Transition& transition, const MotorPhase& from, const MotorPhase& to, const ModalState& x0,
+               ModalState& x, const EnergyForms* forms = nullptr, double* motor_work_j = nullptr,
+               double* structural_dissipation_j = nullptr) const;
   void advance(const ModalState& x0, double t0, double tau_s, ModalState& x) const {
-    advance(transition(tau_s), x0, t0, x);
+    advance(transition(tau_s), motor_phase(t0), motor_phase(t0 + tau_s), x0, x);
   }
+
+  // Exact energy integrals over a fixed interval [t0, t0 + tau] as forms in the state at t0,
+  // precomputed once per interval length by high-order quadrature of the transition:
+  //   integral v_m^2 dt and integral F_m(t) v_m dt, for the structural dissipation
+  //   sum 2 zeta omega integral v^2 and the motor work integral F_m(t) u1'(t).
+  struct EnergyForms {
+    double tau_s = 0;
+    Eigen::ArrayXd vv_qq, vv_qv, vv_vv;   // integral v_h^2 = vv_qq q~^2 + 2 vv_qv q~ v~ + vv_vv v~^2
+    Eigen::ArrayXd cos_q, cos_v, sin_q, sin_v;  // integral {cos, sin}(Omega s) v_h(s) ds = _q q~ + _v v~
+    double cos_cos = 0, cos_sin = 0, sin_sin = 0;  // integrals of cos^2, cos sin, sin^2 (Omega s)
+  };
+  EnergyForms energy_forms(double tau_s) const;
+
+  // An upper bound, valid for all later times of free flight, on |sum_{m in [first, last)} lever_m q_m(t)|
+  // from the state at t0: each mode's steady-state amplitude plus the envelope of its decaying
+  // free motion. Lets the solver step over stretches where the fast modes cannot close the gap.
+  double displacement_bound(const ModalState& x0, const MotorPhase& phase, const Eigen::VectorXd& lever, int first,
+                            int last) const;
 
  private:
   const ModalModel& model_;

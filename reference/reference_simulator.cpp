@@ -16,6 +16,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"rtol", "relative tolerance of the contact integrator, > 0 (default 1e-9)"},
     {"atol", "absolute tolerance on modal coordinates, > 0 (default 1e-12)"},
     {"grid", "free-flight scan points per period of the fastest mode, >= 4 (default 8)"},
+    {"slow_modes", "modes per frame resolved by the coarse free-flight step outside the output window, 0 = fine grid only (default 3)"},
     {"accumulation_time", "Newton law: stick when impacts would accumulate within this time [s], >= 0 (default 1e-6)"},
     {"energy", "keep the energy ledger: on (default) or off"},
 };
@@ -63,7 +64,7 @@ class ReferenceSimulator final : public Simulator {
     RunResult result;
     result.cost.cpu_time_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    result.cost.steps = solution.integrator_steps + solution.grid_intervals;
+    result.cost.steps = solution.integrator_steps + solution.grid_intervals + solution.coarse_intervals;
     result.trajectory = std::move(solution.trajectory);
     result.status = solution.status;
     result.reason = solution.reason;
@@ -75,6 +76,7 @@ class ReferenceSimulator final : public Simulator {
     d.emplace_back("grid_step_s", solution.grid_step_s);
     d.emplace_back("integrator_steps", static_cast<double>(solution.integrator_steps));
     d.emplace_back("grid_intervals", static_cast<double>(solution.grid_intervals));
+    d.emplace_back("coarse_intervals", static_cast<double>(solution.coarse_intervals));
     d.emplace_back("sticking_phases", static_cast<double>(solution.sticking_phases));
     if (settings.track_energy) {
       const EnergyLedger& e = solution.energy;
@@ -109,6 +111,8 @@ ReferenceSettings reference_settings_from_options(const std::map<std::string, st
       (key == "rtol" ? s.relative_tolerance : s.absolute_tolerance) = v;
     } else if (key == "grid") {
       s.grid_points_per_period = parse_integer(key, text, 4, 1000);
+    } else if (key == "slow_modes") {
+      s.slow_modes_per_frame = parse_integer(key, text, 0, 200);
     } else if (key == "accumulation_time") {
       s.accumulation_time_s = parse_number(key, text, "a time >= 0 [s]");
       require(s.accumulation_time_s >= 0, key, text, "a time >= 0 [s]");

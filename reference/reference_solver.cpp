@@ -44,15 +44,18 @@ struct TipState {
   double force = 0, force_rate = 0;              // F_c [N], dF_c/dt [N/s]
 };
 
-// First root of f on [a, b] given f(a), f(b) of opposite signs (or one of them zero).
+// First root of f on [a, b] given f(a), f(b) of opposite signs (or one of them zero), to `bits` bits.
+// Event times need full precision; the location of an extremum much less, as the value there is
+// flat in it (a relative location error e changes the value by order e^2).
+constexpr int kEventBits = 50, kExtremumBits = 26;
 template <class F>
-double find_root(F&& f, double a, double b, double fa, double fb) {
+double find_root(F&& f, double a, double b, double fa, double fb, int bits = kEventBits) {
   if (fa == 0) return a;
   if (fb == 0) return b;
   if ((fa > 0) == (fb > 0)) return std::abs(fa) < std::abs(fb) ? a : b;  // no sign change: nearest end
   std::uintmax_t iterations = 60;
   const auto bracket =
-      boost::math::tools::toms748_solve(f, a, b, fa, fb, boost::math::tools::eps_tolerance<double>(50), iterations);
+      boost::math::tools::toms748_solve(f, a, b, fa, fb, boost::math::tools::eps_tolerance<double>(bits), iterations);
   return 0.5 * (bracket.first + bracket.second);
 }
 
@@ -70,7 +73,8 @@ class SeriesRecorder {
   double next_sample_time() const {
     return index_ < total_ ? window_.start_s + static_cast<double>(index_) / window_.rate_hz : kInf;
   }
-  bool wants_peaks_before(double t) const { return index_ > 0 || t >= window_.start_s; }
+  // Whether an interval ending at t holds anything to record (samples or peaks).
+  bool wants(double t) const { return index_ < total_ && (index_ > 0 || t >= window_.start_s); }
   void feed(const TipState& s) {
     if (index_ == 0) return;  // peaks count from the first sample on
     for (int f = 0; f < 2; ++f) peak_acc_[f] = std::max(peak_acc_[f], std::abs(s.acceleration[f]));
@@ -117,10 +121,28 @@ class Solver {
     // Scan grid and the integrator's largest step: a fraction of the fastest period (the motor's too).
     double fastest = model.omega_rad_s.maxCoeff();
     if (model.motor) fastest = std::max(fastest, model.motor->omega_rad_s);
-    grid_step_ = kTwoPi / fastest / settings.grid_points_per_period;
+    grid_step_ = std::min(kTwoPi / fastest / settings.grid_points_per_period, settings.max_grid_step_s);
     solution.grid_step_s = grid_step_;
     grid_transition_ = flight_.transition(grid_step_);
-    for (int i = 0; i < 5; ++i) node_transition_[i] = flight_.transition(grid_step_ * kGaussNode[i]);
+    if (settings.track_energy) grid_energy_ = flight_.energy_forms(grid_step_);
+    // The coarse step resolves the slow modes only; the rest is bounded (see free_flight).
+    const int n2 = m_ - n1_, slow = settings.slow_modes_per_frame;
+    if (slow > 0 && (slow < n1_ || slow < n2)) {
+      slow_lever_ = fast_lever_ = model.contact_lever;
+      double slow_fastest = model.motor ? model.motor->omega_rad_s : 0;
+      for (int m = 0; m < m_; ++m) {
+        const bool is_slow = (m < n1_ ? m : m - n1_) < slow;
+        (is_slow ? fast_lever_ : slow_lever_)[m] = 0;
+        if (is_slow) slow_fastest = std::max(slow_fastest, model.omega_rad_s[m]);
+      }
+      coarse_step_ = std::min(kTwoPi / slow_fastest / settings.grid_points_per_period, settings.max_grid_step_s);
+      if (coarse_step_ > 2 * grid_step_) {
+        coarse_transition_ = flight_.transition(coarse_step_);
+        if (settings.track_energy) coarse_energy_ = flight_.energy_forms(coarse_step_);
+      } else {
+        coarse_step_ = 0;  // nothing to gain
+      }
+    }
   }
 
   void run(const ModalState& initial, double duration) {
@@ -177,12 +199,6 @@ class Solver {
   }
 
  private:
-  static constexpr std::array<double, 5> kGaussNode = {0.04691007703066800, 0.23076534494715845, 0.5,
-                                                       0.76923465505284155, 0.95308992296933200};
-  static constexpr std::array<double, 5> kGaussWeight = {0.11846344252809454, 0.23931433524968324,
-                                                         0.28444444444444444, 0.23931433524968324,
-                                                         0.11846344252809454};
-
   void fail(RunStatus status, const std::string& reason) {
     solution_.status = status;
     solution_.reason = reason;
@@ -203,37 +219,55 @@ class Solver {
   }
 
   // ---- kinematics -------------------------------------------------------------------------
-  TipState tip_state(const double* qp, const double* vp, double t, Phase phase) const {
-    using Eigen::Map;
-    const Map<const Eigen::VectorXd> q(qp, m_), v(vp, m_);
+  TipState tip_state(const double* q, const double* v, double t, Phase phase) const {
     TipState s;
     s.t = t;
     const double motor = model_.motor ? model_.motor->at(t) : 0;
     const double motor_rate = model_.motor ? model_.motor->rate_at(t) : 0;
-    const Eigen::VectorXd& b = model_.contact_lever;
-    s.indentation = b.dot(q) - model_.gap_m;
-    s.indentation_rate = b.dot(v);
-    const Eigen::ArrayXd restoring = two_zeta_omega_ * v.array() + omega2_ * q.array();
-    Eigen::ArrayXd driven = model_.motor_lever.array() * motor - restoring;  // modal acceleration without F_c
+    const double* b = model_.contact_lever.data();
+    const double* p = model_.motor_lever.data();
+    const double* w2 = omega2_.data();
+    const double* c = two_zeta_omega_.data();
+    // Plain loops without temporaries: this runs at every sample and in every root search.
+    double delta = -model_.gap_m, rate = 0, lever_driven = 0;
+    for (int m = 0; m < m_; ++m) {
+      delta += b[m] * q[m];
+      rate += b[m] * v[m];
+      lever_driven += b[m] * (p[m] * motor - c[m] * v[m] - w2[m] * q[m]);
+    }
+    s.indentation = delta;
+    s.indentation_rate = rate;
+    if (phase == Phase::compliant) s.force = contact_force_continued(model_.contact, delta, rate);
+    else if (phase == Phase::sticking) s.force = lever_driven / lever_norm2_;
+    // delta'' = b . (driven - b F) and the jerk without the force rate, b . (p F_m' - c a - w^2 v)
+    const double indentation_acc = lever_driven - lever_norm2_ * s.force;
+    double lever_jerk_free = 0;
+    for (int m = 0; m < m_; ++m) {
+      const double acc = p[m] * motor - c[m] * v[m] - w2[m] * q[m] - b[m] * s.force;
+      lever_jerk_free += b[m] * (p[m] * motor_rate - c[m] * acc - w2[m] * v[m]);
+    }
     if (phase == Phase::compliant)
-      s.force = contact_force_continued(model_.contact, s.indentation, s.indentation_rate);
+      s.force_rate = contact_force_rate(model_.contact, delta, rate, indentation_acc);
     else if (phase == Phase::sticking)
-      s.force = b.dot(driven.matrix()) / lever_norm2_;
-    const Eigen::ArrayXd acc = driven - b.array() * s.force;
-    const double indentation_acc = b.dot(acc.matrix());
-    const Eigen::ArrayXd jerk_free = model_.motor_lever.array() * motor_rate - two_zeta_omega_ * acc - omega2_ * v.array();
-    if (phase == Phase::compliant)
-      s.force_rate = contact_force_rate(model_.contact, s.indentation, s.indentation_rate, indentation_acc);
-    else if (phase == Phase::sticking)
-      s.force_rate = b.dot(jerk_free.matrix()) / lever_norm2_;
-    const Eigen::ArrayXd jerk = jerk_free - b.array() * s.force_rate;
-    const int n2 = m_ - n1_;
-    const Eigen::VectorXd& tip1 = model_.frames[0].tip;
-    const Eigen::VectorXd& tip2 = model_.frames[1].tip;
-    s.displacement = {tip1.dot(q.head(n1_)), tip2.dot(q.tail(n2))};
-    s.velocity = {tip1.dot(v.head(n1_)), tip2.dot(v.tail(n2))};
-    s.acceleration = {tip1.dot(acc.head(n1_).matrix()), tip2.dot(acc.tail(n2).matrix())};
-    s.jerk = {tip1.dot(jerk.head(n1_).matrix()), tip2.dot(jerk.tail(n2).matrix())};
+      s.force_rate = lever_jerk_free / lever_norm2_;
+    for (int f = 0; f < 2; ++f) {
+      const int first = f == 0 ? 0 : n1_, last = f == 0 ? n1_ : m_;
+      const Eigen::VectorXd& tip_of_mode = model_.frames[f].tip;
+      double u = 0, du = 0, acc_sum = 0, jerk_sum = 0;
+      for (int m = first; m < last; ++m) {
+        const double tip_m = tip_of_mode[m - first];
+        const double acc = p[m] * motor - c[m] * v[m] - w2[m] * q[m] - b[m] * s.force;
+        const double jerk = p[m] * motor_rate - c[m] * acc - w2[m] * v[m] - b[m] * s.force_rate;
+        u += tip_m * q[m];
+        du += tip_m * v[m];
+        acc_sum += tip_m * acc;
+        jerk_sum += tip_m * jerk;
+      }
+      s.displacement[f] = u;
+      s.velocity[f] = du;
+      s.acceleration[f] = acc_sum;
+      s.jerk[f] = jerk_sum;
+    }
     return s;
   }
 
@@ -258,20 +292,23 @@ class Solver {
   // accelerations and of the force, the samples that fall in (a, b], and the value at b.
   template <class Eval>
   void record_interval(const TipState& sa, const TipState& sb, Eval&& eval) {
-    if (!recorder_.wants_peaks_before(sb.t) && recorder_.next_sample_time() > sb.t) return;
-    std::array<TipState, 8> points;
+    if (!recorder_.wants(sb.t)) return;
+    std::array<TipState, 3> points;  // at most one extremum each of a1, a2 and F_c
     int count = 0;
     for (int f = 0; f < 2; ++f) {
       if (sa.jerk[f] * sb.jerk[f] < 0) {
-        const double c = find_root([&](double t) { return eval(t).jerk[f]; }, sa.t, sb.t, sa.jerk[f], sb.jerk[f]);
+        const double c =
+            find_root([&](double t) { return eval(t).jerk[f]; }, sa.t, sb.t, sa.jerk[f], sb.jerk[f], kExtremumBits);
         points[count++] = eval(c);
       }
     }
     if (sa.force_rate * sb.force_rate < 0) {
-      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate, sb.force_rate);
+      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
+                                 sb.force_rate, kExtremumBits);
       points[count++] = eval(c);
     }
-    std::sort(points.begin(), points.begin() + count, [](const TipState& x, const TipState& y) { return x.t < y.t; });
+    for (int i = 1; i < count; ++i)  // insertion sort by time: at most three points
+      for (int j = i; j > 0 && points[j].t < points[j - 1].t; --j) std::swap(points[j], points[j - 1]);
     int next = 0;
     for (double ts = recorder_.next_sample_time(); ts <= sb.t; ts = recorder_.next_sample_time()) {
       while (next < count && points[next].t <= ts) recorder_.feed(points[next++]);
@@ -282,88 +319,144 @@ class Solver {
   }
 
   // ---- free flight ----------------------------------------------------------------------------
+  // The indentation and its rate: all that onset detection needs.
+  struct Gap {
+    double t = 0, delta = 0, rate = 0;
+  };
+  Gap gap_of(const ModalState& x, double t) const {
+    return {t, model_.contact_lever.dot(x.q) - model_.gap_m, model_.contact_lever.dot(x.v)};
+  }
+
   // Advances in closed form until a contact onset (returns true, t and x at the onset) or the end
   // of the run (returns false). after_contact: t is where a contact ended, so delta(t) is zero and
   // a re-contact counts only after the tips have really moved apart.
   bool free_flight(double& t, ModalState& x, bool after_contact) {
-    TipState sa = tip_state(x.q.data(), x.v.data(), t, Phase::free);
-    ModalState xb, xs;
+    Gap ga = gap_of(x, t);
+    FreeFlight::MotorPhase phase_a = flight_.motor_phase(t);
     bool first = true;
+    double* work = settings_.track_energy ? &solution_.energy.motor_work_j : nullptr;
+    double* dissipation = settings_.track_energy ? &solution_.energy.structural_dissipation_j : nullptr;
+    double fine_until = first && after_contact ? t + coarse_step_ : t;  // no coarse step right after a contact
+    TipState tips_a;
+    bool tips_a_valid = false;
     while (t < end_time_) {
-      const double step = std::min(grid_step_, end_time_ - t);
-      const bool standard = step == grid_step_;
-      const FreeFlight::Transition local = standard ? FreeFlight::Transition{} : flight_.transition(step);
-      flight_.advance(standard ? grid_transition_ : local, x, t, xb);
-      const double tb = (step == end_time_ - t) ? end_time_ : t + step;
-      TipState sb = tip_state(xb.q.data(), xb.v.data(), tb, Phase::free);
-      ++solution_.grid_intervals;
-      const double t0 = t;
-      auto eval = [&](double ts) {
-        flight_.advance(x, t0, ts - t0, xs);
-        return tip_state(xs.q.data(), xs.v.data(), ts, Phase::free);
-      };
-      const double onset = find_onset(sa, sb, eval, first && after_contact);
-      first = false;
-      if (onset < kInf) {
-        ModalState x_onset;
-        flight_.advance(x, t0, onset - t0, x_onset);
-        const TipState sc = tip_state(x_onset.q.data(), x_onset.v.data(), onset, Phase::free);
-        record_interval(sa, sc, eval);
-        if (settings_.track_energy) add_free_flight_energy(x, t0, onset - t0, nullptr);
-        t = onset;
-        x = x_onset;
-        return true;
+      if (coarse_step_ > 0 && t >= fine_until && t + coarse_step_ < end_time_ && !recorder_.wants(t + coarse_step_)) {
+        if (coarse_step_without_contact(t, x, phase_a, work, dissipation)) {
+          ga = gap_of(x, t);
+          first = false;
+          continue;
+        }
+        fine_until = t + coarse_step_;  // a contact may start: scan this stretch on the fine grid
       }
-      record_interval(sa, sb, eval);
-      if (settings_.track_energy) add_free_flight_energy(x, t0, step, standard ? node_transition_.data() : nullptr);
-      t = tb;
-      x = xb;
-      sa = sb;
+      const double t0 = t;
+      const bool standard = grid_step_ < end_time_ - t0;
+      const double tb = standard ? t0 + grid_step_ : end_time_;
+      const FreeFlight::MotorPhase phase_b = flight_.motor_phase(tb);
+      double step_work = 0, step_dissipation = 0;  // energy over a full grid step, kept if no onset cuts it
+      if (standard) {
+        flight_.advance(grid_transition_, phase_a, phase_b, x, xb_, work ? &grid_energy_ : nullptr, &step_work,
+                        &step_dissipation);
+      } else {
+        flight_.advance(x, t0, tb - t0, xb_);
+      }
+      const Gap gb = gap_of(xb_, tb);
+      ++solution_.grid_intervals;
+      auto gap_at = [&](double ts) {
+        flight_.advance(x, t0, ts - t0, xs_);
+        return gap_of(xs_, ts);
+      };
+      const double onset = find_onset(ga, gb, gap_at, first && after_contact);
+      first = false;
+      const double t_end = onset < kInf ? onset : tb;
+      ModalState& x_end = onset < kInf ? x_onset_ : xb_;
+      if (onset < kInf) flight_.advance(x, t0, onset - t0, x_onset_);
+      if (recorder_.wants(t_end)) {
+        auto eval = [&](double ts) {
+          flight_.advance(x, t0, ts - t0, xs_);
+          return tip_state(xs_.q.data(), xs_.v.data(), ts, Phase::free);
+        };
+        // the start's kinematics carry over from the previous step when it was recorded too
+        if (!(tips_a_valid && tips_a.t == t0)) tips_a = tip_state(x.q.data(), x.v.data(), t0, Phase::free);
+        const TipState tips_b = tip_state(x_end.q.data(), x_end.v.data(), t_end, Phase::free);
+        record_interval(tips_a, tips_b, eval);
+        tips_a = tips_b;
+        tips_a_valid = true;
+      }
+      if (work) {
+        if (standard && onset == kInf) {
+          *work += step_work;
+          *dissipation += step_dissipation;
+        } else {  // a cut step: its own integrals (the scratch state receives a discarded copy)
+          const FreeFlight::EnergyForms forms = flight_.energy_forms(t_end - t0);
+          flight_.advance(flight_.transition(t_end - t0), phase_a, flight_.motor_phase(t_end), x, xs_, &forms, work,
+                          dissipation);
+        }
+      }
+      t = t_end;
+      std::swap(x, x_end);
+      if (onset < kInf) return true;
+      ga = gb;
+      phase_a = phase_b;
     }
     return false;
   }
 
+  // Takes one coarse step if no contact can start within it: the slow modes' indentation (resolved by
+  // the coarse step, its interior maximum located) plus the bound on the fast modes stays negative.
+  bool coarse_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double* work,
+                                   double* dissipation) {
+    const double t0 = t, tb = t + coarse_step_;
+    const FreeFlight::MotorPhase phase_b = flight_.motor_phase(tb);
+    const double fast = flight_.displacement_bound(x, phase_a, fast_lever_, 0, m_);
+    double step_work = 0, step_dissipation = 0;
+    flight_.advance(coarse_transition_, phase_a, phase_b, x, xb_, work ? &coarse_energy_ : nullptr, &step_work,
+                    &step_dissipation);
+    auto slow_delta = [&](const ModalState& s) { return slow_lever_.dot(s.q) - model_.gap_m; };
+    double highest = std::max(slow_delta(x), slow_delta(xb_));
+    const double rate_a = slow_lever_.dot(x.v), rate_b = slow_lever_.dot(xb_.v);
+    if (rate_a > 0 && rate_b < 0) {
+      auto rate_at = [&](double ts) {
+        flight_.advance(x, t0, ts - t0, xs_);
+        return slow_lever_.dot(xs_.v);
+      };
+      const double c = find_root(rate_at, t0, tb, rate_a, rate_b, kExtremumBits);
+      flight_.advance(x, t0, c - t0, xs_);
+      highest = std::max(highest, slow_delta(xs_));
+    }
+    if (highest + fast >= 0) return false;
+    ++solution_.coarse_intervals;
+    if (work) *work += step_work, *dissipation += step_dissipation;
+    t = tb;
+    std::swap(x, xb_);
+    phase_a = phase_b;
+    return true;
+  }
+
   // The contact onset in (a, b], or infinity. The grid is fine enough that delta' changes sign at
   // most once per interval, so a crossing is either seen at b or hides behind one interior maximum.
-  template <class Eval>
-  double find_onset(const TipState& sa, const TipState& sb, Eval&& eval, bool starts_at_contact) {
-    auto delta = [&](double t) { return eval(t).indentation; };
-    auto delta_rate = [&](double t) { return eval(t).indentation_rate; };
+  template <class GapAt>
+  double find_onset(const Gap& a, const Gap& b, GapAt&& gap_at, bool starts_at_contact) {
+    auto delta = [&](double t) { return gap_at(t).delta; };
+    auto delta_rate = [&](double t) { return gap_at(t).rate; };
     // At a contact end delta(a) is zero up to rounding: treat it as just negative.
-    const double delta_a = starts_at_contact ? -std::numeric_limits<double>::min() : sa.indentation;
-    if (sb.indentation >= 0) {
-      double lo = sa.t, f_lo = delta_a;
-      if (sa.indentation_rate < 0 && sb.indentation_rate > 0) {  // a minimum inside: cross after it
-        const double c = find_root(delta_rate, sa.t, sb.t, sa.indentation_rate, sb.indentation_rate);
+    const double delta_a = starts_at_contact ? -std::numeric_limits<double>::min() : a.delta;
+    if (b.delta >= 0) {
+      double lo = a.t, f_lo = delta_a;
+      if (a.rate < 0 && b.rate > 0) {  // a minimum inside: the crossing comes after it
+        const double c = find_root(delta_rate, a.t, b.t, a.rate, b.rate);
         const double f_c = delta(c);
         if (f_c < 0) lo = c, f_lo = f_c;
       }
-      return find_root(delta, lo, sb.t, f_lo, sb.indentation);
+      return find_root(delta, lo, b.t, f_lo, b.delta);
     }
     // Leaving a contact with (numerically) zero relative velocity: no maximum can follow at once.
-    if (starts_at_contact && sa.indentation_rate <= 1e-12) return kInf;
-    if (sa.indentation_rate > 0 && sb.indentation_rate < 0) {  // a maximum inside: grazing contact?
-      const double c = find_root(delta_rate, sa.t, sb.t, sa.indentation_rate, sb.indentation_rate);
+    if (starts_at_contact && a.rate <= 1e-12) return kInf;
+    if (a.rate > 0 && b.rate < 0) {  // a maximum inside: a grazing contact?
+      const double c = find_root(delta_rate, a.t, b.t, a.rate, b.rate);
       const double f_c = delta(c);
-      if (f_c >= 0) return find_root(delta, sa.t, c, delta_a, f_c);
+      if (f_c >= 0) return find_root(delta, a.t, c, delta_a, f_c);
     }
     return kInf;
-  }
-
-  // Motor work and structural dissipation over [t0, t0 + tau] by 5-point Gauss-Legendre on the
-  // closed form (the grid resolves the fastest mode, so this is accurate to ~1e-10 per interval).
-  void add_free_flight_energy(const ModalState& x0, double t0, double tau, const FreeFlight::Transition* nodes) {
-    ModalState xs;
-    double work = 0, dissipation = 0;
-    for (int i = 0; i < 5; ++i) {
-      const double ts = t0 + tau * kGaussNode[i];
-      if (nodes) flight_.advance(nodes[i], x0, t0, xs);
-      else flight_.advance(x0, t0, tau * kGaussNode[i], xs);
-      work += kGaussWeight[i] * motor_power(xs.v.data(), ts);
-      dissipation += kGaussWeight[i] * structural_power(xs.v.data());
-    }
-    solution_.energy.motor_work_j += tau * work;
-    solution_.energy.structural_dissipation_j += tau * dissipation;
   }
 
   // ---- Newton impacts ---------------------------------------------------------------------------
@@ -532,12 +625,13 @@ class Solver {
     event.peak_force_n = std::max({event.peak_force_n, sa.force, sb.force});
     event.max_indentation_m = std::max({event.max_indentation_m, sa.indentation, sb.indentation});
     if (sa.force_rate > 0 && sb.force_rate < 0) {
-      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate, sb.force_rate);
+      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
+                                 sb.force_rate, kExtremumBits);
       event.peak_force_n = std::max(event.peak_force_n, eval(c).force);
     }
     if (sa.indentation_rate > 0 && sb.indentation_rate < 0) {
       const double c = find_root([&](double t) { return eval(t).indentation_rate; }, sa.t, sb.t, sa.indentation_rate,
-                                 sb.indentation_rate);
+                                 sb.indentation_rate, kExtremumBits);
       event.max_indentation_m = std::max(event.max_indentation_m, eval(c).indentation);
     }
   }
@@ -552,8 +646,11 @@ class Solver {
   double lever_norm2_ = 0;
   double grid_step_ = 0;
   double end_time_ = 0;
-  FreeFlight::Transition grid_transition_;
-  std::array<FreeFlight::Transition, 5> node_transition_;
+  FreeFlight::Transition grid_transition_, coarse_transition_;
+  FreeFlight::EnergyForms grid_energy_, coarse_energy_;
+  double coarse_step_ = 0;                   // 0: no coarse steps
+  Eigen::VectorXd slow_lever_, fast_lever_;  // the contact lever split into slow and fast modes
+  ModalState xb_, xs_, x_onset_;  // free-flight scratch states, kept to avoid allocation
   double stick_impulse_ = 0;
   long long guard_impacts_ = 0;
   double guard_time_ = 0;
@@ -567,6 +664,7 @@ ReferenceSolution solve_reference(const ModalModel& model, const ModalState& ini
     throw std::invalid_argument("reference tolerances must be > 0");
   if (settings.grid_points_per_period < 4)
     throw std::invalid_argument("grid_points_per_period must be >= 4");
+  if (!(settings.max_grid_step_s > 0)) throw std::invalid_argument("max_grid_step_s must be > 0");
   ReferenceSolution solution;
   Solver solver(model, output, settings, solution);
   solver.run(initial, duration_s);

@@ -25,6 +25,11 @@ struct ReferenceSettings {
   double relative_tolerance = 1e-9;       // Dormand-Prince rtol [-]
   double absolute_tolerance = 1e-12;      // Dormand-Prince atol, on modal coordinates [sqrt(kg) m, sqrt(kg) m/s]
   int grid_points_per_period = 8;         // free-flight scan grid per period of the fastest mode [-]
+  double max_grid_step_s = 1e-3;          // and never coarser than this [s] (bounds the step for slow models)
+  // Outside the output window, free flight first tries steps sized for the slowest modes
+  // (this many per frame), taken only where a bound on the faster modes proves that no contact can
+  // start within them; elsewhere it scans the fine grid. 0: always the fine grid.
+  int slow_modes_per_frame = 3;
   double accumulation_time_s = 1e-6;      // Newton: stick when impacts would accumulate within this [s]
   long long max_contact_episodes = 50'000'000;  // a run that needs more is stopped, never loops forever
   bool track_energy = true;               // energy ledger (motor work, dissipations) alongside
@@ -56,7 +61,8 @@ struct ReferenceSolution {
   RunStatus status = RunStatus::ok;
   std::string reason;
   long long integrator_steps = 0;    // accepted Dormand-Prince steps
-  long long grid_intervals = 0;      // free-flight grid intervals scanned
+  long long grid_intervals = 0;      // free-flight fine-grid intervals scanned
+  long long coarse_intervals = 0;    // free-flight coarse steps taken on the fast-mode bound
   long long impacts = 0;             // contact episodes (Newton: impulses)
   long long sticking_phases = 0;
   double grid_step_s = 0;

@@ -1,0 +1,79 @@
+// The reference without contact: free decay at the structural damping, forced response at the
+// closed-form steady state (rig.md section 2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+
+#include "reference_fixtures.h"
+
+namespace ib {
+namespace {
+
+using testing::paper_scenario;
+
+// One mode released from its static shape: u(k T_d) = u(0) exp(-zeta omega k T_d) exactly, so the
+// logarithmic decrement gives zeta back to the closed form's precision.
+TEST(FreeResponse, LogarithmicDecrementOfOneModeGivesZeta) {
+  Scenario s = paper_scenario("free_vibration");
+  s.gap_m = 1.0;  // no contact
+  ReferenceSettings settings;
+  settings.modes.modes_per_frame = 1;
+  const ModalModel model = build_modal_model(s, ContactLaw::hertz, settings.modes);
+  const double omega = model.omega_rad_s[0], zeta = model.zeta[0];
+  const double period = 2 * M_PI / (omega * std::sqrt(1 - zeta * zeta));
+  const int cycles = 40;
+  const ReferenceSolution r =
+      solve_reference(model, initial_state(s, model), cycles * period, {0, cycles * period, 1 / period}, settings);
+  const auto& u = r.trajectory.displacement_m[0];
+  ASSERT_EQ(u.size(), static_cast<std::size_t>(cycles + 1));
+  EXPECT_NEAR(u[0], -2e-3, 1e-15);
+  const double decrement = std::log(u[0] / u[cycles]) / cycles;
+  const double measured_zeta = decrement / std::sqrt(4 * M_PI * M_PI + decrement * decrement);
+  EXPECT_NEAR(measured_zeta / zeta, 1.0, 1e-9);
+}
+
+// Ten modes: the tip's successive maxima still decay at zeta (higher modes barely ripple them).
+TEST(FreeResponse, LogarithmicDecrementOfTheBeamGivesZeta) {
+  Scenario s = paper_scenario("free_vibration");
+  s.gap_m = 1.0;
+  ReferenceSettings settings;  // default: 10 modes per frame
+  const ModalModel model = build_modal_model(s, ContactLaw::hertz, settings.modes);
+  const double duration = 3.0;
+  const ReferenceSolution r = solve_reference(model, initial_state(s, model), duration, {0, duration, 20000}, settings);
+  const auto& u = r.trajectory.displacement_m[0];
+  std::vector<double> peaks;
+  for (std::size_t k = 1; k + 1 < u.size(); ++k)
+    if (u[k] > u[k - 1] && u[k] >= u[k + 1] && u[k] > 1e-4) peaks.push_back(u[k]);
+  ASSERT_GE(peaks.size(), 15u);
+  const double n = static_cast<double>(peaks.size() - 1);
+  const double decrement = std::log(peaks.front() / peaks.back()) / n;
+  EXPECT_NEAR(decrement / std::sqrt(4 * M_PI * M_PI + decrement * decrement) / s.frames[0].damping_ratio, 1.0, 0.01);
+}
+
+// Motor on, no contact: after the transient (200 s, e^-26 of it left) the tip moves at the modal
+// steady-state amplitude |sum phi^2 F / (omega^2 - Omega^2 + 2 i zeta omega Omega)|.
+TEST(FreeResponse, ForcedResponseReachesTheSteadyStateAmplitude) {
+  Scenario s = paper_scenario("post_resonance");
+  s.gap_m = 1.0;
+  s.duration_s = 200;
+  ReferenceSettings settings;
+  const ModalModel model = build_modal_model(s, ContactLaw::hertz, settings.modes);
+  const double rate = 16384;
+  const ReferenceSolution r = solve_reference(model, initial_state(s, model), s.duration_s, {195, 200, rate}, settings);
+  double amplitude = 0;
+  for (double u : r.trajectory.displacement_m[0]) amplitude = std::max(amplitude, std::abs(u));
+  const double force = model.motor->amplitude_n, w = model.motor->omega_rad_s;
+  std::complex<double> receptance = 0;
+  for (int n = 0; n < model.frame_mode_count(0); ++n) {
+    const double om = model.omega_rad_s[n];
+    receptance += model.frames[0].tip[n] * model.frames[0].tip[n] / std::complex<double>(om * om - w * w, 2 * model.zeta[n] * om * w);
+  }
+  // samples straddle the crest: the largest is within (pi f / rate)^2 / 2 ~ 1e-6 below it
+  EXPECT_NEAR(amplitude / (force * std::abs(receptance)), 1.0, 5e-6);
+  EXPECT_TRUE(r.trajectory.events.empty());
+  EXPECT_EQ(r.status, RunStatus::ok);
+}
+
+}  // namespace
+}  // namespace ib

@@ -1,0 +1,85 @@
+// The linked-body chain of rig.md section 4: its modes converge to the beam's, its damping is
+// stiffness-proportional with exactly zeta on mode 1.
+#include "link_chain.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "beam_modes.h"
+#include "modal_model.h"
+
+namespace ib {
+namespace {
+
+TEST(LinkChain, FirstFrequencyConvergesToTheBeamsAsLinksGrow) {
+  const FrameSpec frame = default_rig().frames[0];
+  const double beam = CantileverModes(frame, 1).omega_rad_s(0);
+  double previous_error = 1;
+  for (int links : {2, 4, 8, 16, 32}) {
+    const double error = std::abs(chain_modes(build_link_chain(frame, links)).omega_rad_s[0] / beam - 1);
+    EXPECT_LT(error, previous_error) << "K = " << links;
+    previous_error = error;
+  }
+  EXPECT_LT(previous_error, 1e-3);  // K = 32: within 0.1 %
+  // rig.md section 4: about 4 %, 1 %, 0.2 %, 0.06 % for K = 2, 4, 8, 16 (frame without tip mass effect aside)
+  EXPECT_LT(std::abs(chain_modes(build_link_chain(frame, 16)).omega_rad_s[0] / beam - 1), 1e-3);
+}
+
+TEST(LinkChain, HigherModesAndTipValuesConvergeToo) {
+  const FrameSpec frame = default_rig().frames[1];
+  const ModalBasis beam = CantileverModes(frame, 3).basis();
+  const ModalBasis chain = chain_modes(build_link_chain(frame, 64));
+  for (int n = 0; n < 3; ++n) {
+    EXPECT_NEAR(chain.omega_rad_s[n] / beam.omega_rad_s[n], 1.0, 5e-3) << "mode " << n + 1;
+    EXPECT_NEAR(std::abs(chain.tip[n]) / std::abs(beam.tip[n]), 1.0, 5e-3) << "mode " << n + 1;
+  }
+}
+
+TEST(LinkChain, DampingIsStiffnessProportionalWithZetaOnModeOne) {
+  const FrameSpec frame = default_rig().frames[0];
+  const LinkChain chain = build_link_chain(frame, 8);
+  const ModalBasis modes = chain_modes(chain);
+  EXPECT_NEAR(modes.zeta[0], frame.damping_ratio, 1e-15);
+  EXPECT_NEAR(chain.first_omega_rad_s, modes.omega_rad_s[0], 1e-12 * modes.omega_rad_s[0]);
+  EXPECT_NEAR(chain.joint_damping_n_m_s_per_rad,
+              2 * frame.damping_ratio / modes.omega_rad_s[0] * frame.bending_stiffness_n_m2() / chain.link_length_m, 1e-15);
+  // modal damping from the matrices: v^T C v / (2 omega) for mass-normalised v
+  const ChainMatrices m = linearise(chain);
+  for (int n = 1; n < 8; ++n) EXPECT_NEAR(modes.zeta[n], frame.damping_ratio * modes.omega_rad_s[n] / modes.omega_rad_s[0], 1e-12);
+  EXPECT_NEAR(m.damping(0, 0), chain.joint_damping_n_m_s_per_rad, 0);
+}
+
+TEST(LinkChain, GeometryFollowsTheSpecification) {
+  const FrameSpec frame = default_rig().frames[0];
+  const LinkChain chain = build_link_chain(frame, 4);
+  const double l = frame.length_m / 4;
+  ASSERT_EQ(chain.bodies.size(), 4u);
+  double mass = 0;
+  for (int j = 0; j < 4; ++j) {
+    EXPECT_DOUBLE_EQ(chain.bodies[j].start_m, (j + 0.5) * l);
+    mass += chain.bodies[j].mass_kg;
+  }
+  EXPECT_DOUBLE_EQ(chain.bodies[3].length_m, l / 2);
+  // the ground keeps [0, l/2]: the chain carries the rest of the beam's mass
+  EXPECT_NEAR(mass, frame.mass_per_length_kg_m() * (frame.length_m - l / 2), 1e-15);
+  EXPECT_DOUBLE_EQ(chain.joint_stiffness_n_m_per_rad, frame.bending_stiffness_n_m2() / l);
+}
+
+// The chain's static tip compliance from its modes equals sum (L - x_j)^2 / k, and both approach the
+// beam's L^3 / (3 EI).
+TEST(LinkChain, StaticTipComplianceMatchesTheJointSum) {
+  const FrameSpec frame = default_rig().frames[0];
+  const LinkChain chain = build_link_chain(frame, 32);
+  double joint_sum = 0;
+  for (const ChainBody& body : chain.bodies) joint_sum += std::pow(frame.length_m - body.start_m, 2);
+  joint_sum /= chain.joint_stiffness_n_m_per_rad;
+  EXPECT_NEAR(chain_modes(chain).tip_static_compliance_m_per_n() / joint_sum, 1.0, 1e-8);  // eigensolver accuracy
+  const double beam = std::pow(frame.length_m, 3) / (3 * frame.bending_stiffness_n_m2());
+  EXPECT_NEAR(joint_sum / beam, 1.0, 1e-3);
+  const Eigen::VectorXd angles = static_tip_load_angles(chain, 1.0);
+  EXPECT_NEAR(linearise(chain).tip_lever.dot(angles) / joint_sum, 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace ib
