@@ -91,6 +91,7 @@ void FreeFlight::advance(const Transition& tr, const MotorPhase& from, const Mot
   x.v.resize(n);
   const double w = model_.motor ? model_.motor->omega_rad_s : 0;
   const double c0 = from.cos, s0 = from.sin, c1 = to.cos, s1 = to.sin;
+  const double motor_force = model_.motor ? model_.motor->amplitude_n : 0;
   double work = 0, dissipation = 0;
   // A plain loop: this is the reference's innermost loop, run millions of times, without temporaries.
   for (int m = 0; m < n; ++m) {
@@ -107,11 +108,11 @@ void FreeFlight::advance(const Transition& tr, const MotorPhase& from, const Mot
     const double sin_hom = f.sin_q[m] * q_free + f.sin_v[m] * v_free;
     const double part_sq = p * p * f.cos_cos + 2 * p * q * f.cos_sin + q * q * f.sin_sin;
     dissipation += 2 * model_.zeta[m] * model_.omega_rad_s[m] * (hom_sq + 2 * (p * cos_hom + q * sin_hom) + part_sq);
-    if (model_.motor_lever[m] != 0) {
+    if (motor_force != 0 && model_.motor_lever[m] != 0) {
       // F_m(t0 + s) = F (c0 cos(Omega s) - s0 sin(Omega s))
       const double cos_v = p * f.cos_cos + q * f.cos_sin + cos_hom;
       const double sin_v = p * f.cos_sin + q * f.sin_sin + sin_hom;
-      work += model_.motor->amplitude_n * model_.motor_lever[m] * (c0 * cos_v - s0 * sin_v);
+      work += motor_force * model_.motor_lever[m] * (c0 * cos_v - s0 * sin_v);
     }
   }
   if (forms) {
