@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages impactbench needs, only those missing. Idempotent; run as root
+# (or with sudo available). Every package and why it is here: README.md, "Dependencies".
+set -euo pipefail
+
+packages=(
+  cmake g++ make pkg-config      # build
+  libeigen3-dev                  # generalised eigenproblem of the link chain
+  libboost-dev                   # odeint (Dormand-Prince), math (TOMS 748 roots, Gauss-Legendre)
+  libtomlplusplus-dev            # scenario files
+  nlohmann-json3-dev             # summary.json
+  libcli11-dev                   # command line
+  libgtest-dev libgmock-dev      # tests
+  libbenchmark-dev               # bench/: speed measurements
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo=()
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "install-deps: not root and no sudo; install as root: apt-get install ${missing[*]}" >&2; exit 1; }
+  sudo=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,101 @@
+// The command line as a user meets it: `run` writes the promised files and keys, `modes` prints the
+// frequencies, and bad input ends with exit code 2 and a message naming the problem.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Output {
+  int exit_code = -1;
+  std::string text;  // stdout and stderr
+};
+
+Output impactbench(const std::string& arguments) {
+  const fs::path log = fs::temp_directory_path() / ("impactbench_cli_" + std::to_string(::getpid()) + ".log");
+  const std::string command = std::string(IMPACTBENCH_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  Output out;
+  out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  out.text = buffer.str();
+  fs::remove(log);
+  return out;
+}
+
+std::string paper(const std::string& name) { return std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/" + name + ".toml"; }
+
+fs::path fresh_folder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("impactbench_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir;
+}
+
+TEST(RunCommand, WritesSummarySeriesAndEvents) {
+  const fs::path dir = fresh_folder("run");
+  const Output out = impactbench("run " + paper("free_vibration") + " --engine reference --law hertz --out " + dir.string());
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  const auto summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
+  for (const char* key : {"scenario", "engine", "law", "status", "window_start_s", "window_end_s", "impacts",
+                          "impacts_per_cycle", "mean_contact_duration_s", "frame1_true_peak_acceleration_g",
+                          "frame2_true_peak_acceleration_g", "wall_time_s", "cpu_time_s", "steps", "settings", "diagnostics"})
+    EXPECT_TRUE(summary.contains(key)) << key;
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_EQ(summary["scenario"], "free_vibration");
+  EXPECT_GT(summary["impacts"].get<int>(), 0);
+  EXPECT_TRUE(summary["impacts_per_cycle"].is_null());  // no motor, no cycles
+  EXPECT_LT(summary["diagnostics"]["energy_balance_relative_residual"].get<double>(), 1e-6);
+  std::string header;
+  std::getline(std::ifstream(dir / "series.csv") >> std::ws, header);
+  EXPECT_EQ(header.rfind("time_s,frame1_displacement_m,frame1_velocity_m_s,frame1_acceleration_m_s2", 0), 0u) << header;
+  std::ifstream events(dir / "events.csv");
+  int lines = 0;
+  for (std::string line; std::getline(events, line);) ++lines;
+  EXPECT_EQ(lines, summary["impacts"].get<int>() + 1);  // the free run's window is the whole run
+  fs::remove_all(dir);
+}
+
+TEST(RunCommand, ModesPrintsFrameFrequencies) {
+  const Output out = impactbench("modes " + paper("resonance") + " --json --option n=3");
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  const auto modes = nlohmann::json::parse(out.text);
+  EXPECT_NEAR(modes["frame1"]["frequency_hz"][0].get<double>(), 6.95, 0.005);
+  EXPECT_EQ(modes["frame2"]["tip_value_per_sqrt_kg"].size(), 3u);
+}
+
+TEST(RunCommand, BadInputExitsWithTwoAndSaysWhy) {
+  const fs::path dir = fresh_folder("bad");
+  Output out = impactbench("run " + paper("resonance") + " --law coulomb --out " + dir.string());
+  EXPECT_EQ(out.exit_code, 2);
+  EXPECT_NE(out.text.find("--law coulomb"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("hertz, viscoelastic, newton"), std::string::npos) << out.text;
+
+  out = impactbench("run " + paper("resonance") + " --option rtol=-1 --out " + dir.string());
+  EXPECT_EQ(out.exit_code, 2);
+  EXPECT_NE(out.text.find("rtol=-1"), std::string::npos) << out.text;
+
+  out = impactbench("run " + paper("resonance") + " --option colour=red --out " + dir.string());
+  EXPECT_EQ(out.exit_code, 2);
+  EXPECT_NE(out.text.find("colour"), std::string::npos) << out.text;
+
+  const std::string broken = std::string(IMPACTBENCH_SOURCE_DIR) + "/tests/data/malformed_scenarios/missing_key.toml";
+  out = impactbench("run " + broken + " --out " + dir.string());
+  EXPECT_EQ(out.exit_code, 2);
+  EXPECT_NE(out.text.find("missing_key.toml:"), std::string::npos) << out.text;
+
+  out = impactbench("run");
+  EXPECT_EQ(out.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+}  // namespace
