@@ -16,6 +16,7 @@ struct Case {
   const char* scenario;
   ContactLaw law;
   ModeSet modes;
+  bool full_length = false;  // the scenario's whole duration (100 s) instead of 20 s
 };
 
 class EnergyBalance : public ::testing::TestWithParam<Case> {};
@@ -23,7 +24,7 @@ class EnergyBalance : public ::testing::TestWithParam<Case> {};
 TEST_P(EnergyBalance, MotorWorkEqualsEnergyChangePlusDissipation) {
   const Case c = GetParam();
   Scenario s = paper_scenario(c.scenario);
-  s.duration_s = std::min(s.duration_s, 20.0);
+  if (!c.full_length) s.duration_s = std::min(s.duration_s, 20.0);
   ReferenceSettings settings;
   settings.modes.set = c.modes;
   settings.modes.chain_links = 8;
@@ -41,7 +42,7 @@ TEST_P(EnergyBalance, MotorWorkEqualsEnergyChangePlusDissipation) {
 
 INSTANTIATE_TEST_SUITE_P(
     Reference, EnergyBalance,
-    ::testing::Values(Case{"resonance", ContactLaw::hertz, ModeSet::beam}, Case{"resonance", ContactLaw::viscoelastic, ModeSet::beam},
+    ::testing::Values(Case{"resonance", ContactLaw::hertz, ModeSet::beam, true}, Case{"resonance", ContactLaw::viscoelastic, ModeSet::beam},
                       Case{"resonance", ContactLaw::newton, ModeSet::beam}, Case{"pre_resonance", ContactLaw::hertz, ModeSet::beam},
                       Case{"free_vibration", ContactLaw::hertz, ModeSet::beam},
                       Case{"free_vibration", ContactLaw::viscoelastic, ModeSet::beam},

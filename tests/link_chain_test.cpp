@@ -22,8 +22,10 @@ TEST(LinkChain, FirstFrequencyConvergesToTheBeamsAsLinksGrow) {
     previous_error = error;
   }
   EXPECT_LT(previous_error, 1e-3);  // K = 32: within 0.1 %
-  // rig.md section 4: about 4 %, 1 %, 0.2 %, 0.06 % for K = 2, 4, 8, 16 (frame without tip mass effect aside)
-  EXPECT_LT(std::abs(chain_modes(build_link_chain(frame, 16)).omega_rad_s[0] / beam - 1), 1e-3);
+  // rig.md section 4 quotes about 4 %, 1 %, 0.2 %, 0.06 % for K = 2, 4, 8, 16 (this rig: 3.8, 0.91, 0.22, 0.056)
+  const std::pair<int, double> quoted[] = {{2, 0.04}, {4, 0.01}, {8, 0.002}, {16, 0.0006}};
+  for (const auto& [links, error] : quoted)
+    EXPECT_NEAR(chain_modes(build_link_chain(frame, links)).omega_rad_s[0] / beam - 1, error, 0.25 * error) << "K = " << links;
 }
 
 TEST(LinkChain, HigherModesAndTipValuesConvergeToo) {
