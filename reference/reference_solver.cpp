@@ -336,7 +336,7 @@ class Solver {
     bool first = true;
     double* work = settings_.track_energy ? &solution_.energy.motor_work_j : nullptr;
     double* dissipation = settings_.track_energy ? &solution_.energy.structural_dissipation_j : nullptr;
-    double fine_until = first && after_contact ? t + coarse_step_ : t;  // no coarse step right after a contact
+    double fine_until = after_contact ? t + coarse_step_ : t;  // no coarse step right after a contact
     TipState tips_a;
     bool tips_a_valid = false;
     while (t < end_time_) {
