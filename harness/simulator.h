@@ -2,7 +2,9 @@
 // in, a trajectory and its contact events out. Metrics are computed outside every simulator.
 #pragma once
 
+#include <functional>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,10 +35,16 @@ class Simulator {
   // Runs one scenario. Throws std::invalid_argument for settings it cannot take (bad option, law
   // without parameters in the scenario); instability is reported in the result, not thrown.
   virtual RunResult run(const Scenario& scenario, const RunSettings& settings) = 0;
+  // The number of links K of the chain this simulator builds for a run, if it builds one: the suite
+  // then also scores it against the reference on exactly that chain.
+  virtual std::optional<int> chain_links(const Scenario&, const RunSettings&) const { return std::nullopt; }
 };
 
 // The simulators built into this binary, by name.
 std::vector<std::string> simulator_names();
 std::unique_ptr<Simulator> make_simulator(const std::string& name);  // nullptr when unknown
+
+// Makes simulators by name: make_simulator, or a test's own.
+using SimulatorFactory = std::function<std::unique_ptr<Simulator>(const std::string& name)>;
 
 }  // namespace ib

@@ -15,6 +15,7 @@ void Trajectory::reserve(std::size_t n) {
   }
   contact_force_n.reserve(n);
   peak_contact_force_n.reserve(n);
+  mechanical_energy_j.reserve(n);
 }
 
 const char* to_string(RunStatus status) {

@@ -35,6 +35,9 @@ struct Trajectory {
   std::vector<double> contact_force_n;
   std::array<std::vector<double>, 2> peak_abs_acceleration_m_s2;
   std::vector<double> peak_contact_force_n;
+  // Mechanical energy of the whole rig at each sample [J] (kinetic + elastic, contact spring included),
+  // for the "energy grows without input" verdict; empty when a simulator cannot provide it.
+  std::vector<double> mechanical_energy_j;
 
   std::vector<ContactEvent> events;   // every contact episode of the whole run, in time order
 

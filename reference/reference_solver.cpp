@@ -42,6 +42,7 @@ struct TipState {
   std::array<double, 2> displacement{}, velocity{}, acceleration{}, jerk{};
   double indentation = 0, indentation_rate = 0;  // delta [m], delta' [m/s]
   double force = 0, force_rate = 0;              // F_c [N], dF_c/dt [N/s]
+  double energy = 0;                             // mechanical energy [J]
 };
 
 // First root of f on [a, b] given f(a), f(b) of opposite signs (or one of them zero), to `bits` bits.
@@ -91,6 +92,7 @@ class SeriesRecorder {
       peak_acc_[f] = a;  // the sample opens the next interval
     }
     out_.contact_force_n.push_back(s.force);
+    out_.mechanical_energy_j.push_back(s.energy);
     out_.peak_contact_force_n.push_back(index_ == 0 ? s.force : std::max(peak_force_, s.force));
     peak_force_ = s.force;
     ++index_;
@@ -229,14 +231,16 @@ class Solver {
     const double* w2 = omega2_.data();
     const double* c = two_zeta_omega_.data();
     // Plain loops without temporaries: this runs at every sample and in every root search.
-    double delta = -model_.gap_m, rate = 0, lever_driven = 0;
+    double delta = -model_.gap_m, rate = 0, lever_driven = 0, twice_energy = 0;
     for (int m = 0; m < m_; ++m) {
       delta += b[m] * q[m];
       rate += b[m] * v[m];
       lever_driven += b[m] * (p[m] * motor - c[m] * v[m] - w2[m] * q[m]);
+      twice_energy += v[m] * v[m] + w2[m] * q[m] * q[m];
     }
     s.indentation = delta;
     s.indentation_rate = rate;
+    s.energy = 0.5 * twice_energy + (phase == Phase::compliant ? elastic_contact_energy(model_.contact, delta) : 0);
     if (phase == Phase::compliant) s.force = contact_force_continued(model_.contact, delta, rate);
     else if (phase == Phase::sticking) s.force = lever_driven / lever_norm2_;
     // delta'' = b . (driven - b F) and the jerk without the force rate, b . (p F_m' - c a - w^2 v)

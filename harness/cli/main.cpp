@@ -1,34 +1,99 @@
-// impactbench: the command line. Exit codes: 0 all ok, 1 a run was unstable or failed, 2 bad usage or input.
+// impactbench: the command line. Exit codes: 0 all runs ok, 1 some run unstable or failed,
+// 2 bad usage or input.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "metrics.h"
 #include "modal_model.h"
 #include "reference_simulator.h"
-#include "run_output.h"
+#include "run_job.h"
 #include "scenario_toml.h"
 #include "simulator.h"
+#include "suite.h"
 
 namespace {
 
 constexpr int kExitOk = 0, kExitRunNotOk = 1, kExitBadInput = 2;
 
-// "key=value" pairs from --option.
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, separator);)
+    if (!part.empty()) parts.push_back(part);
+  return parts;
+}
+
+// "name=value" pairs from --option.
 std::map<std::string, std::string> parse_options(const std::vector<std::string>& pairs) {
   std::map<std::string, std::string> options;
   for (const std::string& pair : pairs) {
     const auto eq = pair.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw std::invalid_argument("--option " + pair + ": expected name=value");
+    if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--option " + pair + ": expected name=value");
     options[pair.substr(0, eq)] = pair.substr(eq + 1);
   }
   return options;
+}
+
+ib::ContactLaw parse_law(const std::string& name) {
+  const auto law = ib::contact_law_from_string(name);
+  if (!law) throw std::invalid_argument("law '" + name + "': unknown; allowed: hertz, viscoelastic, newton");
+  return *law;
+}
+
+void require_engine(const std::string& engine) {
+  for (const auto& n : ib::simulator_names())
+    if (n == engine) return;
+  std::string names;
+  for (const auto& n : ib::simulator_names()) names += (names.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("engine '" + engine + "': not in this build; allowed: " + names);
+}
+
+// How runs are measured; shared by `run` and `suite`.
+struct MeasurementOptions {
+  double window_s = -1, sensor_rate_hz = 2048, merge_window_s = 0.002;
+  void add_to(CLI::App* app) {
+    app->add_option("--window", window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's");
+    app->add_option("--sensor-rate", sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]")->capture_default_str();
+    app->add_option("--merge-window", merge_window_s, "onsets closer than this are one impact [s]")->capture_default_str();
+  }
+  ib::Measurement build() const {
+    if (!(sensor_rate_hz > 0)) throw std::invalid_argument("--sensor-rate " + std::to_string(sensor_rate_hz) + ": allowed: > 0 Hz");
+    if (!(merge_window_s >= 0)) throw std::invalid_argument("--merge-window " + std::to_string(merge_window_s) + ": allowed: >= 0 s");
+    ib::Measurement m;
+    if (window_s >= 0) {
+      if (!(window_s > 0)) throw std::invalid_argument("--window " + std::to_string(window_s) + ": allowed: > 0 s");
+      m.window_s = window_s;
+    }
+    m.sensor_rate_hz = sensor_rate_hz;
+    m.merge_window_s = merge_window_s;
+    return m;
+  }
+};
+
+void print_record(const ib::RunRecord& r) {
+  std::printf("%s: %s%s%s\n", r.job_id.c_str(), ib::to_string(r.verdict), r.reason.empty() ? "" : ": ", r.reason.c_str());
+  if (!r.metrics) return;
+  const ib::Metrics& m = *r.metrics;
+  std::printf("  impacts %d (%d onsets), impacts per cycle %.4g, mean contact duration %.6g s\n", m.impacts, m.raw_onsets,
+              m.impacts_per_cycle, m.contact_duration_mean_s);
+  std::printf("  sensor peak %.4g g / %.4g g, true peak %.4g g / %.4g g (frame 1 / frame 2)\n",
+              m.frames[0].sensor_peak_acceleration_g, m.frames[1].sensor_peak_acceleration_g,
+              m.frames[0].true_peak_acceleration_g, m.frames[1].true_peak_acceleration_g);
+  if (r.errors_vs_reference)
+    std::printf("  against the reference: sensor peak %+.3g %% / %+.3g %%, contact duration %+.3g %%, impacts per cycle %+.3g\n",
+                100 * r.errors_vs_reference->sensor_peak_relative_error[0],
+                100 * r.errors_vs_reference->sensor_peak_relative_error[1],
+                100 * r.errors_vs_reference->contact_duration_relative_error,
+                r.errors_vs_reference->impacts_per_cycle_difference);
+  std::printf("  wall time %.3f s\n", r.cost.wall_time_s);
 }
 
 int command_modes(const std::string& path, bool json, const std::vector<std::string>& option_pairs) {
@@ -57,50 +122,110 @@ int command_modes(const std::string& path, bool json, const std::vector<std::str
       std::printf("frame %d (%s, tip mass %.5f kg, tip effective mass %.5f kg)\n", f + 1, basis.origin.c_str(),
                   scenario.frames[f].tip_mass_kg, basis.tip_effective_mass_kg());
       std::printf("  %4s %16s %22s %14s\n", "mode", "frequency [Hz]", "tip value [1/sqrt(kg)]", "damping [-]");
-      for (int n = 0; n < basis.size(); ++n)
-        std::printf("  %4d %16.6f %22.9f %14.6g\n", n + 1, hz[n], tip[n], zeta[n]);
+      for (int n = 0; n < basis.size(); ++n) std::printf("  %4d %16.6f %22.9f %14.6g\n", n + 1, hz[n], tip[n], zeta[n]);
     }
   }
   if (json) std::cout << out.dump(2) << '\n';
   return kExitOk;
 }
 
-int command_run(const std::string& path, const std::string& engine, const std::string& law_name,
-                const std::string& out_dir, double rate_hz, double series_start_s, double time_step_s,
-                const std::vector<std::string>& option_pairs) {
+int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
+                double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
+                const MeasurementOptions& measurement_options) {
   const ib::Scenario scenario = ib::load_scenario(path);
-  const auto law = ib::contact_law_from_string(law_name);
-  if (!law) throw std::invalid_argument("--law " + law_name + ": unknown law; allowed: hertz, viscoelastic, newton");
-  auto simulator = ib::make_simulator(engine);
-  if (!simulator) {
-    std::string names;
-    for (const auto& n : ib::simulator_names()) names += (names.empty() ? "" : ", ") + n;
-    throw std::invalid_argument("--engine " + engine + ": not in this build; allowed: " + names);
-  }
-  ib::RunSettings settings;
-  settings.law = *law;
-  settings.output_rate_hz = rate_hz;
-  settings.series_start_s = series_start_s;
-  settings.time_step_s = time_step_s;
-  settings.options = parse_options(option_pairs);
+  require_engine(engine);
   if (!(rate_hz > 0)) throw std::invalid_argument("--rate " + std::to_string(rate_hz) + ": allowed: > 0 Hz");
-  const ib::RunResult result = simulator->run(scenario, settings);
-  ib::MetricWindow window;
-  window.start_s = scenario.scoring_start_s();
-  window.end_s = scenario.duration_s;
-  window.excitation_frequency_hz = ib::motor_frequency_hz(scenario);
-  const ib::Metrics metrics = ib::compute_metrics(result.trajectory, window);
-  ib::write_run_folder(out_dir, {scenario, simulator->name(), simulator->version(), settings, result, metrics});
-  std::printf("%s %s %s: %s%s%s\n", scenario.name.c_str(), engine.c_str(), law_name.c_str(),
-              ib::to_string(result.status), result.reason.empty() ? "" : ": ", result.reason.c_str());
-  std::printf("  impacts %d, impacts per cycle %.4g, mean contact duration %.6g s, true peak |a| %.4g g / %.4g g\n",
-              metrics.impacts, metrics.impacts_per_cycle, metrics.mean_contact_duration_s,
-              metrics.true_peak_acceleration_g[0], metrics.true_peak_acceleration_g[1]);
-  std::printf("  wall time %.3f s; files in %s\n", result.cost.wall_time_s, out_dir.c_str());
-  return result.status == ib::RunStatus::ok ? kExitOk : kExitRunNotOk;
+  ib::JobSpec job;
+  job.scenario_path = path;
+  job.engine = engine;
+  job.settings.law = parse_law(law_name);
+  job.settings.output_rate_hz = rate_hz;
+  job.settings.series_start_s = series_start_s;
+  job.settings.time_step_s = time_step_s;
+  job.settings.options = parse_options(option_pairs);
+  const ib::Measurement measurement = measurement_options.build();
+  // An engine is compared with the reference of the same scenario and law, run here first.
+  std::optional<ib::ReferenceData> beam, chain;
+  if (engine != "reference") {
+    ib::JobSpec reference = job;
+    reference.engine = "reference";
+    reference.settings.options.clear();
+    reference.settings.time_step_s = 0;
+    beam.emplace();
+    ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*beam);
+    if (const auto links = ib::make_simulator(engine)->chain_links(scenario, job.settings)) {
+      reference.settings.options = {{"modes", "chain"}, {"links", std::to_string(*links)}};
+      chain.emplace();
+      ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*chain);
+    }
+  }
+  const ib::RunRecord record = ib::run_job(scenario, job, measurement, beam ? &*beam : nullptr, chain ? &*chain : nullptr, out);
+  print_record(record);
+  std::printf("  files in %s\n", out.c_str());
+  return record.verdict == ib::Verdict::unstable || record.verdict == ib::Verdict::failed ? kExitRunNotOk : kExitOk;
 }
 
-int command_list() {
+struct SuiteOptions {
+  std::vector<std::string> inputs;
+  std::string engines = "reference", laws = "hertz,viscoelastic,newton", time_steps, out;
+  int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  double time_limit_s = 600, rate_hz = 4096;
+  bool resume = false;
+  std::vector<std::string> options;
+};
+
+int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
+  ib::SuiteSettings s;
+  s.inputs = o.inputs.empty() ? std::vector<std::string>{std::string(IMPACTBENCH_SCENARIO_DIR) + "/paper"} : o.inputs;
+  s.engines = split(o.engines, ',');
+  for (const auto& e : s.engines) require_engine(e);
+  s.laws.clear();
+  for (const auto& l : split(o.laws, ',')) s.laws.push_back(parse_law(l));
+  for (const auto& dt : split(o.time_steps, ',')) {
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(dt, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != dt.size() || !(value > 0)) throw std::invalid_argument("--dt " + dt + ": allowed: time steps > 0 s, comma-separated");
+    s.time_steps_s.push_back(value);
+  }
+  if (o.jobs < 1) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: >= 1");
+  if (!(o.time_limit_s > 0)) throw std::invalid_argument("--time-limit: allowed: > 0 s");
+  // --option ENGINE.NAME=VALUE
+  for (const auto& pair : o.options) {
+    const auto dot = pair.find('.'), eq = pair.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || dot > eq)
+      throw std::invalid_argument("--option " + pair + ": expected engine.name=value, e.g. reference.n=5");
+    const std::string engine = pair.substr(0, dot);
+    require_engine(engine);
+    auto& target = engine == "reference" ? s.reference_options : s.engine_options[engine];
+    target[pair.substr(dot + 1, eq - dot - 1)] = pair.substr(eq + 1);
+  }
+  ib::reference_settings_from_options(s.reference_options);  // fail now, not in every job
+  s.output_rate_hz = o.rate_hz;
+  s.jobs = o.jobs;
+  s.time_limit_s = o.time_limit_s;
+  s.out = o.out;
+  s.resume = o.resume;
+  s.measurement = measurement_options.build();
+  const ib::SuiteOutcome outcome = ib::run_suite(s);
+  std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed\n",
+              outcome.jobs_run, o.out.c_str(), outcome.jobs_skipped, outcome.not_ok);
+  return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
+}
+
+int command_list(const std::string& folder) {
+  std::printf("scenarios in %s:\n", folder.c_str());
+  for (const std::string& file : ib::find_scenario_files(folder)) {
+    try {
+      const ib::Scenario s = ib::load_scenario(file);
+      std::printf("  %-24s %s\n", s.name.c_str(), file.c_str());
+    } catch (const std::exception& e) {
+      std::printf("  (unreadable)             %s\n", e.what());
+    }
+  }
   std::printf("engines:");
   for (const auto& n : ib::simulator_names()) std::printf(" %s", n.c_str());
   std::printf("\nlaws: hertz viscoelastic newton\n");
@@ -117,10 +242,12 @@ int main(int argc, char** argv) {
   CLI::App app{"impactbench: a benchmark of physics engines on a two-frame vibro-impact rig"};
   app.require_subcommand(1);
 
-  std::string scenario_path, engine = "reference", law = "hertz", out_dir;
+  std::string scenario_path, engine = "reference", law = "hertz", out_dir, list_folder = std::string(IMPACTBENCH_SCENARIO_DIR);
   bool json = false;
   double rate_hz = 4096, series_start_s = -1, time_step_s = 0;
   std::vector<std::string> options;
+  MeasurementOptions run_measurement, suite_measurement;
+  SuiteOptions suite_options;
 
   CLI::App* modes = app.add_subcommand("modes", "each frame's natural frequencies [Hz] and tip modal values");
   modes->add_option("scenario", scenario_path, "scenario file (.toml)")->required();
@@ -136,9 +263,24 @@ int main(int argc, char** argv) {
   run->add_option("--series-start", series_start_s, "first output sample [s]; default: start of the scoring window");
   run->add_option("--dt", time_step_s, "time step of fixed-step engines [s]");
   run->add_option("--option", options, "simulator option name=value, repeatable (see 'impactbench list')");
+  run_measurement.add_to(run);
 
-  CLI::App* list = app.add_subcommand("list", "the engines, laws and simulator options of this build");
-  (void)list;
+  CLI::App* suite = app.add_subcommand("suite", "run scenarios x laws x engines x time steps in worker processes; "
+                                                "append DIR/runs.csv, DIR/runs.jsonl and DIR/runs/<job>/");
+  suite->add_option("scenarios", suite_options.inputs, "scenario files or folders; default: the published scenarios");
+  suite->add_option("--engines", suite_options.engines, "comma-separated engines")->capture_default_str();
+  suite->add_option("--laws", suite_options.laws, "comma-separated laws")->capture_default_str();
+  suite->add_option("--dt", suite_options.time_steps, "comma-separated time steps of fixed-step engines [s]");
+  suite->add_option("--jobs", suite_options.jobs, "worker processes")->capture_default_str();
+  suite->add_option("--out", suite_options.out, "output folder")->required();
+  suite->add_flag("--resume", suite_options.resume, "skip the jobs already recorded in the output folder");
+  suite->add_option("--time-limit", suite_options.time_limit_s, "per job; a job past it is stopped and recorded [s]")->capture_default_str();
+  suite->add_option("--rate", suite_options.rate_hz, "output series sample rate [Hz]")->capture_default_str();
+  suite->add_option("--option", suite_options.options, "engine.name=value, repeatable (e.g. reference.n=5)");
+  suite_measurement.add_to(suite);
+
+  CLI::App* list = app.add_subcommand("list", "the scenarios, engines, laws and simulator options of this build");
+  list->add_option("folder", list_folder, "scenario folder")->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -148,11 +290,10 @@ int main(int argc, char** argv) {
   }
   try {
     if (modes->parsed()) return command_modes(scenario_path, json, options);
-    if (run->parsed()) return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options);
-    return command_list();
-  } catch (const std::invalid_argument& error) {
-    std::fprintf(stderr, "impactbench: %s\n", error.what());
-    return kExitBadInput;
+    if (run->parsed())
+      return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options, run_measurement);
+    if (suite->parsed()) return command_suite(suite_options, suite_measurement);
+    return command_list(list_folder);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "impactbench: %s\n", error.what());
     return kExitBadInput;

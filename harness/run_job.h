@@ -1,0 +1,54 @@
+// One run from start to record: load the scenario, run the simulator, judge it, measure it, compare
+// it with the references, write its folder. The `run` command and every suite job go through here,
+// so that a run is measured the same way wherever it is started.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "metrics.h"
+#include "run_record.h"
+#include "scenario.h"
+#include "simulator.h"
+#include "verdict.h"
+
+namespace ib {
+
+struct JobSpec {
+  std::string scenario_path;
+  std::string engine;
+  RunSettings settings;                 // law, output rate, time step, options
+};
+
+// How runs are measured and judged, the same for all of a suite's runs.
+struct Measurement {
+  std::optional<double> window_s;       // scoring window (the last window_s of the run); default: the scenario's
+  double sensor_rate_hz = 2048;
+  double merge_window_s = 0.002;
+  VerdictSettings verdicts;
+};
+
+// A finished reference run that other runs are compared with.
+struct ReferenceData {
+  Metrics metrics;
+  Trajectory trajectory;
+};
+
+// "scenario/engine/law/dt=.../options": unique within a suite, and the run's folder below runs/.
+std::string job_id(const std::string& scenario_name, const JobSpec& job);
+std::string options_text(const std::map<std::string, std::string>& options);
+
+MetricSettings metric_settings(const Scenario& scenario, const Measurement& measurement);
+
+// Runs one job and returns its record; with run_folder, writes summary.json, series.csv and events.csv
+// there. Throws ScenarioError / std::invalid_argument for bad input (nothing was run).
+// keep_trajectory receives the trajectory when given (a reference kept for later comparisons).
+RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measurement& measurement,
+                  const ReferenceData* beam_reference, const ReferenceData* chain_reference,
+                  const std::string& run_folder, ReferenceData* keep = nullptr,
+                  const SimulatorFactory& factory = make_simulator);
+
+// A finished run read back from its folder (series.csv, events.csv) with its metrics recomputed.
+ReferenceData load_reference(const std::string& run_folder, const Scenario& scenario, const Measurement& measurement);
+
+}  // namespace ib

@@ -1,0 +1,42 @@
+#include "run_record.h"
+
+#include <limits>
+
+namespace ib {
+
+std::vector<Field> fields(const RunRecord& r) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Field> out = {
+      {"job_id", r.job_id},
+      {"scenario", r.scenario},
+      {"law", r.law},
+      {"engine", r.engine},
+      {"time_step_s", r.time_step_s},
+      {"options", r.options},
+      {"chain_links", static_cast<double>(r.chain_links)},
+      {"verdict", std::string(to_string(r.verdict))},
+      {"reason", r.reason},
+      {"duration_s", r.duration_s},
+      {"window_start_s", r.window_start_s},
+      {"window_end_s", r.window_end_s},
+  };
+  // Metric and error names come from one place (metrics.h); a run without metrics gets NaN in each.
+  const auto metric_fields = flatten(r.metrics.value_or(Metrics{}));
+  for (const auto& [name, value] : metric_fields) out.push_back({name, r.metrics ? value : nan});
+  for (const auto& [prefix, errors] : {std::pair{"vs_reference_", &r.errors_vs_reference},
+                                       std::pair{"vs_chain_reference_", &r.errors_vs_chain_reference}}) {
+    for (const auto& [name, value] : flatten(errors->value_or(MetricErrors{}), prefix))
+      out.push_back({name, errors->has_value() ? value : nan});
+  }
+  const double per_second = r.duration_s > 0 ? r.cost.wall_time_s / r.duration_s : nan;
+  out.push_back({"wall_time_s", r.cost.wall_time_s});
+  out.push_back({"cpu_time_s", r.cost.cpu_time_s});
+  out.push_back({"steps", static_cast<double>(r.cost.steps)});
+  out.push_back({"wall_time_per_simulated_s", per_second});
+  out.push_back({"output_rate_hz", r.output_rate_hz});
+  out.push_back({"scenario_file", r.scenario_file});
+  out.push_back({"engine_version", r.engine_version});
+  return out;
+}
+
+}  // namespace ib

@@ -1,0 +1,372 @@
+#include "suite.h"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "reporters.h"
+#include "scenario_toml.h"
+
+namespace ib {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+enum class JobKind { beam_reference, chain_reference, engine };
+
+struct PlannedJob {
+  std::string id;
+  JobKind kind = JobKind::engine;
+  std::size_t scenario = 0;     // index into the loaded scenarios
+  JobSpec spec;
+  std::string beam_reference;   // job ids of the references this job is compared with ("" if none)
+  std::string chain_reference;
+  int chain_links = 0;
+};
+
+// A job that cannot run at all (a malformed scenario, a law the scenario has no parameters for): it
+// is recorded as failed with the reason, and the suite goes on.
+RunRecord unrunnable(const std::string& id, const std::string& scenario, const std::string& file,
+                     const std::string& engine, const std::string& law, const std::string& reason) {
+  RunRecord r;
+  r.job_id = id;
+  r.scenario = scenario;
+  r.scenario_file = file;
+  r.engine = engine;
+  r.law = law;
+  r.verdict = Verdict::failed;
+  r.reason = reason;
+  return r;
+}
+
+std::string describe_exit(int status, double time_limit_s, bool timed_out, const std::string& log_tail) {
+  std::ostringstream why;
+  if (timed_out) why << "stopped after the time limit of " << time_limit_s << " s";
+  else if (WIFSIGNALED(status)) why << "the job's process died of signal " << WTERMSIG(status) << " (" << strsignal(WTERMSIG(status)) << ")";
+  else if (WIFEXITED(status)) why << "the job's process exited with code " << WEXITSTATUS(status) << " without a result";
+  else why << "the job's process ended abnormally";
+  if (!log_tail.empty()) why << "; its last output: " << log_tail;
+  return why.str();
+}
+
+std::string last_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last.size() > 300 ? last.substr(0, 300) + "..." : last;
+}
+
+// The verdict written in a runs.jsonl line.
+std::string verdict_of(const std::string& json_line) {
+  const auto j = nlohmann::json::parse(json_line, nullptr, false);
+  return j.is_object() && j.contains("verdict") && j["verdict"].is_string() ? j["verdict"].get<std::string>() : "";
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+// Progress on stderr: a bar that redraws itself on a terminal, one plain line per job elsewhere.
+class Progress {
+ public:
+  explicit Progress(int total) : total_(total), start_(Clock::now()), terminal_(isatty(STDERR_FILENO)) {}
+  void job_done(const std::string& id, Verdict verdict) {
+    ++done_;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const double left = done_ > 0 ? elapsed / done_ * (total_ - done_) : 0;
+    if (terminal_) {
+      const int width = 30, filled = total_ > 0 ? width * done_ / total_ : width;
+      std::fprintf(stderr, "\r\033[K[%s%s] %d/%d  elapsed %s  left %s  %s: %s", std::string(filled, '#').c_str(),
+                   std::string(width - filled, '.').c_str(), done_, total_, clock_text(elapsed).c_str(),
+                   clock_text(left).c_str(), id.c_str(), to_string(verdict));
+      if (done_ == total_) std::fputc('\n', stderr);
+    } else {
+      std::fprintf(stderr, "suite: %d/%d done, elapsed %s, left %s: %s %s\n", done_, total_, clock_text(elapsed).c_str(),
+                   clock_text(left).c_str(), id.c_str(), to_string(verdict));
+    }
+    std::fflush(stderr);
+  }
+
+ private:
+  static std::string clock_text(double seconds) {
+    const long s = static_cast<long>(seconds + 0.5);
+    char text[32];
+    std::snprintf(text, sizeof text, "%ld:%02ld", s / 60, s % 60);
+    return text;
+  }
+  int total_, done_ = 0;
+  Clock::time_point start_;
+  bool terminal_;
+};
+
+class SuiteRunner {
+ public:
+  explicit SuiteRunner(const SuiteSettings& settings) : settings_(settings) {}
+
+  SuiteOutcome run() {
+    std::error_code error;
+    fs::create_directories(settings_.out, error);
+    if (error) throw std::runtime_error(settings_.out + ": cannot create the output folder: " + error.message());
+    if (access(settings_.out.c_str(), W_OK) != 0)
+      throw std::runtime_error(settings_.out + ": the output folder is not writable: " + std::strerror(errno));
+    if (settings_.resume) recorded_ = repair_and_list_runs(settings_.out);
+    else if (fs::exists(settings_.out + "/runs.jsonl"))
+      throw std::runtime_error(settings_.out + " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
+    plan();
+    int to_run = static_cast<int>(unrunnable_.size());
+    for (const auto& job : jobs_) to_run += recorded_.count(job.id) ? 0 : 1;
+    outcome_.jobs_skipped = static_cast<int>(jobs_.size()) - (to_run - static_cast<int>(unrunnable_.size()));
+    progress_ = std::make_unique<Progress>(to_run);
+    for (const RunRecord& r : unrunnable_) finish(r);
+    // References first (beam, then chain): engine jobs are compared with them.
+    for (JobKind phase : {JobKind::beam_reference, JobKind::chain_reference, JobKind::engine}) {
+      for (const PlannedJob& job : jobs_) {
+        if (job.kind != phase || recorded_.count(job.id)) continue;
+        while (static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) reap(true);
+        start(job);
+      }
+      while (!running_.empty()) reap(true);
+    }
+    return outcome_;
+  }
+
+ private:
+  struct Running {
+    const PlannedJob* job;
+    Clock::time_point started;
+    bool timed_out = false;
+  };
+
+  std::string folder_of(const PlannedJob& job) const { return settings_.out + "/runs/" + job.id; }
+
+  void plan() {
+    std::vector<std::string> files;
+    for (const std::string& input : settings_.inputs) {
+      if (fs::is_directory(input)) {
+        for (const std::string& f : find_scenario_files(input)) files.push_back(f);
+      } else {
+        files.push_back(input);
+      }
+    }
+    std::set<std::string> planned;
+    for (const std::string& file : files) {
+      try {
+        scenarios_.push_back(load_scenario(file));
+      } catch (const std::exception& e) {
+        unrunnable_.push_back(unrunnable(fs::path(file).stem().string() + "/unreadable", fs::path(file).stem().string(),
+                                         file, "", "", e.what()));
+        continue;
+      }
+      const std::size_t index = scenarios_.size() - 1;
+      const Scenario& s = scenarios_.back();
+      for (ContactLaw law : settings_.laws) {
+        if (!s.contact.has(law)) {
+          unrunnable_.push_back(unrunnable(s.name + "/" + to_string(law) + "/unavailable", s.name, file, "", to_string(law),
+                                           "the scenario has no [contact." + std::string(to_string(law)) + "] table"));
+          continue;
+        }
+        PlannedJob beam = make_job(index, JobKind::beam_reference, "reference", law, 0, settings_.reference_options);
+        add(beam, planned);
+        for (const std::string& engine : settings_.engines) {
+          if (engine == "reference") continue;
+          const auto options = settings_.engine_options.count(engine) ? settings_.engine_options.at(engine)
+                                                                      : std::map<std::string, std::string>{};
+          const std::vector<double> steps = settings_.time_steps_s.empty() ? std::vector<double>{0} : settings_.time_steps_s;
+          for (double dt : steps) {
+            PlannedJob job = make_job(index, JobKind::engine, engine, law, dt, options);
+            job.beam_reference = beam.id;
+            if (auto simulator = settings_.factory(engine)) {
+              if (const auto links = simulator->chain_links(s, job.spec.settings)) {
+                auto chain_options = settings_.reference_options;
+                chain_options["modes"] = "chain";
+                chain_options["links"] = std::to_string(*links);
+                PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options);
+                chain.beam_reference = beam.id;
+                chain.chain_links = *links;
+                job.chain_reference = chain.id;
+                job.chain_links = *links;
+                add(chain, planned);
+              }
+            }
+            add(job, planned);
+          }
+        }
+      }
+    }
+  }
+
+  PlannedJob make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,
+                      const std::map<std::string, std::string>& options) const {
+    PlannedJob job;
+    job.kind = kind;
+    job.scenario = scenario;
+    job.spec.scenario_path = scenarios_[scenario].source_path;
+    job.spec.engine = engine;
+    job.spec.settings.law = law;
+    job.spec.settings.time_step_s = dt;
+    job.spec.settings.output_rate_hz = settings_.output_rate_hz;
+    job.spec.settings.options = options;
+    job.id = job_id(scenarios_[scenario].name, job.spec);
+    return job;
+  }
+
+  void add(const PlannedJob& job, std::set<std::string>& planned) {
+    if (planned.insert(job.id).second) jobs_.push_back(job);
+  }
+
+  // The reference a job is compared with, read from its folder once and kept; null if it did not finish.
+  const ReferenceData* reference(const std::string& id, const Scenario& scenario) {
+    if (id.empty()) return nullptr;
+    auto found = references_.find(id);
+    if (found == references_.end()) {
+      std::unique_ptr<ReferenceData> data;
+      try {
+        data = std::make_unique<ReferenceData>(load_reference(settings_.out + "/runs/" + id, scenario, settings_.measurement));
+      } catch (const std::exception&) {
+        data = nullptr;  // the reference failed: the job is recorded without errors against it
+      }
+      found = references_.emplace(id, std::move(data)).first;
+    }
+    return found->second.get();
+  }
+
+  void start(const PlannedJob& job) {
+    const std::string folder = folder_of(job);
+    std::error_code error;
+    fs::remove_all(folder, error);  // a previous, unfinished attempt
+    fs::create_directories(folder, error);
+    if (error) throw std::runtime_error(folder + ": cannot create the run folder: " + error.message());
+    const Scenario& scenario = scenarios_[job.scenario];
+    // Load the references in this process, so that the job's process inherits them.
+    const ReferenceData* beam = reference(job.beam_reference, scenario);
+    const ReferenceData* chain = reference(job.chain_reference, scenario);
+    std::fflush(nullptr);
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error(std::string("cannot start a job's process: ") + std::strerror(errno));
+    if (pid == 0) run_in_child(job, folder, scenario, beam, chain);  // never returns
+    running_.emplace(pid, Running{&job, Clock::now()});
+  }
+
+  // The job's process: its output goes to log.txt; its record to row.csv and row.jsonl for the parent.
+  [[noreturn]] void run_in_child(const PlannedJob& job, const std::string& folder, const Scenario& scenario,
+                                 const ReferenceData* beam, const ReferenceData* chain) {
+    const int log = open((folder + "/log.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (log >= 0) {
+      dup2(log, STDOUT_FILENO);
+      dup2(log, STDERR_FILENO);
+      close(log);
+    }
+    RunRecord record;
+    try {
+      record = run_job(scenario, job.spec, settings_.measurement, beam, chain, folder, nullptr, settings_.factory);
+    } catch (const std::exception& e) {
+      record = unrunnable(job.id, scenario.name, scenario.source_path, job.spec.engine, to_string(job.spec.settings.law),
+                          e.what());
+      record.time_step_s = job.spec.settings.time_step_s;
+      record.options = options_text(job.spec.settings.options);
+    }
+    record.job_id = job.id;
+    record.chain_links = job.chain_links;
+    try {
+      std::ofstream(folder + "/row.csv") << csv_row(record);
+      std::ofstream(folder + "/row.jsonl") << json_line(record);
+    } catch (...) {
+      _exit(3);
+    }
+    std::fflush(nullptr);
+    _exit(0);
+  }
+
+  // Waits for a job to end (or stops one past its time limit) and records it.
+  void reap(bool block) {
+    while (true) {
+      int status = 0;
+      const pid_t pid = waitpid(-1, &status, WNOHANG);
+      if (pid > 0) {
+        auto it = running_.find(pid);
+        if (it == running_.end()) continue;
+        const Running r = it->second;
+        running_.erase(it);
+        collect(*r.job, status, r.timed_out);
+        return;
+      }
+      const auto now = Clock::now();
+      for (auto& [child, r] : running_) {
+        if (!r.timed_out && std::chrono::duration<double>(now - r.started).count() > settings_.time_limit_s) {
+          r.timed_out = true;
+          kill(child, SIGKILL);
+        }
+      }
+      if (!block || running_.empty()) return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+
+  void collect(const PlannedJob& job, int status, bool timed_out) {
+    const std::string folder = folder_of(job);
+    const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
+    if (clean) {
+      const std::string json = read_file(folder + "/row.jsonl"), csv = read_file(folder + "/row.csv");
+      append_rows(settings_.out, csv, json);
+      const auto verdict = verdict_from_string(verdict_of(json));
+      count_and_show(job.id, verdict.value_or(Verdict::failed));
+      fs::remove(folder + "/row.jsonl");
+      fs::remove(folder + "/row.csv");
+      return;
+    }
+    const Scenario& s = scenarios_[job.scenario];
+    RunRecord record = unrunnable(job.id, s.name, s.source_path, job.spec.engine, to_string(job.spec.settings.law),
+                                  describe_exit(status, settings_.time_limit_s, timed_out, last_line(folder + "/log.txt")));
+    record.time_step_s = job.spec.settings.time_step_s;
+    record.options = options_text(job.spec.settings.options);
+    record.chain_links = job.chain_links;
+    record.duration_s = s.duration_s;
+    finish(record);
+  }
+
+  void finish(const RunRecord& record) {
+    append_run(settings_.out, record);
+    count_and_show(record.job_id, record.verdict);
+  }
+
+  void count_and_show(const std::string& id, Verdict verdict) {
+    ++outcome_.jobs_run;
+    if (verdict == Verdict::unstable || verdict == Verdict::failed) ++outcome_.not_ok;
+    progress_->job_done(id, verdict);
+  }
+
+  const SuiteSettings& settings_;
+  std::vector<Scenario> scenarios_;
+  std::vector<PlannedJob> jobs_;
+  std::vector<RunRecord> unrunnable_;
+  std::set<std::string> recorded_;
+  std::map<std::string, std::unique_ptr<ReferenceData>> references_;
+  std::map<pid_t, Running> running_;
+  std::unique_ptr<Progress> progress_;
+  SuiteOutcome outcome_;
+};
+
+}  // namespace
+
+SuiteOutcome run_suite(const SuiteSettings& settings) { return SuiteRunner(settings).run(); }
+
+}  // namespace ib

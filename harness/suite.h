@@ -1,0 +1,42 @@
+// The suite runner: the matrix scenarios x laws x engines x time steps, each job in its own process so
+// that a crash, an abort or a hang inside an engine's library costs that job alone. Results are
+// appended as each job ends (DIR/runs.csv, DIR/runs.jsonl, DIR/runs/<job id>/), so nothing finished is
+// lost; --resume skips the jobs already recorded. The reference run of each scenario and law is
+// computed once and reused for every engine's errors.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "run_job.h"
+#include "simulator.h"
+
+namespace ib {
+
+struct SuiteSettings {
+  std::vector<std::string> inputs;                 // scenario files or folders (searched recursively)
+  std::vector<std::string> engines = {"reference"};
+  std::vector<ContactLaw> laws = {ContactLaw::hertz, ContactLaw::viscoelastic, ContactLaw::newton};
+  std::vector<double> time_steps_s;                // fixed-step engines; empty: each engine's default
+  std::map<std::string, std::string> reference_options;  // options of every reference run
+  std::map<std::string, std::map<std::string, std::string>> engine_options;  // per engine
+  double output_rate_hz = 4096;
+  int jobs = 1;                                    // worker processes
+  double time_limit_s = 600;                       // per job; then it is stopped and recorded
+  std::string out;                                 // output folder
+  bool resume = false;
+  Measurement measurement;
+  SimulatorFactory factory = make_simulator;
+};
+
+struct SuiteOutcome {
+  int jobs_run = 0;         // in this invocation
+  int jobs_skipped = 0;     // already recorded (--resume)
+  int not_ok = 0;           // unstable or failed among those run
+};
+
+// Runs the suite; progress goes to stderr (a bar on a terminal, lines otherwise). Throws
+// std::runtime_error when the output folder cannot be written.
+SuiteOutcome run_suite(const SuiteSettings& settings);
+
+}  // namespace ib

@@ -1,0 +1,96 @@
+#include "verdict.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace ib {
+
+const char* to_string(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::ok: return "ok";
+    case Verdict::inaccurate: return "inaccurate";
+    case Verdict::unstable: return "unstable";
+    case Verdict::failed: return "failed";
+  }
+  return "unknown";
+}
+
+std::optional<Verdict> verdict_from_string(const std::string& text) {
+  for (Verdict v : {Verdict::ok, Verdict::inaccurate, Verdict::unstable, Verdict::failed})
+    if (text == to_string(v)) return v;
+  return std::nullopt;
+}
+
+namespace {
+
+std::string describe(const char* what, double value, const char* unit, double t) {
+  std::ostringstream out;
+  out.precision(6);
+  out << what << " = " << value << " " << unit << " at t = " << t << " s";
+  return out.str();
+}
+
+}  // namespace
+
+Judgement judge_stability(const Scenario& scenario, const RunResult& result, const VerdictSettings& settings) {
+  if (result.status == RunStatus::failed) return {Verdict::failed, result.reason};
+  if (result.status == RunStatus::unstable) return {Verdict::unstable, result.reason};
+  const Trajectory& t = result.trajectory;
+  const double penetration_bound = settings.penetration_bound_gaps * (scenario.gap_m > 0 ? scenario.gap_m : 1e-3);
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    for (int f = 0; f < 2; ++f) {
+      const double u = t.displacement_m[f][k], v = t.velocity_m_s[f][k], a = t.acceleration_m_s2[f][k];
+      if (!std::isfinite(u) || !std::isfinite(v) || !std::isfinite(a)) {
+        std::ostringstream why;
+        why << "non-finite state of frame " << f + 1 << " at t = " << t.time_s[k] << " s (u = " << u << " m, v = " << v
+            << " m/s, a = " << a << " m/s^2)";
+        return {Verdict::unstable, why.str()};
+      }
+      const double bound = settings.displacement_bound_fraction_of_length * scenario.frames[f].length_m;
+      if (std::abs(u) > bound)
+        return {Verdict::unstable, describe(f == 0 ? "frame 1 tip displacement |u|" : "frame 2 tip displacement |u|",
+                                            std::abs(u), "m", t.time_s[k]) +
+                                       ", beyond the bound " + std::to_string(bound) + " m"};
+    }
+    const double penetration = t.displacement_m[0][k] - t.displacement_m[1][k] - scenario.gap_m;
+    if (penetration > penetration_bound)
+      return {Verdict::unstable, describe("penetration", penetration, "m", t.time_s[k]) + ", beyond the bound " +
+                                     std::to_string(penetration_bound) + " m"};
+  }
+  for (const ContactEvent& e : t.events)
+    if (e.max_indentation_m > penetration_bound)
+      return {Verdict::unstable, describe("penetration", e.max_indentation_m, "m", e.onset_time_s) +
+                                     ", beyond the bound " + std::to_string(penetration_bound) + " m"};
+  // Without a motor nothing feeds energy in: a rise beyond the tolerance is the simulator's doing.
+  if (!scenario.motor && !t.mechanical_energy_j.empty()) {
+    const double initial = t.mechanical_energy_j.front();
+    for (std::size_t k = 0; k < t.mechanical_energy_j.size(); ++k) {
+      const double e = t.mechanical_energy_j[k];
+      if (e > initial * (1 + settings.energy_growth_tolerance) + 1e-12) {
+        std::ostringstream why;
+        why.precision(6);
+        why << "energy grew without input from " << initial << " J to " << e << " J at t = " << t.time_s[k] << " s";
+        return {Verdict::unstable, why.str()};
+      }
+    }
+  }
+  return {};
+}
+
+Judgement judge_accuracy(const MetricErrors& e, const VerdictSettings& s) {
+  std::ostringstream why;
+  why.precision(3);
+  for (int f = 0; f < 2; ++f)
+    if (std::abs(e.sensor_peak_relative_error[f]) > s.sensor_peak_tolerance)
+      why << (why.tellp() > 0 ? "; " : "") << "frame " << f + 1 << " sensor peak off by "
+          << 100 * e.sensor_peak_relative_error[f] << " %";
+  if (std::abs(e.contact_duration_relative_error) > s.contact_duration_tolerance)
+    why << (why.tellp() > 0 ? "; " : "") << "mean contact duration off by " << 100 * e.contact_duration_relative_error << " %";
+  if (std::abs(e.impacts_per_cycle_difference) > s.impacts_per_cycle_tolerance)
+    why << (why.tellp() > 0 ? "; " : "") << "impacts per cycle off by " << e.impacts_per_cycle_difference;
+  const std::string reason = why.str();
+  if (reason.empty()) return {};
+  return {Verdict::inaccurate, reason + " against the reference"};
+}
+
+}  // namespace ib

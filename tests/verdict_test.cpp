@@ -1,0 +1,124 @@
+// Stability and accuracy verdicts on constructed trajectories: each kind of instability is named
+// with a reason a person can check.
+#include "verdict.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace ib {
+namespace {
+
+// A quiet run: both tips at rest, 1 s at 100 Hz, constant energy.
+RunResult quiet_run() {
+  RunResult r;
+  Trajectory& t = r.trajectory;
+  for (int k = 0; k <= 100; ++k) {
+    t.time_s.push_back(k * 0.01);
+    for (int f = 0; f < 2; ++f) {
+      t.displacement_m[f].push_back(0);
+      t.velocity_m_s[f].push_back(0);
+      t.acceleration_m_s2[f].push_back(0);
+      t.peak_abs_acceleration_m_s2[f].push_back(0);
+    }
+    t.contact_force_n.push_back(0);
+    t.peak_contact_force_n.push_back(0);
+    t.mechanical_energy_j.push_back(1e-3);
+  }
+  return r;
+}
+
+Scenario free_rig() {
+  Scenario s = default_rig();
+  s.motor.reset();
+  return s;
+}
+
+TEST(Verdict, AQuietRunIsOk) {
+  const Judgement j = judge_stability(free_rig(), quiet_run(), {});
+  EXPECT_EQ(j.verdict, Verdict::ok);
+  EXPECT_TRUE(j.reason.empty());
+}
+
+TEST(Verdict, NonFiniteStateIsUnstableWithTheTime) {
+  RunResult r = quiet_run();
+  r.trajectory.velocity_m_s[1][40] = std::numeric_limits<double>::quiet_NaN();
+  const Judgement j = judge_stability(free_rig(), r, {});
+  EXPECT_EQ(j.verdict, Verdict::unstable);
+  EXPECT_NE(j.reason.find("non-finite state of frame 2 at t = 0.4 s"), std::string::npos) << j.reason;
+}
+
+TEST(Verdict, DisplacementBeyondTheBoundIsUnstable) {
+  RunResult r = quiet_run();
+  r.trajectory.displacement_m[0][70] = -0.05;  // 5 cm on a 0.3 m frame: beyond 0.1 L
+  const Judgement j = judge_stability(free_rig(), r, {});
+  EXPECT_EQ(j.verdict, Verdict::unstable);
+  EXPECT_NE(j.reason.find("frame 1 tip displacement"), std::string::npos) << j.reason;
+  EXPECT_NE(j.reason.find("0.03"), std::string::npos) << j.reason;  // the bound
+}
+
+TEST(Verdict, PenetrationBeyondTenGapsIsUnstable) {
+  RunResult r = quiet_run();
+  r.trajectory.displacement_m[0][20] = 0.0125;  // delta = 12.5 mm - 1 mm = 11.5 mm > 10 mm
+  Judgement j = judge_stability(free_rig(), r, {});
+  EXPECT_EQ(j.verdict, Verdict::unstable);
+  EXPECT_NE(j.reason.find("penetration"), std::string::npos) << j.reason;
+  // also when only the events see it (between samples)
+  r = quiet_run();
+  ContactEvent e;
+  e.onset_time_s = 0.5;
+  e.max_indentation_m = 0.02;
+  r.trajectory.events.push_back(e);
+  j = judge_stability(free_rig(), r, {});
+  EXPECT_EQ(j.verdict, Verdict::unstable);
+  EXPECT_NE(j.reason.find("t = 0.5 s"), std::string::npos) << j.reason;
+}
+
+TEST(Verdict, EnergyGrowingWithoutInputIsUnstableButNotWithAMotor) {
+  RunResult r = quiet_run();
+  for (std::size_t k = 50; k < r.trajectory.size(); ++k) r.trajectory.mechanical_energy_j[k] = 1.2e-3;
+  Judgement j = judge_stability(free_rig(), r, {});
+  EXPECT_EQ(j.verdict, Verdict::unstable);
+  EXPECT_NE(j.reason.find("energy grew without input from 0.001 J to 0.0012 J at t = 0.5 s"), std::string::npos) << j.reason;
+  j = judge_stability(default_rig(), r, {});  // the motor feeds energy in: no verdict from energy
+  EXPECT_EQ(j.verdict, Verdict::ok);
+  // a rise within the tolerance (rounding, say) is fine
+  r = quiet_run();
+  r.trajectory.mechanical_energy_j.back() = 1e-3 * (1 + 1e-6);
+  EXPECT_EQ(judge_stability(free_rig(), r, {}).verdict, Verdict::ok);
+}
+
+TEST(Verdict, TheSimulatorsOwnErrorIsKeptWithItsReason) {
+  RunResult r = quiet_run();
+  r.status = RunStatus::failed;
+  r.reason = "engine said no";
+  Judgement j = judge_stability(free_rig(), r, {});
+  EXPECT_EQ(j.verdict, Verdict::failed);
+  EXPECT_EQ(j.reason, "engine said no");
+  r.status = RunStatus::unstable;
+  r.reason = "warning: bad inertia";
+  j = judge_stability(free_rig(), r, {});
+  EXPECT_EQ(j.verdict, Verdict::unstable);
+  EXPECT_EQ(j.reason, "warning: bad inertia");
+}
+
+TEST(Verdict, ErrorsBeyondToleranceAreInaccurate) {
+  MetricErrors e;
+  EXPECT_EQ(judge_accuracy(e, {}).verdict, Verdict::ok);
+  e.sensor_peak_relative_error[1] = -0.25;
+  e.impacts_per_cycle_difference = 0.5;
+  const Judgement j = judge_accuracy(e, {});
+  EXPECT_EQ(j.verdict, Verdict::inaccurate);
+  EXPECT_NE(j.reason.find("frame 2 sensor peak off by -25 %"), std::string::npos) << j.reason;
+  EXPECT_NE(j.reason.find("impacts per cycle off by 0.5"), std::string::npos) << j.reason;
+}
+
+TEST(Verdict, NamesRoundTrip) {
+  for (Verdict v : {Verdict::ok, Verdict::inaccurate, Verdict::unstable, Verdict::failed})
+    EXPECT_EQ(verdict_from_string(to_string(v)), v);
+  EXPECT_FALSE(verdict_from_string("fine"));
+}
+
+}  // namespace
+}  // namespace ib
