@@ -1,0 +1,78 @@
+#include "adapter_options.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace ib {
+
+const char* to_string(ContactPath path) {
+  switch (path) {
+    case ContactPath::matched: return "matched";
+    case ContactPath::injected: return "injected";
+    case ContactPath::native: return "native";
+  }
+  return "?";
+}
+
+OptionReader::OptionReader(std::string engine, const std::map<std::string, std::string>& options,
+                           const std::vector<std::pair<std::string, std::string>>& allowed)
+    : engine_(std::move(engine)), options_(options) {
+  for (const auto& [name, value] : options) {
+    bool known = false;
+    std::string names;
+    for (const auto& option : allowed) {
+      known = known || option.first == name;
+      names += (names.empty() ? "" : ", ") + option.first;
+    }
+    if (!known) throw std::invalid_argument("unknown " + engine_ + " option '" + name + "'; allowed: " + names);
+  }
+}
+
+const std::string* OptionReader::find(const std::string& name) const {
+  const auto it = options_.find(name);
+  return it == options_.end() ? nullptr : &it->second;
+}
+
+void OptionReader::reject(const std::string& name, const std::string& value, const std::string& allowed) const {
+  throw std::invalid_argument(engine_ + " option " + name + "=" + value + ": allowed: " + allowed);
+}
+
+std::string OptionReader::choice(const std::string& name, const std::string& fallback,
+                                 const std::vector<std::string>& values) const {
+  const std::string* value = find(name);
+  if (!value) return fallback;
+  std::string list;
+  for (const auto& v : values) {
+    if (v == *value) return v;
+    list += (list.empty() ? "" : ", ") + v;
+  }
+  reject(name, *value, list);
+}
+
+double OptionReader::number(const std::string& name, double fallback, double low, double high) const {
+  const std::string* value = find(name);
+  if (!value) return fallback;
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(*value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  const std::string allowed = "a number from " + std::to_string(low) + " to " + std::to_string(high);
+  if (used != value->size() || !std::isfinite(v) || v < low || v > high) reject(name, *value, allowed);
+  return v;
+}
+
+int OptionReader::integer(const std::string& name, int fallback, int low, int high) const {
+  const double v = number(name, fallback, low, high);
+  if (v != std::floor(v)) reject(name, *find(name), "an integer from " + std::to_string(low) + " to " + std::to_string(high));
+  return static_cast<int>(v);
+}
+
+ContactPath OptionReader::contact_path() const {
+  const std::string path = choice("contact", "matched", {"matched", "injected", "native"});
+  return path == "injected" ? ContactPath::injected : path == "native" ? ContactPath::native : ContactPath::matched;
+}
+
+}  // namespace ib

@@ -1,0 +1,94 @@
+#include "rig.h"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <stdexcept>
+
+#include "beam_modes.h"
+
+namespace ib {
+
+int default_links(const Scenario& scenario) {
+  for (int links = 2; links <= 64; links *= 2) {
+    bool close = true;
+    for (const FrameSpec& frame : scenario.frames) {
+      const double beam = CantileverModes(frame, 1).omega_rad_s(0);
+      const double chain = chain_modes(build_link_chain(frame, links)).omega_rad_s[0];
+      close = close && std::abs(chain / beam - 1) <= 0.005;
+    }
+    if (close) return links;
+  }
+  return 64;
+}
+
+namespace {
+
+FrameRig build_frame(const FrameSpec& spec, int links, double base_x, double initial_tip_displacement) {
+  FrameRig f;
+  f.chain = build_link_chain(spec, links);
+  f.base_x_m = base_x;
+  f.tip_z_m = spec.length_m;
+  for (int j = 0; j < links; ++j) {
+    const ChainBody& link = f.chain.bodies[j];
+    RigBody b;
+    b.joint_z_m = link.start_m;
+    b.length_m = link.length_m;
+    b.mass_kg = link.mass_kg;
+    b.com_z_m = link.center_m;
+    b.inertia_y_kg_m2 = link.inertia_kg_m2;
+    if (j + 1 == links && f.chain.tip_mass_kg > 0) {
+      // the tip mass is a point at the tip: merge it (parallel-axis theorem about the new centre)
+      const double m = link.mass_kg + f.chain.tip_mass_kg;
+      const double com = (link.mass_kg * link.center_m + f.chain.tip_mass_kg * spec.length_m) / m;
+      b.inertia_y_kg_m2 = link.inertia_kg_m2 + link.mass_kg * std::pow(link.center_m - com, 2) +
+                          f.chain.tip_mass_kg * std::pow(spec.length_m - com, 2);
+      b.mass_kg = m;
+      b.com_z_m = com;
+    }
+    b.inertia_xz_kg_m2 = b.inertia_y_kg_m2;
+    f.bodies.push_back(b);
+  }
+  const ChainMatrices m = linearise(f.chain);
+  f.tip_effective_mass_kg = 1 / m.tip_lever.dot(m.mass.ldlt().solve(m.tip_lever));
+  f.initial_angles_rad = Eigen::VectorXd::Zero(links);
+  if (initial_tip_displacement != 0) {
+    const double compliance = m.tip_lever.squaredNorm() / f.chain.joint_stiffness_n_m_per_rad;
+    f.initial_angles_rad = static_tip_load_angles(f.chain, initial_tip_displacement / compliance);
+  }
+  return f;
+}
+
+}  // namespace
+
+RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links) {
+  if (links < 1) throw std::invalid_argument("links must be >= 1, got " + std::to_string(links));
+  RigSpec rig;
+  rig.gap_m = scenario.gap_m;
+  rig.sphere_radius_m = kTipSphereRadius_m;
+  rig.frame_spacing_m = scenario.gap_m + 2 * kTipSphereRadius_m;
+  rig.frames[0] = build_frame(scenario.frames[0], links, 0.0, scenario.initial.frame1_tip_displacement_m);
+  rig.frames[1] = build_frame(scenario.frames[1], links, rig.frame_spacing_m, 0.0);
+  if (scenario.motor) {
+    const double omega = 2 * M_PI * motor_frequency_hz(scenario);
+    rig.motor = MotorForce{scenario.motor->unbalance_mass_kg * scenario.motor->unbalance_radius_m * omega * omega, omega};
+  }
+  rig.law = make_contact_model(scenario, law);
+  rig.contact_effective_mass_kg =
+      1 / (1 / rig.frames[0].tip_effective_mass_kg + 1 / rig.frames[1].tip_effective_mass_kg);
+  rig.duration_s = scenario.duration_s;
+  return rig;
+}
+
+RigEnergy::RigEnergy(const RigSpec& rig) : law_(rig.law) {
+  for (int f = 0; f < 2; ++f) matrices_[f] = linearise(rig.frames[f].chain);
+}
+
+double RigEnergy::operator()(const std::array<Eigen::VectorXd, 2>& angles, const std::array<Eigen::VectorXd, 2>& rates,
+                             double indentation_m) const {
+  double energy = elastic_contact_energy(law_, indentation_m);
+  for (int f = 0; f < 2; ++f)
+    energy += 0.5 * rates[f].dot(matrices_[f].mass * rates[f]) + 0.5 * angles[f].dot(matrices_[f].stiffness * angles[f]);
+  return energy;
+}
+
+}  // namespace ib

@@ -1,0 +1,76 @@
+// The rig as every engine builds it (rig.md section 4), derived from a scenario in one tested place:
+// two chains of K rigid links with hinge springs, the tip masses merged into the last links, tip
+// spheres placed so that the surface gap at rest is the scenario's gap, and the motor force on frame
+// 1's tip. Plain data in SI units; the engines only translate it into their own terms.
+//
+// Geometry shared by all engines: the beams stand along +z from z = 0; they bend in the x-z plane
+// (hinge axes along y); frame 1's clamp is at x = 0 and frame 2's at x = frame_spacing_m, so that a
+// tip displacement u along +x is toward frame 2 for frame 1.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact_laws.h"
+#include "link_chain.h"
+#include "modal_model.h"
+#include "scenario.h"
+
+namespace ib {
+
+// One rigid body of a chain as an engine sees it: the link with, on the last one, the tip mass.
+struct RigBody {
+  double joint_z_m = 0;        // the hinge it hangs from, height above the clamp [m]
+  double length_m = 0;         // from its hinge to the next (or to the tip) [m]
+  double mass_kg = 0;          // link (+ tip mass on the last) [kg]
+  double com_z_m = 0;          // centre of mass height [m]
+  double inertia_y_kg_m2 = 0;  // about the centre of mass, around the hinge axis (y) [kg m^2]
+  double inertia_xz_kg_m2 = 0; // about the other two axes: the same slender-rod value (engines need 3) [kg m^2]
+};
+
+struct FrameRig {
+  LinkChain chain;                       // the physics (reference/link_chain.h)
+  std::vector<RigBody> bodies;           // K bodies, in hinge order from the clamp
+  double base_x_m = 0;                   // clamp position along x [m]
+  double tip_z_m = 0;                    // the tip point (= beam length) [m]
+  Eigen::VectorXd initial_angles_rad;    // relative hinge angles at t = 0 (static tip-load shape, or zero)
+  double tip_effective_mass_kg = 0;      // 1 / (g^T M^-1 g) of the linearised chain [kg]
+};
+
+struct RigSpec {
+  std::array<FrameRig, 2> frames;
+  double gap_m = 0;                      // surface gap of the tip spheres at rest [m]
+  double sphere_radius_m = 0;            // both tip spheres [m]
+  double frame_spacing_m = 0;            // frame 2's clamp x = gap + 2 radius [m]
+  std::optional<MotorForce> motor;       // on frame 1's tip along x; absent without a motor
+  ContactModel law;                      // the run's contact law with its parameters
+  double contact_effective_mass_kg = 0;  // 1 / (1/m1 + 1/m2) of the two tips [kg]
+  double duration_s = 0;
+};
+
+constexpr double kTipSphereRadius_m = 5e-3;
+
+// The smallest K (up to 64) whose first frequency is within 0.5 % of the continuous beam's, for both
+// frames: the engines' default discretisation.
+int default_links(const Scenario& scenario);
+
+RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links);
+
+// Mechanical energy of the rig from its hinge angles and rates (linearised chain: kinetic
+// 1/2 w^T M w plus spring 1/2 q^T K q per frame) plus the contact law's elastic energy at the
+// indentation [J]. The same measure for every engine.
+class RigEnergy {
+ public:
+  explicit RigEnergy(const RigSpec& rig);
+  double operator()(const std::array<Eigen::VectorXd, 2>& angles, const std::array<Eigen::VectorXd, 2>& rates,
+                    double indentation_m) const;
+
+ private:
+  std::array<ChainMatrices, 2> matrices_;
+  ContactModel law_;
+};
+
+}  // namespace ib

@@ -1,0 +1,84 @@
+#include "step_recorder.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ib {
+
+StepRecorder::StepRecorder(double series_start_s, double end_s, double rate_hz)
+    : start_s_(series_start_s), end_s_(end_s), rate_hz_(rate_hz) {
+  out_.output_rate_hz = rate_hz;
+  out_.start_time_s = series_start_s;
+  total_samples_ = end_s >= series_start_s ? static_cast<long long>(std::floor((end_s - series_start_s) * rate_hz + 1e-9)) + 1 : 0;
+  out_.reserve(static_cast<std::size_t>(total_samples_));
+}
+
+void StepRecorder::record(const StepState& s) {
+  ++steps_;
+  if (steps_ == 0) {  // the initial state
+    previous_ = s;
+    sample_between(s, s, {0, 0});
+    return;
+  }
+  const double h = s.t - previous_.t;
+  const std::array<double, 2> acceleration = {(s.velocity_m_s[0] - previous_.velocity_m_s[0]) / h,
+                                               (s.velocity_m_s[1] - previous_.velocity_m_s[1]) / h};
+  for (int f = 0; f < 2; ++f) peak_acc_[f] = std::max(peak_acc_[f], std::abs(acceleration[f]));
+  peak_force_ = std::max(peak_force_, s.contact_force_n);
+  // contact episodes: maximal runs of steps with a positive force
+  if (s.contact_force_n > 0) {
+    if (!in_contact_) {
+      in_contact_ = true;
+      episode_ = ContactEvent{};
+      episode_.onset_time_s = previous_.t;
+      // closing speed at the onset: from the tips' velocities before the step
+      episode_.approach_velocity_m_s = previous_.velocity_m_s[0] - previous_.velocity_m_s[1];
+    }
+    episode_.peak_force_n = std::max(episode_.peak_force_n, s.contact_force_n);
+    episode_.impulse_n_s += s.contact_force_n * h;
+    episode_.max_indentation_m = std::max(episode_.max_indentation_m, s.indentation_m);
+  } else if (in_contact_) {
+    close_episode(previous_);
+  }
+  sample_between(previous_, s, acceleration);
+  previous_ = s;
+}
+
+void StepRecorder::close_episode(const StepState& last) {
+  in_contact_ = false;
+  episode_.end_time_s = last.t;
+  episode_.rebound_velocity_m_s = last.velocity_m_s[1] - last.velocity_m_s[0];
+  episode_.restitution =
+      episode_.approach_velocity_m_s > 0 ? episode_.rebound_velocity_m_s / episode_.approach_velocity_m_s : 0;
+  out_.events.push_back(episode_);
+}
+
+void StepRecorder::sample_between(const StepState& a, const StepState& b, const std::array<double, 2>& acceleration) {
+  for (; next_sample_ < total_samples_; ++next_sample_) {
+    const double t = start_s_ + static_cast<double>(next_sample_) / rate_hz_;
+    if (t > b.t + 1e-12 * std::max(1.0, std::abs(b.t))) break;
+    const double w = b.t > a.t ? std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0) : 1.0;
+    out_.time_s.push_back(t);
+    for (int f = 0; f < 2; ++f) {
+      out_.displacement_m[f].push_back(a.displacement_m[f] + w * (b.displacement_m[f] - a.displacement_m[f]));
+      out_.velocity_m_s[f].push_back(a.velocity_m_s[f] + w * (b.velocity_m_s[f] - a.velocity_m_s[f]));
+      out_.acceleration_m_s2[f].push_back(acceleration[f]);
+      // the first sample has no interval before it; later ones carry the largest step acceleration since
+      out_.peak_abs_acceleration_m_s2[f].push_back(next_sample_ == 0 ? std::abs(acceleration[f]) : peak_acc_[f]);
+    }
+    out_.contact_force_n.push_back(b.contact_force_n);
+    out_.peak_contact_force_n.push_back(next_sample_ == 0 ? b.contact_force_n : peak_force_);
+    // a step that goes on past the sample belongs to the next interval too
+    const bool step_continues = t < b.t;
+    for (int f = 0; f < 2; ++f) peak_acc_[f] = step_continues ? std::abs(acceleration[f]) : 0;
+    peak_force_ = step_continues ? b.contact_force_n : 0;
+    out_.mechanical_energy_j.push_back(a.energy_j + w * (b.energy_j - a.energy_j));
+  }
+}
+
+Trajectory StepRecorder::finish() {
+  if (in_contact_) close_episode(previous_);
+  return std::move(out_);
+}
+
+}  // namespace ib

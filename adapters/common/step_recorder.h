@@ -1,0 +1,50 @@
+// Turns a fixed-step engine's per-step states into the harness's Trajectory, the same way for every
+// engine: output samples by linear interpolation between steps, the tip acceleration of each step from
+// its velocity change (what a fixed-step engine resolves), the largest of those per output interval as
+// the true peak, and one contact episode per run of steps whose contact force is positive (a contact
+// counts when the engine applies a force, not when the bodies are merely within a margin).
+#pragma once
+
+#include <array>
+
+#include "trajectory.h"
+
+namespace ib {
+
+// The state after a step (or at t = 0).
+struct StepState {
+  double t = 0;
+  std::array<double, 2> displacement_m{};   // tip displacement along x from rest, positive toward frame 2
+  std::array<double, 2> velocity_m_s{};
+  double contact_force_n = 0;               // compressive force between the tips during the step [N], >= 0
+  double indentation_m = 0;                 // u1 - u2 - gap at the end of the step [m]
+  double energy_j = 0;                      // mechanical energy at the end of the step [J]
+};
+
+class StepRecorder {
+ public:
+  // Samples at rate_hz from series_start_s to end_s (inclusive).
+  StepRecorder(double series_start_s, double end_s, double rate_hz);
+
+  // Every state in time order, the initial one first. A step's acceleration and force are attributed
+  // to the interval since the previous state.
+  void record(const StepState& state);
+
+  long long steps() const { return steps_; }
+  Trajectory finish();
+
+ private:
+  void sample_between(const StepState& a, const StepState& b, const std::array<double, 2>& acceleration);
+  void close_episode(const StepState& last);
+
+  Trajectory out_;
+  double start_s_, end_s_, rate_hz_;
+  long long next_sample_ = 0, total_samples_ = 0, steps_ = -1;
+  StepState previous_{};
+  std::array<double, 2> peak_acc_{};
+  double peak_force_ = 0;
+  bool in_contact_ = false;
+  ContactEvent episode_;
+};
+
+}  // namespace ib

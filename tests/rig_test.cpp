@@ -1,0 +1,81 @@
+// The rig every engine builds, derived in one place: masses, inertias, geometry, initial shape,
+// default discretisation and the energy measure.
+#include "rig.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "beam_modes.h"
+#include "reference_fixtures.h"
+
+namespace ib {
+namespace {
+
+TEST(Rig, DefaultLinksIsTheSmallestWithinHalfAPercent) {
+  const Scenario s = testing::paper_scenario("resonance");
+  EXPECT_EQ(default_links(s), 8);  // K = 4 is 0.9 % off, K = 8 0.22 %
+}
+
+TEST(Rig, BodiesCarryTheBeamAndTheTipMass) {
+  const Scenario s = testing::paper_scenario("resonance");
+  const RigSpec rig = build_rig(s, ContactLaw::hertz, 8);
+  for (int f = 0; f < 2; ++f) {
+    const FrameSpec& frame = s.frames[f];
+    double mass = 0, moment = 0;
+    for (const RigBody& b : rig.frames[f].bodies) {
+      mass += b.mass_kg;
+      moment += b.mass_kg * b.com_z_m;
+    }
+    const double l = frame.length_m / 8;
+    const double beam = frame.mass_per_length_kg_m() * (frame.length_m - l / 2);
+    EXPECT_NEAR(mass, beam + frame.tip_mass_kg, 1e-12);
+    // first moment: the chain's beam pieces about their centres plus the tip mass at L
+    double expected = frame.tip_mass_kg * frame.length_m;
+    for (const ChainBody& c : rig.frames[f].chain.bodies) expected += c.mass_kg * c.center_m;
+    EXPECT_NEAR(moment, expected, 1e-12);
+    // the last body's inertia about its centre: rod + point mass by the parallel-axis theorem
+    const RigBody& last = rig.frames[f].bodies.back();
+    const ChainBody& link = rig.frames[f].chain.bodies.back();
+    const double expected_inertia = link.inertia_kg_m2 + link.mass_kg * std::pow(link.center_m - last.com_z_m, 2) +
+                                    frame.tip_mass_kg * std::pow(frame.length_m - last.com_z_m, 2);
+    EXPECT_NEAR(last.inertia_y_kg_m2, expected_inertia, 1e-15);
+  }
+  EXPECT_DOUBLE_EQ(rig.frame_spacing_m, s.gap_m + 2 * rig.sphere_radius_m);
+  ASSERT_TRUE(rig.motor.has_value());
+  EXPECT_NEAR(rig.motor->omega_rad_s, 2 * M_PI * 6.9498, 2e-3);
+}
+
+TEST(Rig, OnlyWhatTheScenarioNeeds) {
+  const Scenario s = testing::paper_scenario("free_vibration");
+  const RigSpec rig = build_rig(s, ContactLaw::newton, 4);
+  EXPECT_FALSE(rig.motor.has_value());
+  EXPECT_TRUE(std::holds_alternative<NewtonLaw>(rig.law));
+  // frame 1 starts in its static tip-load shape with the tip 2 mm back; frame 2 straight
+  const ChainMatrices m = linearise(rig.frames[0].chain);
+  EXPECT_NEAR(m.tip_lever.dot(rig.frames[0].initial_angles_rad), -2e-3, 1e-15);
+  EXPECT_EQ(rig.frames[1].initial_angles_rad.norm(), 0.0);
+}
+
+// A static tip load P deflecting the tip by u stores the energy P u / 2; tip effective masses are
+// close to the beam's tip mass plus a fraction of the beam.
+TEST(Rig, EnergyAndEffectiveMassesAreThoseOfTheChain) {
+  const Scenario s = testing::paper_scenario("free_vibration");
+  const RigSpec rig = build_rig(s, ContactLaw::viscoelastic, 16);
+  const RigEnergy energy(rig);
+  const ChainMatrices m = linearise(rig.frames[0].chain);
+  const double u = m.tip_lever.dot(rig.frames[0].initial_angles_rad);
+  const double force = u / (m.tip_lever.squaredNorm() / rig.frames[0].chain.joint_stiffness_n_m_per_rad);
+  const std::array<Eigen::VectorXd, 2> angles = {rig.frames[0].initial_angles_rad, rig.frames[1].initial_angles_rad};
+  const std::array<Eigen::VectorXd, 2> rates = {Eigen::VectorXd::Zero(16), Eigen::VectorXd::Zero(16)};
+  EXPECT_NEAR(energy(angles, rates, -1e-3) / (0.5 * force * u), 1.0, 1e-12);
+  // the viscoelastic spring's energy joins when the tips overlap
+  EXPECT_NEAR(energy(angles, rates, 1e-6) - energy(angles, rates, -1e-3), 0.5 * 6.99e6 * 1e-12, 1e-15);
+  for (int f = 0; f < 2; ++f) {
+    EXPECT_GT(rig.frames[f].tip_effective_mass_kg, s.frames[f].tip_mass_kg);
+    EXPECT_LT(rig.frames[f].tip_effective_mass_kg, s.frames[f].tip_mass_kg + s.frames[f].beam_mass_kg());
+  }
+}
+
+}  // namespace
+}  // namespace ib
