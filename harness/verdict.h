@@ -1,6 +1,7 @@
 // Every run ends with a verdict a person can check: ok, inaccurate (stable, but a headline metric is
 // beyond its tolerance against the reference), unstable (the trajectory itself shows it: non-finite
-// state, displacement or penetration beyond a bound, energy growing without input), or failed (the
+// state, displacement or penetration beyond a bound, energy growing without input while the tips are
+// apart), or failed (the
 // simulator's own error, a crash, an abort or a time-out). Instability is a finding, never hidden.
 #pragma once
 

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -18,6 +19,9 @@
 #include "scenario_toml.h"
 #include "simulator.h"
 #include "suite.h"
+#if IMPACTBENCH_WITH_MUJOCO
+#include "mujoco_simulator.h"
+#endif
 
 namespace {
 
@@ -216,6 +220,31 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
 }
 
+// The model an engine builds for a run, in the engine's own format, for a person to open in the
+// engine's tools (MuJoCo: MJCF for its viewer).
+int command_export(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
+                   double time_step_s, const std::vector<std::string>& option_pairs) {
+  const ib::Scenario scenario = ib::load_scenario(path);
+  ib::RunSettings settings;
+  settings.law = parse_law(law_name);
+  settings.time_step_s = time_step_s;
+  settings.options = parse_options(option_pairs);
+  std::string text;
+#if IMPACTBENCH_WITH_MUJOCO
+  if (engine == "mujoco") text = ib::mujoco_model_xml(scenario, settings);
+#endif
+  if (text.empty()) throw std::invalid_argument("--engine " + engine + ": no exportable model; allowed: mujoco (when built)");
+  if (out.empty() || out == "-") {
+    std::cout << text;
+  } else {
+    std::ofstream file(out);
+    file << text;
+    if (!file) throw std::runtime_error(out + ": cannot write");
+    std::fprintf(stderr, "model written to %s\n", out.c_str());
+  }
+  return kExitOk;
+}
+
 int command_list(const std::string& folder) {
   std::printf("scenarios in %s:\n", folder.c_str());
   for (const std::string& file : ib::find_scenario_files(folder)) {
@@ -279,6 +308,15 @@ int main(int argc, char** argv) {
   suite->add_option("--option", suite_options.options, "engine.name=value, repeatable (e.g. reference.n=5)");
   suite_measurement.add_to(suite);
 
+  std::string export_engine = "mujoco", export_out;
+  CLI::App* export_model = app.add_subcommand("export", "write the model an engine builds for a scenario (MuJoCo: MJCF for its viewer)");
+  export_model->add_option("scenario", scenario_path, "scenario file (.toml)")->required();
+  export_model->add_option("--engine", export_engine, "engine")->capture_default_str();
+  export_model->add_option("--law", law, "contact law: hertz, viscoelastic or newton")->capture_default_str();
+  export_model->add_option("--dt", time_step_s, "time step [s] (0: the engine's default)");
+  export_model->add_option("--option", options, "engine option name=value, repeatable");
+  export_model->add_option("--out", export_out, "output file; default: standard output");
+
   CLI::App* list = app.add_subcommand("list", "the scenarios, engines, laws and simulator options of this build");
   list->add_option("folder", list_folder, "scenario folder")->capture_default_str();
 
@@ -293,6 +331,7 @@ int main(int argc, char** argv) {
     if (run->parsed())
       return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options, run_measurement);
     if (suite->parsed()) return command_suite(suite_options, suite_measurement);
+    if (export_model->parsed()) return command_export(scenario_path, export_engine, law, export_out, time_step_s, options);
     return command_list(list_folder);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "impactbench: %s\n", error.what());

@@ -1,0 +1,322 @@
+#include "bullet_simulator.h"
+
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "adapter_options.h"
+#include "bullet_chain.h"
+#include "bullet_contact.h"
+#include "injected_contact.h"
+#include "link_chain.h"
+#include "rig.h"
+#include "step_recorder.h"
+
+// Bullet's single-precision build would keep a 40 um indentation at 0.3 m from the origin to a few
+// hundred float ulps; CMake refuses it too (adapters/bullet/CMakeLists.txt).
+static_assert(sizeof(btScalar) == 8, "impactbench needs Bullet's double-precision build (pkg-config bullet-float64)");
+
+namespace ib {
+namespace {
+
+using namespace bullet;  // the adapter's own names: chains and contact mapping
+
+// The largest step at which the explicit hinge springs and dampers stay stable [s]. Stiffness-
+// proportional damping keeps the chain's modes apart, and for one mode symplectic Euler with an
+// explicit damper is stable while (omega h)^2 + 4 zeta omega h < 4, i.e. omega h < 2 (sqrt(1 + zeta^2) - zeta).
+// K = 8: 7.5e-5 s, set by the fastest mode (1966 Hz, zeta 0.85); seen: 7e-5 s stable, 8e-5 s not.
+double hinge_step_limit(const RigSpec& rig) {
+  double limit = std::numeric_limits<double>::infinity();
+  for (const FrameRig& frame : rig.frames) {
+    const ModalBasis modes = chain_modes(frame.chain);
+    for (Eigen::Index n = 0; n < modes.omega_rad_s.size(); ++n) {
+      const double zeta = modes.zeta[n];
+      limit = std::min(limit, 2 * (std::sqrt(1 + zeta * zeta) - zeta) / modes.omega_rad_s[n]);
+    }
+  }
+  return limit;
+}
+
+// The step when a run does not set one: the largest of 5e-5, 2e-5, 1e-5, 5e-6, ... s within 3/4 of
+// the hinge limit: 5e-5 s for the default K = 8 (and fewer links), 2e-6 s for K = 16. Never above
+// 5e-5 s: a sphere contact starts at the first step that begins overlapping, and the overlap gained
+// unresisted in that step adds up to (omega h)^2 of an impact's energy to the spring-dashpot
+// (omega = 5200 rad/s for the rig): 7 % at 5e-5 s, 27 % at 1e-4 s, enough to make energy grow.
+double default_time_step(const RigSpec& rig) {
+  const double allowed = 0.75 * hinge_step_limit(rig);
+  for (double step : {5e-5, 2e-5, 1e-5, 5e-6, 2e-6, 1e-6, 5e-7, 2e-7, 1e-7})
+    if (step <= allowed) return step;
+  return allowed;
+}
+
+const std::vector<std::pair<std::string, std::string>> kOptions = {
+    {"contact",
+     "matched (Bullet's contact set to the law: spring-dashpot through contact stiffness/damping, Newton through "
+     "restitution with the solver settings that make it real; Hertz, which Bullet has no form for, as a force from "
+     "the tip states), injected (the harness's force from the tip states for every law, Bullet's tip contact off) or "
+     "native (Bullet's default contact and solver settings, as a user leaves them; the law's parameters are not "
+     "used) (default matched)"},
+    {"articulation",
+     "multibody (one btMultiBody per frame, hinge springs as joint torques each step; default) or constraints "
+     "(btRigidBody links joined by btGeneric6DofSpring2Constraint springs)"},
+    {"links", "links K per frame, 1..64 (default: the smallest K whose first frequency is within 0.5 % of the beam's)"},
+};
+
+Articulation articulation_option(const OptionReader& options) {
+  return options.choice("articulation", "multibody", {"multibody", "constraints"}) == "multibody" ? Articulation::multibody
+                                                                                                  : Articulation::constraints;
+}
+
+std::string format(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+// The Bullet world of one run: the collision pipeline, the solver and the two chains.
+class BulletRig {
+ public:
+  BulletRig(const RigSpec& rig, Articulation articulation, bool bullet_contact) {
+    // Both worlds are Bullet's own defaults for their kind of articulation.
+    if (articulation == Articulation::multibody) {
+      auto solver = std::make_unique<btMultiBodyConstraintSolver>();
+      auto world = std::make_unique<btMultiBodyDynamicsWorld>(&dispatcher_, &broadphase_, solver.get(), &configuration_);
+      for (int f = 0; f < 2; ++f)
+        chains_[f] = make_multibody_chain(*world, rig.frames[f], rig.sphere_radius_m, bullet_contact);
+      solver_ = std::move(solver);
+      world_ = std::move(world);
+    } else {
+      auto solver = std::make_unique<btSequentialImpulseConstraintSolver>();
+      auto world = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher_, &broadphase_, solver.get(), &configuration_);
+      for (int f = 0; f < 2; ++f)
+        chains_[f] = make_constraint_chain(*world, rig.frames[f], rig.sphere_radius_m, bullet_contact);
+      solver_ = std::move(solver);
+      world_ = std::move(world);
+    }
+    world_->setGravity(btVector3(0, 0, 0));  // rig.md section 1: gravity is left out
+  }
+
+  ~BulletRig() {
+    for (auto& chain : chains_) chain.reset();  // out of the world before it goes
+  }
+
+  btContactSolverInfo& solver_info() { return world_->getSolverInfo(); }
+  BulletChain& chain(int frame) { return *chains_[frame]; }
+  btCollisionObject* tip(int frame) { return chains_[frame]->tip_collider(); }
+
+  // One step of exactly h: maxSubSteps = 0 makes Bullet take the given step as it is (the default
+  // substeps at a fixed 1/60 s and interpolates the state in between).
+  void step(double h) { world_->stepSimulation(h, 0); }
+
+  // The impulse the solver applied between the tips in the last step [N s] and the number of contact
+  // points that carried it: a point counts when its impulse is positive, not when the spheres are
+  // merely within the contact margin.
+  std::pair<double, int> tip_contact_impulse() {
+    double impulse = 0;
+    int points = 0;
+    const btCollisionObject* a = tip(0);
+    const btCollisionObject* b = tip(1);
+    for (int m = 0; m < dispatcher_.getNumManifolds(); ++m) {
+      const btPersistentManifold* manifold = dispatcher_.getManifoldByIndexInternal(m);
+      const bool between_tips = (manifold->getBody0() == a && manifold->getBody1() == b) ||
+                                (manifold->getBody0() == b && manifold->getBody1() == a);
+      if (!between_tips) continue;
+      for (int p = 0; p < manifold->getNumContacts(); ++p) {
+        const double applied = manifold->getContactPoint(p).getAppliedImpulse();
+        if (applied > 0) {
+          impulse += applied;
+          ++points;
+        }
+      }
+    }
+    return {impulse, points};
+  }
+
+ private:
+  // Declared in construction order; destroyed in reverse, the chains first.
+  btDefaultCollisionConfiguration configuration_;
+  btCollisionDispatcher dispatcher_{&configuration_};
+  btDbvtBroadphase broadphase_;
+  std::unique_ptr<btConstraintSolver> solver_;
+  std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  std::array<std::unique_ptr<BulletChain>, 2> chains_;
+};
+
+class BulletSimulator final : public Simulator {
+ public:
+  std::string name() const override { return "bullet"; }
+
+  std::string version() const override {
+    const int v = btGetVersion();
+    return "Bullet " + std::to_string(v / 100) + "." + std::to_string(v % 100) +
+           (btIsDoublePrecision() ? " (double precision)" : " (single precision)");
+  }
+
+  std::vector<std::pair<std::string, std::string>> option_help() const override { return kOptions; }
+
+  std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {
+    const OptionReader options(name(), settings.options, kOptions);
+    return options.integer("links", default_links(scenario), 1, 64);
+  }
+
+  RunResult run(const Scenario& scenario, const RunSettings& settings) override {
+    const OptionReader options(name(), settings.options, kOptions);
+    const ContactPath path = options.contact_path();
+    const Articulation articulation = articulation_option(options);
+    const int links = options.integer("links", default_links(scenario), 1, 64);
+    const RigSpec rig = build_rig(scenario, settings.law, links);
+    const double h = settings.time_step_s > 0 ? settings.time_step_s : default_time_step(rig);
+
+    // Which contact Bullet makes, and which the harness injects.
+    const bool hertz = std::holds_alternative<HertzLaw>(rig.law);
+    const bool injected = path == ContactPath::injected || (path == ContactPath::matched && hertz);
+    BulletRig bullet(rig, articulation, !injected);
+    RunResult result;
+    auto& d = result.diagnostics;
+    d.emplace_back("time_step_s", h);
+    d.emplace_back("hinge_step_limit_s", hinge_step_limit(rig));
+    d.emplace_back("chain_links", links);
+    d.emplace_back("articulation_multibody", articulation == Articulation::multibody ? 1 : 0);
+    d.emplace_back("contact_injected", injected ? 1 : 0);
+    for (int f = 0; f < 2; ++f) {
+      const std::string frame = "frame" + std::to_string(f + 1) + "_";
+      d.emplace_back(frame + "joint_stiffness_n_m_per_rad", rig.frames[f].chain.joint_stiffness_n_m_per_rad);
+      d.emplace_back(frame + "joint_damping_n_m_s_per_rad", rig.frames[f].chain.joint_damping_n_m_s_per_rad);
+      d.emplace_back(frame + "chain_first_frequency_hz", rig.frames[f].chain.first_omega_rad_s / (2 * M_PI));
+    }
+    if (!injected) configure_contact(bullet, rig, path, h, d);
+    btContactSolverInfo& info = bullet.solver_info();
+    d.emplace_back("solver_iterations", info.m_numIterations);
+    d.emplace_back("split_impulse", info.m_splitImpulse ? 1 : 0);
+    d.emplace_back("warm_starting", info.m_solverMode & SOLVER_USE_WARMSTARTING ? 1 : 0);
+    d.emplace_back("restitution_velocity_threshold_m_s", info.m_restitutionVelocityThreshold);
+    d.emplace_back("contact_erp2", info.m_erp2);
+
+    RigEnergy energy(rig);
+    std::optional<InjectedContact> injector;
+    if (injected) injector.emplace(rig);
+    const bool instantaneous = is_instantaneous(rig.law);
+    const double series_start = settings.series_start_s >= 0 ? settings.series_start_s : scenario.scoring_start_s();
+    StepRecorder recorder(series_start, scenario.duration_s, settings.output_rate_hz);
+    std::array<Eigen::VectorXd, 2> angles, rates;
+
+    // The state after a step, as the recorder wants it; false (with the reason) when it is unstable.
+    auto observe = [&](double t, double contact_force, StepState& s) {
+      for (int f = 0; f < 2; ++f) {
+        BulletChain& chain = bullet.chain(f);
+        s.displacement_m[f] = chain.tip_x_m() - rig.frames[f].base_x_m;
+        s.velocity_m_s[f] = chain.tip_velocity_x_m_s();
+        chain.joint_state(angles[f], rates[f]);
+      }
+      s.t = t;
+      s.contact_force_n = contact_force;
+      s.indentation_m = s.displacement_m[0] - s.displacement_m[1] - rig.gap_m;
+      s.energy_j = energy(angles, rates, instantaneous ? 0.0 : s.indentation_m);
+      for (int f = 0; f < 2; ++f) {
+        const std::string frame = "frame " + std::to_string(f + 1);
+        const double limit = 0.1 * rig.frames[f].tip_z_m;
+        if (!std::isfinite(s.displacement_m[f]) || !std::isfinite(s.velocity_m_s[f]) || !angles[f].allFinite() ||
+            !rates[f].allFinite()) {
+          result.reason = "Bullet's state became non-finite (" + frame + " tip) at t = " + format(t) + " s";
+          return false;
+        }
+        if (std::abs(s.displacement_m[f]) > limit) {
+          result.reason = frame + " tip displacement " + format(s.displacement_m[f]) + " m beyond 0.1 L = " +
+                          format(limit) + " m at t = " + format(t) + " s";
+          return false;
+        }
+      }
+      return true;
+    };
+
+    StepState state;
+    observe(0.0, 0.0, state);
+    recorder.record(state);
+    const long long steps = static_cast<long long>(std::ceil(scenario.duration_s / h - 1e-9));
+    long long contact_steps = 0;
+    int max_points = 0;
+    const auto wall_start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
+    for (long long n = 0; n < steps; ++n) {
+      const double t = static_cast<double>(n) * h;
+      for (int f = 0; f < 2; ++f) bullet.chain(f).add_joint_spring_torques();
+      if (rig.motor) bullet.chain(0).add_tip_force_x(rig.motor->at(t));
+      double force = 0;
+      if (injector) {
+        force = injector->force(state.displacement_m[0], state.velocity_m_s[0], state.displacement_m[1],
+                                state.velocity_m_s[1], h);
+        bullet.chain(0).add_tip_force_x(-force);
+        bullet.chain(1).add_tip_force_x(force);
+      }
+      bullet.step(h);
+      if (!injector) {
+        const auto [impulse, points] = bullet.tip_contact_impulse();
+        force = impulse / h;
+        max_points = std::max(max_points, points);
+      }
+      // The published spring-dashpot may pull (injected: applied as computed); the recorder takes the
+      // compressive force, so an episode ends where the force turns tensile, as Bullet's own contact does.
+      force = std::max(0.0, force);
+      contact_steps += force > 0;
+      const bool stable = observe(static_cast<double>(n + 1) * h, force, state);
+      recorder.record(state);
+      if (!stable) {
+        result.status = RunStatus::unstable;
+        break;
+      }
+    }
+    result.cost.cpu_time_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    result.cost.steps = recorder.steps();
+    d.emplace_back("contact_steps", static_cast<double>(contact_steps));
+    d.emplace_back("max_contact_points", max_points);
+    result.trajectory = recorder.finish();
+    return result;
+  }
+
+ private:
+  // Sets Bullet's tip contact for the path and law, and names what was set in the diagnostics.
+  static void configure_contact(BulletRig& bullet, const RigSpec& rig, ContactPath path, double h,
+                                std::vector<std::pair<std::string, double>>& d) {
+    btCollisionObject& tip1 = *bullet.tip(0);
+    btCollisionObject& tip2 = *bullet.tip(1);
+    btContactSolverInfo& info = bullet.solver_info();
+    if (path == ContactPath::matched) {
+      if (const auto* law = std::get_if<ViscoelasticLaw>(&rig.law)) {
+        set_spring_dashpot(tip1, tip2, law->stiffness_n_per_m, law->damping_n_s_per_m);
+        configure_spring_dashpot_solver(info);
+        const double k = combined_contact_stiffness(tip1, tip2), c = combined_contact_damping(tip1, tip2);
+        d.emplace_back("contact_stiffness_n_per_m", k);
+        d.emplace_back("contact_damping_n_s_per_m", c);
+        d.emplace_back("contact_erp", h * k / (h * k + c));
+        d.emplace_back("contact_cfm_m_per_n_s", 1 / (h * k + c));
+        // Bullet's impulse is never tensile: the published, unclipped law is realised clipped.
+        d.emplace_back("contact_tension_clipped", 1);
+      } else if (const auto* law = std::get_if<NewtonLaw>(&rig.law)) {
+        set_restitution(tip1, tip2, law->restitution);
+        set_restitution_processing_threshold(tip1, tip2);
+        configure_restitution_solver(info);
+      }
+    }
+    d.emplace_back("contact_restitution", combined_restitution(tip1, tip2));
+    d.emplace_back("contact_friction", tip1.getFriction() * tip2.getFriction());
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Simulator> make_bullet_simulator() { return std::make_unique<BulletSimulator>(); }
+
+}  // namespace ib

@@ -1,0 +1,299 @@
+#include "mujoco_simulator.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "injected_contact.h"
+#include "link_chain.h"
+#include "mujoco_engine.h"
+#include "mujoco_model.h"
+#include "step_recorder.h"
+
+namespace ib {
+namespace {
+
+std::string at_time(double t) {
+  std::ostringstream out;
+  out.precision(9);
+  out << "t = " << t << " s";
+  return out.str();
+}
+
+// The compiled rig and its state, with the handles the stepping loop needs.
+class MujocoRig {
+ public:
+  explicit MujocoRig(const MujocoRunPlan& plan)
+      : plan_(plan), model_(compile_mjcf(write_mjcf(plan))), data_(make_data(model_.get())) {
+    const mjModel* m = model_.get();
+    for (int f = 0; f < 2; ++f) {
+      tip_site_[f] = lookup(mjOBJ_SITE, mujoco_tip_site_name(f));
+      tip_body_[f] = lookup(mjOBJ_BODY, mujoco_body_name(f, plan.links - 1));
+      angles_[f].resize(plan.links);
+      rates_[f].resize(plan.links);
+      for (int j = 0; j < plan.links; ++j) {
+        const int joint = lookup(mjOBJ_JOINT, mujoco_joint_name(f, j));
+        qpos_address_[f].push_back(m->jnt_qposadr[joint]);
+        dof_address_[f].push_back(m->jnt_dofadr[joint]);
+      }
+    }
+    // the keyframe holds the initial hinge angles when they are not all zero
+    if (m->nkey > 0) mj_resetDataKeyframe(m, data_.get(), 0);
+  }
+
+  const mjModel* model() const { return model_.get(); }
+  mjData* data() { return data_.get(); }
+
+  // Position and velocity stages for the current state (kinematics, collisions, constraint rows).
+  void compute_state() {
+    mj_fwdPosition(model_.get(), data_.get());
+    mj_fwdVelocity(model_.get(), data_.get());
+  }
+
+  // Tip displacement along x from rest [m] and tip velocity along x [m/s] (after compute_state()).
+  double tip_displacement(int f) const { return data_->site_xpos[3 * tip_site_[f]] - plan_.rig.frames[f].base_x_m; }
+  double tip_velocity(int f) const {
+    mjtNum velocity[6];  // rotation, then translation, in world axes at the site
+    mj_objectVelocity(model_.get(), data_.get(), mjOBJ_SITE, tip_site_[f], velocity, 0);
+    return velocity[3];
+  }
+
+  // Hinge angles and rates of both chains, for RigEnergy.
+  const std::array<Eigen::VectorXd, 2>& angles() {
+    for (int f = 0; f < 2; ++f)
+      for (int j = 0; j < plan_.links; ++j) angles_[f][j] = data_->qpos[qpos_address_[f][j]];
+    return angles_;
+  }
+  const std::array<Eigen::VectorXd, 2>& rates() {
+    for (int f = 0; f < 2; ++f)
+      for (int j = 0; j < plan_.links; ++j) rates_[f][j] = data_->qvel[dof_address_[f][j]];
+    return rates_;
+  }
+
+  // A force along +x [N] at a tip point, added to qfrc_applied (uses the current kinematics).
+  void apply_tip_force(int f, double force_x) {
+    const mjtNum force[3] = {force_x, 0, 0}, torque[3] = {0, 0, 0};
+    mj_applyFT(model_.get(), data_.get(), force, torque, data_->site_xpos + 3 * tip_site_[f], tip_body_[f],
+               data_->qfrc_applied);
+  }
+  void clear_applied_forces() { mju_zero(data_->qfrc_applied, model_->nv); }
+
+  // The normal force [N] of MuJoCo's active contacts (>= 0; only the tip spheres can collide).
+  double contact_normal_force() const {
+    double force = 0;
+    for (int i = 0; i < data_->ncon; ++i) {
+      if (data_->contact[i].efc_address < 0) continue;  // detected within a margin, not in the solver
+      mjtNum wrench[6];                                 // in the contact frame: normal first
+      mj_contactForce(model_.get(), data_.get(), i, wrench);
+      force += std::max(0.0, static_cast<double>(wrench[0]));
+    }
+    return force;
+  }
+
+  // The first warning MuJoCo raised since the last call ("" when none).
+  std::string new_warning(double t) { return warnings_.new_warning(t); }
+
+ private:
+  int lookup(mjtObj type, const std::string& name) const {
+    const int id = mj_name2id(model_.get(), type, name.c_str());
+    if (id < 0) throw std::logic_error("MuJoCo model has no " + name);
+    return id;
+  }
+
+  const MujocoRunPlan& plan_;
+  MujocoModelPtr model_;
+  MujocoDataPtr data_;
+  std::array<int, 2> tip_site_{}, tip_body_{};
+  std::array<std::vector<int>, 2> qpos_address_, dof_address_;
+  std::array<Eigen::VectorXd, 2> angles_, rates_;
+  MujocoWarningWatch warnings_{data_.get()};
+};
+
+std::vector<std::pair<std::string, double>> plan_diagnostics(const MujocoRunPlan& plan, const mjModel* m) {
+  std::vector<std::pair<std::string, double>> out = {
+      {"time_step_s", plan.time_step_s},
+      {"chain_links", plan.links},
+      {"integrator_rk4", plan.integrator == MujocoIntegrator::rk4 ? 1.0 : 0.0},
+  };
+  double omega_max = 0;
+  for (int f = 0; f < 2; ++f) {
+    const LinkChain& chain = plan.rig.frames[f].chain;
+    const std::string frame = "frame" + std::to_string(f + 1);
+    out.push_back({frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad});
+    out.push_back({frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad});
+    out.push_back({frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI)});
+    omega_max = std::max(omega_max, chain_modes(chain).omega_rad_s.maxCoeff());
+  }
+  // explicit hinge springs: the semi-implicit Euler step is stable below about 2 / omega_max
+  out.push_back({"chain_fastest_mode_rad_s", omega_max});
+  if (plan.tip_pair) {
+    const TipPairContact& pair = *plan.tip_pair;
+    out.push_back({"contact_stiffness_n_per_m", pair.spring_dashpot.stiffness_n_per_m});
+    out.push_back({"contact_damping_n_s_per_m", pair.spring_dashpot.damping_n_s_per_m});
+    out.push_back({"contact_invweight_sum_per_kg", pair.invweight_sum_per_kg});
+    out.push_back({"solref_stiffness_per_s2", pair.parameters.solref[0]});
+    out.push_back({"solref_damping_per_s", pair.parameters.solref[1]});
+    out.push_back({"solimp_impedance", pair.parameters.solimp[0]});
+    if (plan.law == ContactLaw::newton) {
+      out.push_back({"newton_contact_duration_s", pair.newton_duration_s});
+      out.push_back({"newton_contact_damping_ratio", pair.newton_damping_ratio});
+    }
+  }
+  if (plan.native_contact && m) {
+    // what a user's default MuJoCo contact is: solref (timeconst, dampratio) and solimp of the tip spheres
+    const int geom = mj_name2id(m, mjOBJ_GEOM, mujoco_tip_geom_name(0).c_str());
+    out.push_back({"native_solref_timeconst_s", m->geom_solref[mjNREF * geom]});
+    out.push_back({"native_solref_dampratio", m->geom_solref[mjNREF * geom + 1]});
+    out.push_back({"native_solimp_dmin", m->geom_solimp[mjNIMP * geom]});
+    out.push_back({"native_solimp_dmax", m->geom_solimp[mjNIMP * geom + 1]});
+    out.push_back({"native_condim", m->geom_condim[geom]});
+  }
+  return out;
+}
+
+class MujocoSimulator final : public Simulator {
+ public:
+  MujocoSimulator() { install_mujoco_handlers(); }
+  std::string name() const override { return "mujoco"; }
+  std::string version() const override { return mujoco_version(); }
+  std::vector<std::pair<std::string, std::string>> option_help() const override { return mujoco_options(); }
+  std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {
+    return mujoco_chain_links(scenario, settings);
+  }
+
+  // A bad option or law propagates as std::invalid_argument (nothing was run); a model MuJoCo cannot
+  // compile is a failed run with MuJoCo's message.
+  RunResult run(const Scenario& scenario, const RunSettings& settings) override {
+    RunResult result;
+    std::optional<MujocoRunPlan> plan;
+    std::unique_ptr<MujocoRig> rig;
+    try {
+      plan = plan_mujoco_run(scenario, settings);
+      rig = std::make_unique<MujocoRig>(*plan);
+    } catch (const std::runtime_error& error) {
+      result.status = RunStatus::failed;
+      result.reason = error.what();
+      return result;
+    }
+    result.diagnostics = plan_diagnostics(*plan, rig->model());
+    step(*plan, scenario, settings, *rig, result);
+    return result;
+  }
+
+ private:
+  // The stepping loop: fixed step h, one record per step; stops on the first sign of instability.
+  static void step(const MujocoRunPlan& plan, const Scenario& scenario, const RunSettings& settings, MujocoRig& rig,
+                   RunResult& result) {
+    const mjModel* m = rig.model();
+    mjData* d = rig.data();
+    const double h = plan.time_step_s;
+    const long long steps = static_cast<long long>(std::ceil(scenario.duration_s / h - 1e-9));
+    const double series_start = settings.series_start_s >= 0 ? settings.series_start_s : scenario.scoring_start_s();
+    StepRecorder recorder(series_start, scenario.duration_s, settings.output_rate_hz);
+    const RigEnergy energy(plan.rig);
+    InjectedContact injected(plan.rig);
+    const bool newton = plan.law == ContactLaw::newton;
+    // a contact law's elastic energy belongs in the balance only where MuJoCo applies that law
+    const bool law_energy = !newton && !plan.native_contact;
+    double step_contact_force = 0;  // the force between the tips during the step that ends at the state recorded
+
+    auto stop = [&](const std::string& reason) {
+      result.status = RunStatus::unstable;
+      result.reason = reason;
+    };
+    const auto wall_start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
+    double t = 0;
+    try {
+      for (long long n = 0;; ++n) {
+        t = static_cast<double>(n) * h;
+        // MuJoCo's own checks (mj_step runs them too): a bad qpos/qvel resets the data and warns
+        mj_checkPos(m, d);
+        mj_checkVel(m, d);
+        if (const std::string warning = rig.new_warning(t); !warning.empty()) {
+          stop(warning);
+          break;
+        }
+        rig.compute_state();
+        const std::array<double, 2> u = {rig.tip_displacement(0), rig.tip_displacement(1)};
+        const std::array<double, 2> v = {rig.tip_velocity(0), rig.tip_velocity(1)};
+        if (!std::isfinite(u[0] + u[1] + v[0] + v[1])) {
+          stop("non-finite tip state at " + at_time(t));
+          break;
+        }
+        const double indentation = u[0] - u[1] - plan.rig.gap_m;
+        StepState state;
+        state.t = t;
+        state.displacement_m = u;
+        state.velocity_m_s = v;
+        state.contact_force_n = step_contact_force;
+        state.indentation_m = indentation;
+        state.energy_j = energy(rig.angles(), rig.rates(), law_energy ? indentation : 0.0);
+        recorder.record(state);
+        if (const std::string why = beyond_bound(plan, u, t); !why.empty()) {
+          stop(why);
+          break;
+        }
+        if (n == steps) break;
+
+        // forces held over the step, from the state at its start
+        rig.clear_applied_forces();
+        if (plan.rig.motor) rig.apply_tip_force(0, plan.rig.motor->at(t));
+        if (plan.harness_contact_force) {
+          step_contact_force = injected.force(u[0], v[0], u[1], v[1], h);
+          rig.apply_tip_force(0, -step_contact_force);
+          rig.apply_tip_force(1, step_contact_force);
+        }
+        mj_forwardSkip(m, d, mjSTAGE_VEL, 1);  // actuation, acceleration, constraint solve
+        mj_checkAcc(m, d);
+        if (const std::string warning = rig.new_warning(t); !warning.empty()) {
+          stop(warning);
+          break;
+        }
+        if (!plan.harness_contact_force) step_contact_force = rig.contact_normal_force();
+        if (plan.integrator == MujocoIntegrator::rk4)
+          mj_RungeKutta(m, d, 4);
+        else
+          mj_Euler(m, d);
+      }
+    } catch (const MujocoError& error) {
+      stop(std::string(error.what()) + " (at " + at_time(t) + ")");
+    }
+    result.cost.cpu_time_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    result.cost.steps = recorder.steps();
+    result.trajectory = recorder.finish();
+  }
+
+  // The harness's bound on a tip's displacement: beyond 0.1 L the run has left the physics.
+  static std::string beyond_bound(const MujocoRunPlan& plan, const std::array<double, 2>& u, double t) {
+    for (int f = 0; f < 2; ++f) {
+      const double bound = 0.1 * plan.rig.frames[f].tip_z_m;
+      if (std::abs(u[f]) > bound) {
+        std::ostringstream out;
+        out << "frame " << f + 1 << " tip displacement |u| = " << std::abs(u[f]) << " m beyond 0.1 L = " << bound
+            << " m at " << at_time(t);
+        return out.str();
+      }
+    }
+    return {};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Simulator> make_mujoco_simulator() { return std::make_unique<MujocoSimulator>(); }
+
+std::string mujoco_model_xml(const Scenario& scenario, const RunSettings& settings) {
+  return write_mjcf(plan_mujoco_run(scenario, settings));
+}
+
+}  // namespace ib

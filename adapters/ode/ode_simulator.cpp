@@ -1,0 +1,291 @@
+#include "ode_simulator.h"
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "adapter_options.h"
+#include "injected_contact.h"
+#include "ode_contact.h"
+#include "ode_library.h"
+#include "ode_rig.h"
+#include "rig.h"
+#include "step_recorder.h"
+
+namespace ib {
+namespace {
+
+using ode::ContactSetup;
+using ode::OdeModelSettings;
+using ode::OdeRig;
+using ode::SpringPath;
+using ode::Stepper;
+
+// The step when a run's settings give none (the benchmark's default for fixed-step engines). It resolves
+// the structure, but it is not ODE's accurate step for this rig: the implicit hinge springs add
+// omega_1 h / 2 = 0.0022 to zeta = 0.003 and the soft contact keeps about half its restitution
+// (README.md, "What a user should know").
+constexpr double kDefaultTimeStep_s = 1e-4;
+constexpr int kOdeDefaultQuickStepIterations = 20;  // dWorldGetQuickStepNumIterations of a new world
+
+const std::vector<std::pair<std::string, std::string>> kOptions = {
+    {"contact", "matched (the law in ODE's own terms where it has one, default), injected (the law's force from the tip states, ODE's collision off), native (ODE's default hard contact)"},
+    {"springs", "hinge springs: implicit (both hinge stops at the rest angle with StopERP/StopCFM from k, c and the step; default) or explicit (dJointAddHingeTorque each step; stable only below the step in the diagnostic explicit_spring_step_limit_s, about 7.5e-5 s for K = 8)"},
+    {"stepper", "world (dWorldStep, direct LCP solver; default) or quick (dWorldQuickStep, iterative)"},
+    {"iterations", "dWorldQuickStep iterations, 1..100000 (default 20, ODE's own default); only with stepper=quick"},
+    {"links", "links K per frame, 1..64 (default: the smallest K whose first frequency is within 0.5 % of the beam's)"},
+};
+
+struct RunPlan {
+  ContactPath contact = ContactPath::matched;
+  OdeModelSettings model;
+  int links = 0;
+};
+
+RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
+  const OptionReader options("ode", settings.options, kOptions);
+  RunPlan plan;
+  plan.contact = options.contact_path();
+  plan.model.springs = options.choice("springs", "implicit", {"implicit", "explicit"}) == "explicit"
+                           ? SpringPath::explicit_torques
+                           : SpringPath::implicit_stops;
+  plan.model.stepper = options.choice("stepper", "world", {"world", "quick"}) == "quick" ? Stepper::quick : Stepper::world;
+  plan.model.quick_step_iterations = options.integer("iterations", kOdeDefaultQuickStepIterations, 1, 100000);
+  if (settings.options.count("iterations") && plan.model.stepper != Stepper::quick)
+    throw std::invalid_argument("ode option iterations: only with stepper=quick");
+  plan.links = settings.options.count("links") ? options.integer("links", 0, 1, 64) : default_links(scenario);
+  if (!(settings.time_step_s >= 0) || !std::isfinite(settings.time_step_s))
+    throw std::invalid_argument("ode: the time step must be > 0 (or 0 for the default " +
+                                std::to_string(kDefaultTimeStep_s) + " s), got " + std::to_string(settings.time_step_s));
+  plan.model.time_step_s = settings.time_step_s > 0 ? settings.time_step_s : kDefaultTimeStep_s;
+  return plan;
+}
+
+// The longest step at which explicit hinge springs stay stable [s]. ODE integrates an explicit force
+// with semi-implicit Euler; a chain mode n (omega_n, zeta_n; the damping is stiffness-proportional, so
+// the modes stay uncoupled) is then stable for omega_n h < 2 (sqrt(1 + zeta_n^2) - zeta_n), which is
+// 2 / omega_n without damping. The fastest chain modes are heavily damped, so the limit is below 2 / omega_max.
+double explicit_spring_step_limit(const RigSpec& rig) {
+  double limit = std::numeric_limits<double>::infinity();
+  for (const FrameRig& frame : rig.frames) {
+    const ModalBasis modes = chain_modes(frame.chain);
+    for (Eigen::Index n = 0; n < modes.omega_rad_s.size(); ++n) {
+      const double omega = modes.omega_rad_s[n], zeta = modes.zeta[n];
+      limit = std::min(limit, 2 * (std::sqrt(1 + zeta * zeta) - zeta) / omega);
+    }
+  }
+  return limit;
+}
+
+// Reads the state of the ODE rig into the harness's terms after a step.
+class Observer {
+ public:
+  explicit Observer(const RigSpec& rig) : energy_(rig), newton_(is_instantaneous(rig.law)), gap_m_(rig.gap_m) {
+    for (int f = 0; f < 2; ++f) {
+      angles_[f] = Eigen::VectorXd::Zero(rig.frames[f].chain.links);
+      rates_[f] = Eigen::VectorXd::Zero(rig.frames[f].chain.links);
+    }
+  }
+
+  StepState observe(const OdeRig& ode_rig, double t, double contact_force_n) {
+    StepState s;
+    s.t = t;
+    for (int f = 0; f < 2; ++f) {
+      const ode::TipState tip = ode_rig.tip(f);
+      s.displacement_m[f] = tip.displacement_m;
+      s.velocity_m_s[f] = tip.velocity_m_s;
+      ode_rig.hinge_state(f, angles_[f], rates_[f]);
+    }
+    s.contact_force_n = contact_force_n;
+    s.indentation_m = s.displacement_m[0] - s.displacement_m[1] - gap_m_;
+    // Newton's contact stores no energy (RigEnergy takes 0 indentation for it)
+    s.energy_j = energy_(angles_, rates_, newton_ ? 0.0 : s.indentation_m);
+    return s;
+  }
+
+  bool hinges_finite() const { return angles_[0].allFinite() && angles_[1].allFinite() && rates_[0].allFinite() && rates_[1].allFinite(); }
+
+ private:
+  RigEnergy energy_;
+  bool newton_;
+  double gap_m_;
+  std::array<Eigen::VectorXd, 2> angles_, rates_;
+};
+
+// Why the state after a step ends the run (before ODE would be handed a state it aborts on), or nothing.
+std::optional<std::string> divergence(const StepState& s, const Observer& observer, const RigSpec& rig) {
+  std::ostringstream why;
+  why.precision(6);
+  for (int f = 0; f < 2; ++f) {
+    if (!std::isfinite(s.displacement_m[f]) || !std::isfinite(s.velocity_m_s[f])) {
+      why << "non-finite state of frame " << f + 1 << " at t = " << s.t << " s (tip u = " << s.displacement_m[f]
+          << " m, v = " << s.velocity_m_s[f] << " m/s)";
+      return why.str();
+    }
+    const double bound = 0.1 * rig.frames[f].tip_z_m;
+    if (std::abs(s.displacement_m[f]) > bound) {
+      why << "frame " << f + 1 << " tip displacement |u| = " << std::abs(s.displacement_m[f]) << " m at t = " << s.t
+          << " s, beyond 0.1 L = " << bound << " m";
+      return why.str();
+    }
+  }
+  if (!observer.hinges_finite()) {
+    why << "non-finite hinge angle or rate at t = " << s.t << " s";
+    return why.str();
+  }
+  return std::nullopt;
+}
+
+// One run: the ODE rig, how its tips touch, and the recorder, stepped with a fixed step to the end of
+// the scenario or to the step after which the state diverged.
+class RigRun {
+ public:
+  RigRun(const Scenario& scenario, const RunSettings& settings, const RunPlan& plan)
+      : rig_(build_rig(scenario, settings.law, plan.links)),
+        contact_(ode::contact_setup(plan.contact, rig_.law, plan.model.time_step_s)),
+        model_(with_spheres(plan.model, contact_.ode_collision)),
+        ode_rig_(rig_, model_),
+        law_force_(rig_),
+        observer_(rig_),
+        recorder_(settings.series_start_s >= 0 ? settings.series_start_s : scenario.scoring_start_s(), scenario.duration_s,
+                  settings.output_rate_hz),
+        steps_(static_cast<long long>(std::ceil(scenario.duration_s / plan.model.time_step_s - 1e-9))),
+        step_limit_s_(explicit_spring_step_limit(rig_)) {}
+
+  RunResult run(const ode::MessageLog& messages) {
+    RunResult result;
+    const auto wall_start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
+    StepState state = observer_.observe(ode_rig_, 0, 0);
+    recorder_.record(state);
+    for (long long n = 0; n < steps_; ++n) {
+      const double h = model_.time_step_s;
+      const double law_force = apply_loads(static_cast<double>(n) * h, state);
+      ode_rig_.step();
+      // a tensile law force (the unclipped spring-dashpot near separation) is applied, recorded as no compression
+      const double contact_force = contact_.ode_collision ? ode_rig_.tip_contact_force() : law_force;
+      state = observer_.observe(ode_rig_, static_cast<double>(n + 1) * h, std::max(0.0, contact_force));
+      if (const auto why = divergence(state, observer_, rig_)) {
+        result.status = RunStatus::unstable;
+        result.reason = *why + explain(messages);
+        if (std::isfinite(state.displacement_m[0]) && std::isfinite(state.displacement_m[1])) recorder_.record(state);
+        break;
+      }
+      recorder_.record(state);
+    }
+    result.cost.cpu_time_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    result.cost.steps = recorder_.steps();
+    result.trajectory = recorder_.finish();
+    result.diagnostics = diagnostics(messages);
+    return result;
+  }
+
+ private:
+  static OdeModelSettings with_spheres(OdeModelSettings model, bool spheres) {
+    model.tip_spheres = spheres;  // only what the run needs
+    return model;
+  }
+
+  // The loads of the coming step, from the state at its start; returns the law's force when the
+  // adapter applies it (-F on frame 1's tip, +F on frame 2's, along x), else 0.
+  double apply_loads(double t, const StepState& state) {
+    double law_force = 0;
+    if (contact_.force_from_tip_states) {
+      law_force = law_force_.force(state.displacement_m[0], state.velocity_m_s[0], state.displacement_m[1],
+                                   state.velocity_m_s[1], model_.time_step_s);
+      ode_rig_.add_tip_force(0, -law_force);
+      ode_rig_.add_tip_force(1, law_force);
+    }
+    if (contact_.ode_collision && ode_rig_.make_tip_contact(contact_.surface)) ++contact_joint_steps_;
+    if (rig_.motor) ode_rig_.add_tip_force(0, rig_.motor->at(t));
+    if (model_.springs == SpringPath::explicit_torques) ode_rig_.add_explicit_spring_torques();
+    return law_force;
+  }
+
+  // What a person needs to see why a run diverged: the explicit springs' step limit, ODE's own words.
+  std::string explain(const ode::MessageLog& messages) const {
+    std::ostringstream why;
+    why.precision(3);
+    if (model_.springs == SpringPath::explicit_torques && model_.time_step_s > step_limit_s_)
+      why << "; explicit hinge springs are stable only below a step of " << step_limit_s_
+          << " s (the chain's fastest modes), the step is " << model_.time_step_s << " s";
+    if (!messages.messages().empty())
+      why << "; ODE said (" << messages.count() << " messages): " << messages.messages().front();
+    return why.str();
+  }
+
+  // The mapping's figures, named with units.
+  std::vector<std::pair<std::string, double>> diagnostics(const ode::MessageLog& messages) const {
+    std::vector<std::pair<std::string, double>> d;
+    d.emplace_back("time_step_s", model_.time_step_s);
+    d.emplace_back("chain_links", rig_.frames[0].chain.links);
+    d.emplace_back("explicit_spring_step_limit_s", step_limit_s_);
+    for (int f = 0; f < 2; ++f) {
+      const std::string frame = "frame" + std::to_string(f + 1);
+      const LinkChain& chain = rig_.frames[f].chain;
+      d.emplace_back(frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI));
+      d.emplace_back(frame + "_hinge_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
+      d.emplace_back(frame + "_hinge_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
+      if (model_.springs == SpringPath::implicit_stops) {
+        d.emplace_back(frame + "_hinge_stop_erp", ode_rig_.hinge_stop_erp(f));
+        d.emplace_back(frame + "_hinge_stop_cfm_rad_per_n_m_s", ode_rig_.hinge_stop_cfm(f));
+      }
+    }
+    if (contact_.ode_collision) {
+      const dSurfaceParameters& s = contact_.surface;
+      if (s.mode & dContactSoftERP) d.emplace_back("contact_soft_erp", s.soft_erp);
+      if (s.mode & dContactSoftCFM) d.emplace_back("contact_soft_cfm_m_per_n_s", s.soft_cfm);
+      if (s.mode & dContactBounce) {
+        d.emplace_back("contact_bounce", s.bounce);
+        d.emplace_back("contact_bounce_threshold_m_s", s.bounce_vel);
+      }
+      d.emplace_back("contact_joint_steps", static_cast<double>(contact_joint_steps_));
+    }
+    d.emplace_back("world_erp", ode_rig_.world_erp());
+    d.emplace_back("world_cfm", ode_rig_.world_cfm());
+    if (model_.stepper == Stepper::quick) d.emplace_back("quick_step_iterations", model_.quick_step_iterations);
+    d.emplace_back("ode_messages", static_cast<double>(messages.count()));
+    return d;
+  }
+
+  const RigSpec rig_;
+  const ContactSetup contact_;
+  const OdeModelSettings model_;
+  OdeRig ode_rig_;
+  InjectedContact law_force_;
+  Observer observer_;
+  StepRecorder recorder_;
+  const long long steps_;
+  const double step_limit_s_;
+  long long contact_joint_steps_ = 0;
+};
+
+class OdeSimulator final : public Simulator {
+ public:
+  std::string name() const override { return "ode"; }
+  std::string version() const override { return ode::version_text(); }
+  std::vector<std::pair<std::string, std::string>> option_help() const override { return kOptions; }
+  std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {
+    return plan_run(scenario, settings).links;
+  }
+
+  RunResult run(const Scenario& scenario, const RunSettings& settings) override {
+    const RunPlan plan = plan_run(scenario, settings);
+    ode::ensure_initialised();
+    ode::MessageLog messages;  // what ODE warns about during this run (filled by its message handler)
+    RigRun run(scenario, settings, plan);
+    return run.run(messages);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Simulator> make_ode_simulator() { return std::make_unique<OdeSimulator>(); }
+
+}  // namespace ib

@@ -1,0 +1,1 @@
+"""impactbench's report: figures and tables from a suite's saved results (runs.csv and the run folders)."""

@@ -1,0 +1,134 @@
+"""Reading a suite's results: runs.csv rows as plain records, the series of a run, the experiment."""
+
+import csv
+import math
+import os
+import tomllib
+from dataclasses import dataclass, field
+
+G = 9.80665  # standard gravity [m/s^2]
+
+# runs.csv columns that are text; every other column is a number (empty: not applicable).
+TEXT_COLUMNS = {"job_id", "scenario", "law", "engine", "options", "verdict", "reason", "scenario_file", "engine_version"}
+
+
+@dataclass
+class Run:
+    """One row of runs.csv with numbers as floats (NaN where empty)."""
+    values: dict
+
+    def __getitem__(self, name):
+        return self.values[name]
+
+    def number(self, name):
+        value = self.values.get(name, math.nan)
+        return value if isinstance(value, float) else math.nan
+
+    @property
+    def config(self):
+        """The engine and its options: one curve of the error-against-cost plots."""
+        options = self.values["options"]
+        return self.values["engine"] + (f" [{options}]" if options else "")
+
+    @property
+    def is_beam_reference(self):
+        return self.values["engine"] == "reference" and self.values["options"] == ""
+
+    @property
+    def stable(self):
+        return self.values["verdict"] in ("ok", "inaccurate")
+
+
+@dataclass
+class Suite:
+    folder: str
+    runs: list = field(default_factory=list)
+
+    def cases(self):
+        """(scenario, law) pairs in a stable order: published cases first."""
+        order = ["resonance", "post_resonance", "pre_resonance", "free_vibration"]
+        pairs = sorted({(r["scenario"], r["law"]) for r in self.runs if r["scenario"] and r["law"]},
+                       key=lambda p: (order.index(p[0]) if p[0] in order else len(order), p[0], p[1]))
+        return pairs
+
+    def runs_of(self, scenario, law):
+        return [r for r in self.runs if r["scenario"] == scenario and r["law"] == law]
+
+    def beam_reference(self, scenario, law):
+        for r in self.runs_of(scenario, law):
+            if r.is_beam_reference:
+                return r
+        return None
+
+    def series(self, run):
+        path = os.path.join(self.folder, "runs", run["job_id"], "series.csv")
+        return read_series(path) if os.path.exists(path) else None
+
+
+def read_runs(folder):
+    path = os.path.join(folder, "runs.csv")
+    suite = Suite(folder)
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            values = {}
+            for name, text in row.items():
+                if name in TEXT_COLUMNS:
+                    values[name] = text
+                else:
+                    values[name] = float(text) if text != "" else math.nan
+            suite.runs.append(Run(values))
+    return suite
+
+
+def read_series(path):
+    """series.csv as a dict of column name -> list of floats."""
+    with open(path, newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        columns = {name: [] for name in header}
+        for row in reader:
+            for name, text in zip(header, row):
+                columns[name].append(float(text) if text != "" else math.nan)
+    return columns
+
+
+def sensor_acceleration(series, frame, sensor_rate_hz=2048.0):
+    """The accelerometer's reading (rig.md section 5) from the sampled tip velocity: the velocity change
+    over each sensor window of 1/f_s divided by 1/f_s, at the window centres. The series is sampled at
+    a multiple of 2 f_s in the suite's default settings, so no interpolation is needed."""
+    time = series["time_s"]
+    velocity = series[f"frame{frame}_velocity_m_s"]
+    if len(time) < 2:
+        return [], []
+    rate = (len(time) - 1) / (time[-1] - time[0])
+    stride = max(1, round(rate / sensor_rate_hz))
+    window = stride / rate
+    t_out, a_out = [], []
+    for k in range(0, len(time) - stride, stride):
+        t_out.append(time[k] + window / 2)
+        a_out.append((velocity[k + stride] - velocity[k]) / window / G)
+    return t_out, a_out
+
+
+def read_experiment(path):
+    with open(path, "rb") as f:
+        return tomllib.load(f)
+
+
+def read_scenario(path):
+    """The scenario file a run names, or {} when it cannot be read (moved since)."""
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError):
+        return {}
+
+
+def contact_stiffness(scenario, law):
+    """The contact law's stiffness from a scenario file [N/m or N/m^n]; NaN for the Newton law."""
+    contact = scenario.get("contact", {})
+    if law == "hertz":
+        return float(contact.get("hertz", {}).get("stiffness", math.nan))
+    if law == "viscoelastic":
+        return float(contact.get("viscoelastic", {}).get("stiffness_n_per_m", math.nan))
+    return math.nan

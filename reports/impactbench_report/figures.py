@@ -1,0 +1,202 @@
+"""The report's figures, drawn with matplotlib and saved as SVG."""
+
+import math
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display
+import matplotlib.pyplot as plt  # noqa: E402
+
+from . import analysis, data  # noqa: E402
+
+VERDICT_COLOURS = {"ok": "#2ca02c", "inaccurate": "#ff7f0e", "unstable": "#d62728", "failed": "#7f7f7f"}
+FLOOR = 1e-7  # errors of exactly zero are drawn here on the logarithmic axes
+
+
+def colour_of(config, configs):
+    palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    return palette[configs.index(config) % len(palette)] if config in configs else "black"
+
+
+def save(figure, folder, name, caption):
+    """Saves a figure as SVG, with its caption (what produced it) as the SVG's title; returns the path."""
+    figure.suptitle(caption, fontsize=8, y=0.995, ha="center")
+    path = os.path.join(folder, name + ".svg")
+    figure.savefig(path, format="svg", metadata={"Title": caption})
+    plt.close(figure)
+    return path
+
+
+def error_against_cost(suite, scenario, law, folder, provenance):
+    """One panel per headline metric: |error| against wall time, log-log, one curve per engine and
+    configuration (one point per time step; filled: against the beam reference, hollow: against the
+    reference on the engine's own chain), the reference's own cost as a vertical line."""
+    runs = suite.runs_of(scenario, law)
+    configs = analysis.configurations(runs)
+    reference = suite.beam_reference(scenario, law)
+    figure, axes = plt.subplots(1, len(analysis.HEADLINE), figsize=(12, 3.8), constrained_layout=True)
+    for ax, (title, column, kind) in zip(axes, analysis.HEADLINE):
+        for config in configs:
+            steps = [r for r in analysis.runs_of_config(runs, config) if r.stable]
+            if not steps:
+                continue
+            cost = [r.number("wall_time_s") for r in steps]
+            for against, filled in (("vs_reference_", True), ("vs_chain_reference_", False)):
+                errors = [analysis.error(r, column, against) for r in steps]
+                points = [(c, max(e, FLOOR)) for c, e in zip(cost, errors) if not math.isnan(e)]
+                if not points:
+                    continue
+                xs, ys = zip(*points)
+                colour = colour_of(config, configs)
+                ax.plot(xs, ys, "-o" if filled else "--o", color=colour, markerfacecolor=colour if filled else "none",
+                        label=config if filled else None, linewidth=1, markersize=4)
+        if reference and not math.isnan(reference.number("wall_time_s")):
+            ax.axvline(reference.number("wall_time_s"), color="black", linestyle=":", linewidth=1)
+            ax.annotate("reference", (reference.number("wall_time_s"), 1), xycoords=("data", "axes fraction"),
+                        rotation=90, va="top", ha="right", fontsize=7)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("run time [s]")
+        ax.set_ylabel("|" + ("relative error" if kind == "relative" else "difference") + "|")
+        ax.set_title(title, fontsize=9)
+        ax.grid(True, which="both", linewidth=0.3)
+    if configs:
+        axes[0].legend(fontsize=7, loc="best")
+    return save(figure, folder, f"error_vs_cost_{scenario}_{law}",
+                f"{scenario}, {law}: error against run time (filled: vs beam reference, hollow: vs the engine's own "
+                f"chain; zero errors drawn at {FLOOR:g}); {provenance}")
+
+
+def sensor_time_history(suite, scenario, law, chosen, folder, provenance, seconds=2.0):
+    """Frame 1's sensor acceleration over the last `seconds` of the window: the reference and each
+    configuration at its best time step, as the paper shows the measured signals."""
+    reference = suite.beam_reference(scenario, law)
+    if reference is None:
+        return None
+    series = suite.series(reference)
+    if series is None or not series["time_s"]:
+        return None
+    end = series["time_s"][-1]
+    configs = [c for c in chosen]
+    figure, ax = plt.subplots(figsize=(12, 3.6), constrained_layout=True)
+    for label, run, colour, width in [("reference", reference, "black", 1.4)] + [
+            (config, run, colour_of(config, configs), 0.9) for config, run in chosen.items() if run is not None]:
+        s = series if run is reference else suite.series(run)
+        if s is None:
+            continue
+        t, a = data.sensor_acceleration(s, 1)
+        keep = [(x, y) for x, y in zip(t, a) if x >= end - seconds]
+        if keep:
+            xs, ys = zip(*keep)
+            dt = run.number("time_step_s")
+            ax.plot(xs, ys, color=colour, linewidth=width,
+                    label=label if run is reference else f"{label}, dt = {dt:g} s")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("frame 1 sensor acceleration [g]")
+    ax.grid(True, linewidth=0.3)
+    ax.legend(fontsize=7, loc="upper right")
+    return save(figure, folder, f"sensor_{scenario}_{law}",
+                f"{scenario}, {law}: frame 1 acceleration as the 2048 Hz sensor reads it, last {seconds:g} s; {provenance}")
+
+
+def impact_zoom(suite, scenario, law, chosen, folder, provenance, half_width_s=2e-3):
+    """The reference's strongest impact in the window, +-2 ms: frame 1's acceleration and the contact
+    force of the reference and of each configuration at its best step."""
+    reference = suite.beam_reference(scenario, law)
+    series = suite.series(reference) if reference else None
+    if series is None or not series["time_s"]:
+        return None
+    force = series["contact_force_n"]
+    if not any(f > 0 for f in force):
+        return None
+    centre = series["time_s"][max(range(len(force)), key=lambda k: force[k])]
+    configs = list(chosen)
+    figure, (top, bottom) = plt.subplots(2, 1, figsize=(12, 5), sharex=True, constrained_layout=True)
+    for label, run, colour, width in [("reference", reference, "black", 1.4)] + [
+            (config, run, colour_of(config, configs), 0.9) for config, run in chosen.items() if run is not None]:
+        s = series if run is reference else suite.series(run)
+        if s is None:
+            continue
+        window = [k for k, t in enumerate(s["time_s"]) if abs(t - centre) <= half_width_s]
+        if not window:
+            continue
+        t = [(s["time_s"][k] - centre) * 1e3 for k in window]
+        top.plot(t, [s["frame1_acceleration_m_s2"][k] / data.G for k in window], ".-", color=colour, linewidth=width,
+                 markersize=2, label=label)
+        bottom.plot(t, [s["contact_force_n"][k] for k in window], ".-", color=colour, linewidth=width, markersize=2)
+    top.set_ylabel("frame 1 acceleration [g]")
+    bottom.set_ylabel("contact force [N]")
+    bottom.set_xlabel(f"time from t = {centre:.4f} s [ms]")
+    for ax in (top, bottom):
+        ax.grid(True, linewidth=0.3)
+    top.legend(fontsize=7)
+    return save(figure, folder, f"impact_{scenario}_{law}",
+                f"{scenario}, {law}: the reference's strongest impact in the window (samples at the output rate); "
+                f"{provenance}")
+
+
+def stability_map(suite, law, folder, provenance):
+    """Engine configuration x time step x contact stiffness, each run a point coloured by its verdict."""
+    runs = [r for r in suite.runs if r["law"] == law and r["engine"] != "reference"]
+    configs = analysis.configurations(runs)
+    if not configs:
+        return None
+    figure, axes = plt.subplots(1, len(configs), figsize=(max(4, 3.2 * len(configs)), 3.6), sharey=True,
+                                squeeze=False, constrained_layout=True)
+    stiffness_of = {}
+    for ax, config in zip(axes[0], configs):
+        for r in analysis.runs_of_config(runs, config):
+            file = r["scenario_file"]
+            if file not in stiffness_of:
+                stiffness_of[file] = data.contact_stiffness(data.read_scenario(file), law)
+            k = stiffness_of[file]
+            x = k if not math.isnan(k) else 1.0
+            ax.scatter([x], [r.number("time_step_s")], color=VERDICT_COLOURS.get(r["verdict"], "black"), s=18)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(config, fontsize=8)
+        ax.set_xlabel("contact stiffness" + (" [N/m]" if law == "viscoelastic" else " [N/m^n]" if law == "hertz" else " (n/a)"))
+        ax.grid(True, which="both", linewidth=0.3)
+    axes[0][0].set_ylabel("time step [s]")
+    for verdict, colour in VERDICT_COLOURS.items():
+        axes[0][-1].scatter([], [], color=colour, label=verdict, s=18)
+    axes[0][-1].legend(fontsize=7, loc="best")
+    return save(figure, folder, f"stability_{law}", f"{law}: verdict of every engine run by time step and contact stiffness; {provenance}")
+
+
+def against_experiment(suite, law, chosen_by_case, experiment, folder, provenance):
+    """Frame 1's sensor peak and impacts per cycle per published case: the experiment beside the
+    reference and each configuration at its best step."""
+    cases = [s for s, l in suite.cases() if l == law]
+    if not cases:
+        return None
+    labels = ["experiment", "reference"]
+    for chosen in chosen_by_case.values():
+        labels += [c for c in chosen if c not in labels]
+    figure, (left, right) = plt.subplots(1, 2, figsize=(12, 4), constrained_layout=True)
+    width = 0.8 / len(labels)
+    for i, label in enumerate(labels):
+        peaks, rates = [], []
+        for case in cases:
+            if label == "experiment":
+                peaks.append(experiment.get(case, {}).get("frame1_peak_acceleration_g", math.nan))
+                rates.append(math.nan)
+                continue
+            run = suite.beam_reference(case, law) if label == "reference" else chosen_by_case.get(case, {}).get(label)
+            peaks.append(run.number("frame1_sensor_peak_acceleration_g") if run else math.nan)
+            rates.append(run.number("impacts_per_cycle") if run else math.nan)
+        colour = "#444444" if label == "experiment" else "black" if label == "reference" else colour_of(label, labels[2:])
+        positions = [c + (i - (len(labels) - 1) / 2) * width for c in range(len(cases))]
+        left.bar(positions, [0 if math.isnan(p) else p for p in peaks], width, color=colour, label=label,
+                 hatch="//" if label == "experiment" else None, alpha=0.9)
+        right.bar(positions, [0 if math.isnan(r) else r for r in rates], width, color=colour, alpha=0.9)
+    for ax, ylabel in ((left, "frame 1 peak acceleration [g]"), (right, "impacts per excitation cycle")):
+        ax.set_xticks(range(len(cases)))
+        ax.set_xticklabels(cases, fontsize=8)
+        ax.set_ylabel(ylabel)
+        ax.grid(True, axis="y", linewidth=0.3)
+    left.legend(fontsize=7)
+    return save(figure, folder, f"experiment_{law}",
+                f"{law}: simulated sensor peaks and impacts per cycle beside the experiment's (rig.md section 7; the "
+                f"experiment gives no impacts per cycle); {provenance}")

@@ -1,0 +1,74 @@
+"""The report's tables as plain rows, rendered to Markdown and HTML. Numbers are formatted from the
+values in runs.csv and nothing else, so that a table can be checked against the CSV."""
+
+import html
+import math
+
+from . import analysis
+
+EXPERIMENT_NOTE = "experiment (rig.md section 7)"
+
+
+def fmt(value, digits=4):
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "–"
+    if isinstance(value, str):
+        return value
+    return f"{value:.{digits}g}"
+
+
+def percent(value):
+    return "–" if math.isnan(value) else f"{100 * value:+.3g} %"
+
+
+def case_table(suite, scenario, law, experiment):
+    """Per engine configuration: errors against the beam reference and cost at its best time step and
+    at its largest stable step; the reference's and the experiment's own figures first."""
+    header = ["simulator", "time step [s]", "frame 1 sensor peak [g]", "vs reference", "contact duration [s]",
+              "vs reference", "impacts per cycle", "vs reference", "run time [s]", "verdict"]
+    rows = []
+    measured = experiment.get(scenario, {})
+    if measured.get("frame1_peak_acceleration_g") is not None:
+        rows.append([EXPERIMENT_NOTE, "", fmt(measured["frame1_peak_acceleration_g"]), "", "", "", "", "", "", ""])
+    runs = suite.runs_of(scenario, law)
+    reference = suite.beam_reference(scenario, law)
+    if reference:
+        rows.append(["reference (beam)", "adaptive", fmt(reference.number("frame1_sensor_peak_acceleration_g")), "",
+                     fmt(reference.number("contact_duration_mean_s")), "", fmt(reference.number("impacts_per_cycle")), "",
+                     fmt(reference.number("wall_time_s")), reference["verdict"]])
+    for config in analysis.configurations(runs):
+        for label, run in (("best step", analysis.best_step(runs, config)),
+                           ("largest stable step", analysis.largest_stable_step(runs, config))):
+            if run is None:
+                rows.append([f"{config} ({label})", "none stable", "", "", "", "", "", "", "", ""])
+                continue
+            rows.append([f"{config} ({label})", fmt(run.number("time_step_s")),
+                         fmt(run.number("frame1_sensor_peak_acceleration_g")),
+                         percent(run.number("vs_reference_frame1_sensor_peak_relative_error")),
+                         fmt(run.number("contact_duration_mean_s")),
+                         percent(run.number("vs_reference_contact_duration_relative_error")),
+                         fmt(run.number("impacts_per_cycle")),
+                         fmt(run.number("vs_reference_impacts_per_cycle_difference"), 3),
+                         fmt(run.number("wall_time_s")), run["verdict"]])
+    return header, rows
+
+
+def winner_line(suite, scenario, law):
+    result = analysis.winner_at_equal_cost(suite.runs_of(scenario, law))
+    if result is None:
+        return "Fewer than two engine configurations ran stably: no comparison at equal run time."
+    budget, config, score = result
+    return (f"At equal run time (at most {budget:.3g} s, the cost of the slowest configuration's cheapest stable "
+            f"run), the smallest largest-headline-error is {config}'s: {100 * score:.3g} %.")
+
+
+def markdown(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def html_table(header, rows):
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in row) + "</tr>" for row in rows)
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
