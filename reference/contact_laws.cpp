@@ -53,6 +53,17 @@ double contact_force_continued(const ContactModel& model, double delta, double r
       model);
 }
 
+double contact_force_unclipped(const ContactModel& model, double delta, double rate) {
+  return std::visit(
+      overloaded{[&](const HertzLaw& h) {
+                   const double spring = h.stiffness * std::copysign(std::pow(std::abs(delta), h.exponent), delta);
+                   return spring * (1 + h.damping / h.stiffness * rate);
+                 },
+                 [&](const ViscoelasticLaw& v) { return v.stiffness_n_per_m * delta + v.damping_n_s_per_m * rate; },
+                 [&](const NewtonLaw&) { return 0.0; }},
+      model);
+}
+
 double contact_force_rate(const ContactModel& model, double delta, double rate, double acceleration) {
   return std::visit(
       overloaded{

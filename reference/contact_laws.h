@@ -49,6 +49,11 @@ double elastic_contact_energy(const ContactModel& model, double indentation_m);
 // inside the integrator step that crosses a separation so that its dense output stays smooth there.
 double contact_force_continued(const ContactModel& model, double indentation_m, double indentation_rate_m_s);
 
+// The law's expression before it is clipped at zero (Hertz: k delta^n (1 + c/k delta'); clipped
+// spring-dashpot: k delta + c delta'), for locating where a clipped force ends; equal to
+// contact_force_continued for laws that are not clipped.
+double contact_force_unclipped(const ContactModel& model, double indentation_m, double indentation_rate_m_s);
+
 // dF/dt [N/s] of the (continued) law along a motion with indentation delta, delta' and delta''.
 double contact_force_rate(const ContactModel& model, double indentation_m, double indentation_rate_m_s,
                           double indentation_acceleration_m_s2);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -584,6 +585,20 @@ class Solver {
       }
       record_interval(sa, sb, eval);
       track_event(event, sa, sb, eval);
+      // A contact episode lasts while the tips exchange a force: a clipped law's force can end before
+      // the overlap does (the tips part faster than the spring relaxes), and the episode with it.
+      if (phase == Phase::compliant) {
+        if (sa.force > 0 && sb.force == 0) {
+          auto unclipped = [&](double s) {
+            const TipState k = eval(s);
+            return contact_force_unclipped(model_.contact, k.indentation, k.indentation_rate);
+          };
+          const double end = find_root(unclipped, ta, sb.t, unclipped(ta), unclipped(sb.t));
+          force_end_ = {end, -eval(end).indentation_rate};
+        } else if (sb.force != 0) {
+          force_end_.reset();
+        }
+      }
       if (ended || t_stop >= end_time_) {
         t = t_stop;
         x.q = Eigen::Map<const Eigen::VectorXd>(y_stop.data(), m_);
@@ -592,9 +607,10 @@ class Solver {
         solution_.energy.motor_work_j += y_stop[2 * m_];
         solution_.energy.structural_dissipation_j += y_stop[2 * m_ + 1];
         solution_.energy.contact_dissipation_j += y_stop[2 * m_ + 2];
-        event.end_time_s = t;
+        event.end_time_s = force_end_ ? force_end_->first : t;
         event.impulse_n_s += y_stop[2 * m_ + 3];
-        event.rebound_velocity_m_s = -sb.indentation_rate;
+        event.rebound_velocity_m_s = force_end_ ? force_end_->second : -sb.indentation_rate;
+        force_end_.reset();
         event.restitution = event.approach_velocity_m_s > 0 ? event.rebound_velocity_m_s / event.approach_velocity_m_s : 0;
         if (phase == Phase::sticking) {
           ++solution_.sticking_phases;
@@ -656,6 +672,7 @@ class Solver {
   Eigen::VectorXd slow_lever_, fast_lever_;  // the contact lever split into slow and fast modes
   ModalState xb_, xs_, x_onset_;  // free-flight scratch states, kept to avoid allocation
   double stick_impulse_ = 0;
+  std::optional<std::pair<double, double>> force_end_;  // (time, opening speed) where a clipped force ended
   long long guard_impacts_ = 0;
   double guard_time_ = 0;
 };

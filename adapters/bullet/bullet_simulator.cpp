@@ -266,10 +266,9 @@ class BulletSimulator final : public Simulator {
         force = impulse / h;
         max_points = std::max(max_points, points);
       }
-      // The published spring-dashpot may pull (injected: applied as computed); the recorder takes the
-      // compressive force, so an episode ends where the force turns tensile, as Bullet's own contact does.
-      force = std::max(0.0, force);
-      contact_steps += force > 0;
+      // The published spring-dashpot may pull (injected: applied and recorded as computed); Bullet's own
+      // contact impulses are never negative.
+      contact_steps += force != 0;
       const bool stable = observe(static_cast<double>(n + 1) * h, force, state);
       recorder.record(state);
       if (!stable) {

@@ -25,8 +25,8 @@ void StepRecorder::record(const StepState& s) {
                                                (s.velocity_m_s[1] - previous_.velocity_m_s[1]) / h};
   for (int f = 0; f < 2; ++f) peak_acc_[f] = std::max(peak_acc_[f], std::abs(acceleration[f]));
   peak_force_ = std::max(peak_force_, s.contact_force_n);
-  // contact episodes: maximal runs of steps with a positive force
-  if (s.contact_force_n > 0) {
+  // contact episodes: maximal runs of steps with a force
+  if (s.contact_force_n != 0) {
     if (!in_contact_) {
       in_contact_ = true;
       episode_ = ContactEvent{};

@@ -1,8 +1,9 @@
 // Turns a fixed-step engine's per-step states into the harness's Trajectory, the same way for every
 // engine: output samples by linear interpolation between steps, the tip acceleration of each step from
 // its velocity change (what a fixed-step engine resolves), the largest of those per output interval as
-// the true peak, and one contact episode per run of steps whose contact force is positive (a contact
-// counts when the engine applies a force, not when the bodies are merely within a margin).
+// the true peak, and one contact episode per run of steps with a contact force (a contact counts when
+// the engine applies a force, not when the bodies are merely within a margin). The reference counts
+// an episode the same way: while the tips exchange a force.
 #pragma once
 
 #include <array>
@@ -16,7 +17,8 @@ struct StepState {
   double t = 0;
   std::array<double, 2> displacement_m{};   // tip displacement along x from rest, positive toward frame 2
   std::array<double, 2> velocity_m_s{};
-  double contact_force_n = 0;               // compressive force between the tips during the step [N], >= 0
+  double contact_force_n = 0;               // force between the tips during the step [N]: > 0 compressive,
+                                            // < 0 only where a law pulls (the published spring-dashpot, injected)
   double indentation_m = 0;                 // u1 - u2 - gap at the end of the step [m]
   double energy_j = 0;                      // mechanical energy at the end of the step [J]
 };

@@ -167,9 +167,9 @@ class RigRun {
       const double h = model_.time_step_s;
       const double law_force = apply_loads(static_cast<double>(n) * h, state);
       ode_rig_.step();
-      // a tensile law force (the unclipped spring-dashpot near separation) is applied, recorded as no compression
+      // a tensile law force (the unclipped spring-dashpot near separation) is applied and recorded as it is
       const double contact_force = contact_.ode_collision ? ode_rig_.tip_contact_force() : law_force;
-      state = observer_.observe(ode_rig_, static_cast<double>(n + 1) * h, std::max(0.0, contact_force));
+      state = observer_.observe(ode_rig_, static_cast<double>(n + 1) * h, contact_force);
       if (const auto why = divergence(state, observer_, rig_)) {
         result.status = RunStatus::unstable;
         result.reason = *why + explain(messages);
