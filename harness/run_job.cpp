@@ -88,6 +88,7 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
     if (error) throw std::runtime_error(run_folder + ": cannot create the run folder: " + error.message());
     write_series_csv(run_folder + "/series.csv", result.trajectory);
     write_events_csv(run_folder + "/events.csv", result.trajectory);
+    if (result.impact_zoom.size() > 0) write_series_csv(run_folder + "/impact.csv", result.impact_zoom);
     write_summary_json(run_folder + "/summary.json", record);
   }
   if (keep) *keep = ReferenceData{metrics, std::move(result.trajectory)};

@@ -177,7 +177,11 @@ class SuiteRunner {
         continue;
       }
       const std::size_t index = scenarios_.size() - 1;
-      const Scenario& s = scenarios_.back();
+      Scenario& s = scenarios_.back();
+      if (settings_.max_duration_s > 0 && s.duration_s > settings_.max_duration_s) {
+        s.duration_s = settings_.max_duration_s;  // the scoring window, the last part of the run, is kept
+        s.scoring_window_s = std::min(s.scoring_window_s, s.duration_s);
+      }
       for (ContactLaw law : settings_.laws) {
         if (!s.contact.has(law)) {
           unrunnable_.push_back(unrunnable(s.name + "/" + to_string(law) + "/unavailable", s.name, file, "", to_string(law),
@@ -188,10 +192,15 @@ class SuiteRunner {
         add(beam, planned);
         for (const std::string& engine : settings_.engines) {
           if (engine == "reference") continue;
-          const auto options = settings_.engine_options.count(engine) ? settings_.engine_options.at(engine)
-                                                                      : std::map<std::string, std::string>{};
+          const auto engine_options = settings_.engine_options.count(engine) ? settings_.engine_options.at(engine)
+                                                                             : std::map<std::string, std::string>{};
           const std::vector<double> steps = settings_.time_steps_s.empty() ? std::vector<double>{0} : settings_.time_steps_s;
+          const std::vector<std::string> paths =
+              settings_.contact_paths.empty() ? std::vector<std::string>{""} : settings_.contact_paths;
+          for (const std::string& path : paths)
           for (double dt : steps) {
+            auto options = engine_options;
+            if (!path.empty()) options["contact"] = path;
             PlannedJob job = make_job(index, JobKind::engine, engine, law, dt, options);
             job.beam_reference = beam.id;
             if (auto simulator = settings_.factory(engine)) {

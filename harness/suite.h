@@ -18,9 +18,11 @@ struct SuiteSettings {
   std::vector<std::string> engines = {"reference"};
   std::vector<ContactLaw> laws = {ContactLaw::hertz, ContactLaw::viscoelastic, ContactLaw::newton};
   std::vector<double> time_steps_s;                // fixed-step engines; empty: each engine's default
+  std::vector<std::string> contact_paths;          // engines' option "contact" (matched, injected, native); empty: default
   std::map<std::string, std::string> reference_options;  // options of every reference run
   std::map<std::string, std::map<std::string, std::string>> engine_options;  // per engine
   double output_rate_hz = 4096;
+  double max_duration_s = 0;                       // > 0: runs longer scenarios for this long only (window kept)
   int jobs = 1;                                    // worker processes
   double time_limit_s = 600;                       // per job; then it is stopped and recorded
   std::string out;                                 // output folder

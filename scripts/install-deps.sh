@@ -13,6 +13,7 @@ packages=(
   libmujoco-dev libqhull-dev      # MuJoCo 2.2.2 (its CMake config names qhull's headers)
   libode-dev                     # ODE 0.16.2, double precision
   libbullet-dev                  # Bullet 3.24, linked as bullet-float64 (double precision)
+  python3-matplotlib             # the report's figures (reports/, run with /usr/bin/python3)
   libgtest-dev libgmock-dev      # tests
   libbenchmark-dev               # bench/: speed measurements
 )

@@ -282,6 +282,7 @@ class BulletSimulator final : public Simulator {
     d.emplace_back("contact_steps", static_cast<double>(contact_steps));
     d.emplace_back("max_contact_points", max_points);
     result.trajectory = recorder.finish();
+    result.impact_zoom = recorder.impact_zoom();
     return result;
   }
 

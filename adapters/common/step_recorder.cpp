@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ib {
 
@@ -26,6 +27,7 @@ void StepRecorder::record(const StepState& s) {
   for (int f = 0; f < 2; ++f) peak_acc_[f] = std::max(peak_acc_[f], std::abs(acceleration[f]));
   peak_force_ = std::max(peak_force_, s.contact_force_n);
   // contact episodes: maximal runs of steps with a force
+  const bool was_in_contact = in_contact_;
   if (s.contact_force_n != 0) {
     if (!in_contact_) {
       in_contact_ = true;
@@ -41,7 +43,66 @@ void StepRecorder::record(const StepState& s) {
     close_episode(previous_);
   }
   sample_between(previous_, s, acceleration);
+  keep_for_zoom({s.t, s.displacement_m, s.velocity_m_s, acceleration, s.contact_force_n, s.energy_j},
+                in_contact_ && !was_in_contact, was_in_contact && !in_contact_);
   previous_ = s;
+}
+
+namespace {
+constexpr double kZoomMargin_s = 1e-3;       // before the onset and after the end of the zoomed impact
+constexpr std::size_t kZoomMaxSteps = 200000;  // a sticking contact must not fill the memory
+}  // namespace
+
+void StepRecorder::keep_for_zoom(const StepSample& sample, bool episode_started, bool episode_ended) {
+  if (episode_started && !capturing_ && episode_.onset_time_s >= start_s_) {
+    capturing_ = true;
+    capture_ = recent_;
+    capture_peak_ = 0;
+    capture_until_ = std::numeric_limits<double>::infinity();
+  }
+  if (capturing_) {
+    capture_.push_back(sample);
+    capture_peak_ = std::max(capture_peak_, std::abs(sample.force));
+    if (episode_ended) capture_until_ = std::min(capture_until_, sample.t + kZoomMargin_s);
+    if (sample.t >= capture_until_ || capture_.size() >= kZoomMaxSteps) end_capture();
+    return;
+  }
+  recent_.push_back(sample);
+  std::size_t old = 0;
+  while (old < recent_.size() && recent_[old].t < sample.t - kZoomMargin_s) ++old;
+  if (old > 64) recent_.erase(recent_.begin(), recent_.begin() + static_cast<std::ptrdiff_t>(old));
+}
+
+void StepRecorder::end_capture() {
+  capturing_ = false;
+  if (capture_peak_ > strongest_peak_) {
+    strongest_peak_ = capture_peak_;
+    strongest_.swap(capture_);
+  }
+  capture_.clear();
+  recent_.clear();
+}
+
+Trajectory StepRecorder::impact_zoom() const {
+  Trajectory z;
+  z.reserve(strongest_.size());
+  for (const StepSample& s : strongest_) {
+    z.time_s.push_back(s.t);
+    for (int f = 0; f < 2; ++f) {
+      z.displacement_m[f].push_back(s.displacement[f]);
+      z.velocity_m_s[f].push_back(s.velocity[f]);
+      z.acceleration_m_s2[f].push_back(s.acceleration[f]);
+      z.peak_abs_acceleration_m_s2[f].push_back(std::abs(s.acceleration[f]));
+    }
+    z.contact_force_n.push_back(s.force);
+    z.peak_contact_force_n.push_back(s.force);
+    z.mechanical_energy_j.push_back(s.energy);
+  }
+  if (z.size() >= 2) {
+    z.start_time_s = z.time_s.front();
+    z.output_rate_hz = static_cast<double>(z.size() - 1) / (z.time_s.back() - z.time_s.front());
+  }
+  return z;
 }
 
 void StepRecorder::close_episode(const StepState& last) {
@@ -78,6 +139,7 @@ void StepRecorder::sample_between(const StepState& a, const StepState& b, const 
 
 Trajectory StepRecorder::finish() {
   if (in_contact_) close_episode(previous_);
+  if (capturing_) end_capture();
   return std::move(out_);
 }
 

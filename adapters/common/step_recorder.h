@@ -34,8 +34,19 @@ class StepRecorder {
 
   long long steps() const { return steps_; }
   Trajectory finish();
+  // The strongest impact (largest contact force) whose onset lies in the series window: every step from
+  // 1 ms before its onset to 1 ms after its end (call after finish()).
+  Trajectory impact_zoom() const;
 
  private:
+  struct StepSample {
+    double t;
+    std::array<double, 2> displacement, velocity, acceleration;
+    double force, energy;
+  };
+  void keep_for_zoom(const StepSample& sample, bool episode_started, bool episode_ended);
+  void end_capture();
+
   void sample_between(const StepState& a, const StepState& b, const std::array<double, 2>& acceleration);
   void close_episode(const StepState& last);
 
@@ -47,6 +58,10 @@ class StepRecorder {
   double peak_force_ = 0;
   bool in_contact_ = false;
   ContactEvent episode_;
+  // impact zoom: the last 1 ms of steps, the impact being captured, the strongest so far
+  std::vector<StepSample> recent_, capture_, strongest_;
+  bool capturing_ = false;
+  double capture_until_ = 0, capture_peak_ = 0, strongest_peak_ = 0;
 };
 
 }  // namespace ib

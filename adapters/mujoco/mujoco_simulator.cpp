@@ -271,6 +271,7 @@ class MujocoSimulator final : public Simulator {
     result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     result.cost.steps = recorder.steps();
     result.trajectory = recorder.finish();
+    result.impact_zoom = recorder.impact_zoom();
   }
 
   // The harness's bound on a tip's displacement: beyond 0.1 L the run has left the physics.

@@ -182,6 +182,7 @@ class RigRun {
     result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     result.cost.steps = recorder_.steps();
     result.trajectory = recorder_.finish();
+    result.impact_zoom = recorder_.impact_zoom();
     result.diagnostics = diagnostics(messages);
     return result;
   }

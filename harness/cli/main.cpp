@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -171,9 +172,9 @@ int command_run(const std::string& path, const std::string& engine, const std::s
 
 struct SuiteOptions {
   std::vector<std::string> inputs;
-  std::string engines = "reference", laws = "hertz,viscoelastic,newton", time_steps, out;
+  std::string engines = "reference", laws = "hertz,viscoelastic,newton", time_steps, paths, out;
   int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
-  double time_limit_s = 600, rate_hz = 4096;
+  double time_limit_s = 600, rate_hz = 4096, max_duration_s = 0;
   bool resume = false;
   std::vector<std::string> options;
 };
@@ -195,6 +196,11 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
     if (used != dt.size() || !(value > 0)) throw std::invalid_argument("--dt " + dt + ": allowed: time steps > 0 s, comma-separated");
     s.time_steps_s.push_back(value);
   }
+  for (const auto& path : split(o.paths, ',')) {
+    if (path != "matched" && path != "injected" && path != "native")
+      throw std::invalid_argument("--paths " + path + ": allowed: matched, injected, native, comma-separated");
+    s.contact_paths.push_back(path);
+  }
   if (o.jobs < 1) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: >= 1");
   if (!(o.time_limit_s > 0)) throw std::invalid_argument("--time-limit: allowed: > 0 s");
   // --option ENGINE.NAME=VALUE
@@ -209,6 +215,8 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   }
   ib::reference_settings_from_options(s.reference_options);  // fail now, not in every job
   s.output_rate_hz = o.rate_hz;
+  if (o.max_duration_s < 0) throw std::invalid_argument("--duration: allowed: > 0 s");
+  s.max_duration_s = o.max_duration_s;
   s.jobs = o.jobs;
   s.time_limit_s = o.time_limit_s;
   s.out = o.out;
@@ -242,6 +250,17 @@ int command_export(const std::string& path, const std::string& engine, const std
     if (!file) throw std::runtime_error(out + ": cannot write");
     std::fprintf(stderr, "model written to %s\n", out.c_str());
   }
+  return kExitOk;
+}
+
+// The report is made by reports/make_report.py with Debian's matplotlib (python3-matplotlib), from
+// the saved results alone.
+int command_report(const std::string& suite_folder, const std::string& out) {
+  std::string command = std::string(IMPACTBENCH_PYTHON) + " " + IMPACTBENCH_SOURCE_DIR + "/reports/make_report.py '" +
+                        suite_folder + "'";
+  if (!out.empty()) command += " --out '" + out + "'";
+  const int status = std::system(command.c_str());
+  if (status != 0) throw std::runtime_error("the report could not be made (" + command + " failed)");
   return kExitOk;
 }
 
@@ -300,11 +319,14 @@ int main(int argc, char** argv) {
   suite->add_option("--engines", suite_options.engines, "comma-separated engines")->capture_default_str();
   suite->add_option("--laws", suite_options.laws, "comma-separated laws")->capture_default_str();
   suite->add_option("--dt", suite_options.time_steps, "comma-separated time steps of fixed-step engines [s]");
+  suite->add_option("--paths", suite_options.paths, "comma-separated contact paths of the engines: matched, injected, native; default: each engine's");
   suite->add_option("--jobs", suite_options.jobs, "worker processes")->capture_default_str();
   suite->add_option("--out", suite_options.out, "output folder")->required();
   suite->add_flag("--resume", suite_options.resume, "skip the jobs already recorded in the output folder");
   suite->add_option("--time-limit", suite_options.time_limit_s, "per job; a job past it is stopped and recorded [s]")->capture_default_str();
   suite->add_option("--rate", suite_options.rate_hz, "output series sample rate [Hz]")->capture_default_str();
+  suite->add_option("--duration", suite_options.max_duration_s,
+                    "run scenarios longer than this for this long only, keeping their scoring window [s]");
   suite->add_option("--option", suite_options.options, "engine.name=value, repeatable (e.g. reference.n=5)");
   suite_measurement.add_to(suite);
 
@@ -316,6 +338,11 @@ int main(int argc, char** argv) {
   export_model->add_option("--dt", time_step_s, "time step [s] (0: the engine's default)");
   export_model->add_option("--option", options, "engine option name=value, repeatable");
   export_model->add_option("--out", export_out, "output file; default: standard output");
+
+  std::string report_folder, report_out;
+  CLI::App* report = app.add_subcommand("report", "make the report (index.html, summary.md, figures) from a suite's saved results");
+  report->add_option("suite", report_folder, "a suite's output folder")->required();
+  report->add_option("--out", report_out, "report folder; default: SUITE/report");
 
   CLI::App* list = app.add_subcommand("list", "the scenarios, engines, laws and simulator options of this build");
   list->add_option("folder", list_folder, "scenario folder")->capture_default_str();
@@ -331,6 +358,7 @@ int main(int argc, char** argv) {
     if (run->parsed())
       return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options, run_measurement);
     if (suite->parsed()) return command_suite(suite_options, suite_measurement);
+    if (report->parsed()) return command_report(report_folder, report_out);
     if (export_model->parsed()) return command_export(scenario_path, export_engine, law, export_out, time_step_s, options);
     return command_list(list_folder);
   } catch (const std::exception& error) {

@@ -60,8 +60,9 @@ class Suite:
                 return r
         return None
 
-    def series(self, run):
-        path = os.path.join(self.folder, "runs", run["job_id"], "series.csv")
+    def series(self, run, name="series.csv"):
+        """A run's sampled series (series.csv), or its strongest impact finely resolved (impact.csv)."""
+        path = os.path.join(self.folder, "runs", run["job_id"], name)
         return read_series(path) if os.path.exists(path) else None
 
 
