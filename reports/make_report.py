@@ -71,7 +71,8 @@ def main():
     suite = data.read_runs(args.suite)
     experiment = data.read_experiment(os.path.join(os.path.dirname(os.path.abspath(__file__)), "experiment.toml"))
     facts = provenance(suite)
-    stamp = f"impactbench, {facts['date']}, {facts['machine']}"
+    versions = ", ".join(sorted({r["engine_version"] for r in suite.runs if r["engine_version"] and r["engine"] != "reference"}))
+    stamp = f"impactbench, {facts['date']}, {facts['machine']}" + (f"; {versions}" if versions else "")
 
     sections = []  # (title, markdown text, html text, [figure paths])
     chosen_by_law = {}
