@@ -57,7 +57,8 @@ void ensure_initialised() {
 }
 
 std::string version_text() {
-  return std::string(dODE_VERSION) + (dCheckConfiguration("ODE_double_precision") ? " (double precision)" : " (single precision)");
+  return std::string("ODE ") + dODE_VERSION +
+         (dCheckConfiguration("ODE_double_precision") ? " (double precision)" : " (single precision)");
 }
 
 MessageLog::MessageLog() : outer_(current_log) { current_log = this; }
