@@ -22,7 +22,7 @@ TEST(OdeLibrary, IsTheDoublePrecisionBuild) {
   ode::ensure_initialised();
   EXPECT_EQ(sizeof(dReal), sizeof(double));
   EXPECT_TRUE(dCheckConfiguration("ODE_double_precision")) << dGetConfiguration();
-  EXPECT_EQ(make_ode_simulator()->version().rfind("0.16", 0), 0u) << make_ode_simulator()->version();
+  EXPECT_EQ(make_ode_simulator()->version().rfind("ODE 0.16", 0), 0u) << make_ode_simulator()->version();
 }
 
 TEST(OdeSoftConstraint, IsTheUserGuidesSpringDamperMapping) {
