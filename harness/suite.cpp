@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "reference_simulator.h"
 #include "reporters.h"
 #include "scenario_toml.h"
 
@@ -206,8 +207,7 @@ class SuiteRunner {
             if (auto simulator = settings_.factory(engine)) {
               if (const auto links = simulator->chain_links(s, job.spec.settings)) {
                 auto chain_options = settings_.reference_options;
-                chain_options["modes"] = "chain";
-                chain_options["links"] = std::to_string(*links);
+                for (const auto& [name, value] : chain_reference_options(*links)) chain_options[name] = value;
                 PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options);
                 chain.beam_reference = beam.id;
                 chain.chain_links = *links;

@@ -150,6 +150,10 @@ ReferenceSettings reference_settings_from_options(const std::map<std::string, st
   return s;
 }
 
+std::map<std::string, std::string> chain_reference_options(int links) {
+  return {{"modes", "chain"}, {"links", std::to_string(links)}};
+}
+
 std::unique_ptr<Simulator> make_reference_simulator() { return std::make_unique<ReferenceSimulator>(); }
 
 }  // namespace ib

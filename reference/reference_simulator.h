@@ -15,4 +15,8 @@ ReferenceSettings reference_settings_from_options(const std::map<std::string, st
 
 std::unique_ptr<Simulator> make_reference_simulator();
 
+// The options that make the reference run on the K-link chain an engine builds (rig.md section 4), so
+// that the engine is scored against exactly the system it simulates. The one place that spells them.
+std::map<std::string, std::string> chain_reference_options(int links);
+
 }  // namespace ib

@@ -99,7 +99,7 @@ TEST_P(BulletFreeDecay, FrequencyAndDecayAreThoseOfTheChain) {
   const LinkChain chain = build_link_chain(s.frames[0], kLinks);
   const double f_chain = chain_modes(chain).omega_rad_s[0] / (2 * M_PI);
   const RunResult reference =
-      make_reference_simulator()->run(s, settings({{"modes", "chain"}, {"links", std::to_string(kLinks)}}));
+      make_reference_simulator()->run(s, settings(chain_reference_options(kLinks)));
   const double settle = 0.5;  // higher modes (zeta_n = zeta omega_n / omega_1, at least 0.03) have died out
   const Decay measured = measure_decay(bullet.trajectory, settle);
   const Decay expected = measure_decay(reference.trajectory, settle);

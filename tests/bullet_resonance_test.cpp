@@ -36,7 +36,7 @@ TEST(BulletResonance, ImpactsPerCycleAndSensorPeakAreTheReferences) {
   RunSettings settings;
   settings.law = ContactLaw::viscoelastic;
   settings.series_start_s = window.window_start_s;
-  settings.options = {{"modes", "chain"}, {"links", std::to_string(kLinks)}};
+  settings.options = chain_reference_options(kLinks);
   const RunResult reference = make_reference_simulator()->run(s, settings);
   ASSERT_EQ(reference.status, RunStatus::ok) << reference.reason;
   const Metrics expected = compute_metrics(reference.trajectory, window);

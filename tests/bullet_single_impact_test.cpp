@@ -37,7 +37,7 @@ RunSettings settings(ContactLaw law, double time_step_s, const std::map<std::str
 }
 
 RunResult run_reference(const Scenario& s, ContactLaw law) {
-  return make_reference_simulator()->run(s, settings(law, 0, {{"modes", "chain"}, {"links", std::to_string(kLinks)}}));
+  return make_reference_simulator()->run(s, settings(law, 0, chain_reference_options(kLinks)));
 }
 
 RunResult run_bullet(const Scenario& s, ContactLaw law, double h, const std::string& articulation = "multibody") {
@@ -49,7 +49,7 @@ RunResult run_bullet(const Scenario& s, ContactLaw law, double h, const std::str
 // around the impact: a check on the reference's event, which ends where its force does.
 double reference_force_duration(Scenario s, ContactLaw law, double onset_s) {
   s.duration_s = onset_s + 2e-3;
-  RunSettings r = settings(law, 0, {{"modes", "chain"}, {"links", std::to_string(kLinks)}});
+  RunSettings r = settings(law, 0, chain_reference_options(kLinks));
   r.series_start_s = onset_s - 1e-5;
   r.output_rate_hz = 1e8;
   const Trajectory t = make_reference_simulator()->run(s, r).trajectory;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "reference_fixtures.h"
+#include "reference_simulator.h"
 #include "rig.h"
 #include "run_job.h"
 
@@ -37,7 +38,7 @@ TEST_P(MujocoLongStep, VerdictSaysSo) {
   RunSettings settings;
   settings.law = c.law;
   JobSpec reference_job{"", "reference", settings};
-  reference_job.settings.options = {{"modes", "chain"}, {"links", std::to_string(default_links(s))}};
+  reference_job.settings.options = chain_reference_options(default_links(s));
   ReferenceData chain_reference;
   run_job(s, reference_job, measurement, nullptr, nullptr, "", &chain_reference);
 

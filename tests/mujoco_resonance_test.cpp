@@ -36,7 +36,7 @@ TEST(MujocoResonance, ImpactsPerCycleAndSensorPeakMatchTheReference) {
   const RunResult engine = mujoco->run(s, run);
   ASSERT_EQ(engine.status, RunStatus::ok) << engine.reason;
   RunSettings chain = run;
-  chain.options = {{"modes", "chain"}, {"links", std::to_string(links)}};
+  chain.options = chain_reference_options(links);
   const RunResult reference = make_reference_simulator()->run(s, chain);
   ASSERT_EQ(reference.status, RunStatus::ok) << reference.reason;
 

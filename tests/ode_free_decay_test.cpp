@@ -90,7 +90,7 @@ TEST(OdeFreeDecay, TheEstimatorFindsTheReferenceChainsMode) {
   RunSettings settings;
   settings.law = ContactLaw::viscoelastic;
   settings.series_start_s = 0;
-  settings.options = {{"modes", "chain"}, {"links", std::to_string(default_links(s))}};
+  settings.options = chain_reference_options(default_links(s));
   const Decay d = measure_decay(make_reference_simulator()->run(s, settings).trajectory, kMeasureFrom_s);
   const ChainMode mode = reference_mode(s);
   EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, 1e-4);

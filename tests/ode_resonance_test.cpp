@@ -38,7 +38,7 @@ TEST(OdeResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
   RunSettings settings;
   settings.law = ContactLaw::viscoelastic;
   settings.series_start_s = window.window_start_s;
-  settings.options = {{"modes", "chain"}, {"links", std::to_string(links)}};
+  settings.options = chain_reference_options(links);
   const Metrics reference = compute_metrics(make_reference_simulator()->run(s, settings).trajectory, window);
 
   settings.time_step_s = 2e-5;

@@ -70,7 +70,7 @@ RunSettings settings_for(ContactLaw law, double h, std::map<std::string, std::st
 
 Impact reference_impact(const Scenario& s, ContactLaw law) {
   const RunResult r = make_reference_simulator()->run(
-      s, settings_for(law, 0, {{"modes", "chain"}, {"links", std::to_string(default_links(s))}}));
+      s, settings_for(law, 0, chain_reference_options(default_links(s))));
   const auto impact = measure_impact(r.trajectory, s.gap_m);
   if (!impact) throw std::runtime_error("the reference has no impact");
   return *impact;

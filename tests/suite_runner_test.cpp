@@ -33,7 +33,7 @@ class Mirror final : public Simulator {
   std::vector<std::pair<std::string, std::string>> option_help() const override { return {}; }
   RunResult run(const Scenario& s, const RunSettings& settings) override {
     RunSettings chain = settings;
-    chain.options = {{"modes", "chain"}, {"links", "4"}};
+    chain.options = chain_reference_options(4);
     return make_reference_simulator()->run(s, chain);
   }
   std::optional<int> chain_links(const Scenario&, const RunSettings&) const override { return 4; }

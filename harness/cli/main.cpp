@@ -159,7 +159,7 @@ int command_run(const std::string& path, const std::string& engine, const std::s
     beam.emplace();
     ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*beam);
     if (const auto links = ib::make_simulator(engine)->chain_links(scenario, job.settings)) {
-      reference.settings.options = {{"modes", "chain"}, {"links", std::to_string(*links)}};
+      reference.settings.options = ib::chain_reference_options(*links);
       chain.emplace();
       ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*chain);
     }
