@@ -103,7 +103,7 @@ std::vector<StepField> step_fields(const StepRow& row) {
     for (const std::string& n : search->notes()) notes += (notes.empty() ? "" : "; ") + n;
   out.push_back({"probes", search ? static_cast<double>(search->probes()) : 0.0});
   out.push_back({"probes_wall_time_s", search ? search->probes_wall_time_s() : 0.0});
-  out.push_back({"probe_steps_s", search ? search->probe_list() : ""});
+  out.push_back({"probe_outcomes", search ? search->probe_list() : ""});
   out.push_back({"notes", notes});
   return out;
 }

@@ -100,7 +100,7 @@ class StepSearch {
   Outcome accuracy(HeadlineMetric metric) const;
   std::vector<std::string> notes() const;
   double probes_wall_time_s() const;
-  std::string probe_list() const;       // "dt:verdict;..." largest step first
+  std::string probe_list() const;       // "step [s]:verdict;...", largest step first (column probe_outcomes)
 
  private:
   enum class Outcome3 { pass, fail, undecided };

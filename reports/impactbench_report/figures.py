@@ -205,3 +205,49 @@ def against_experiment(suite, law, chosen_by_case, experiment, folder, provenanc
     return save(figure, folder, f"experiment_{law}",
                 f"{law}: simulated sensor peaks and impacts per cycle beside the experiment's (rig.md section 7; the "
                 f"experiment gives no impacts per cycle); {provenance}")
+
+
+STEP_MARKERS = {"frame1_sensor_peak": "o", "contact_duration": "^", "impacts_per_cycle": "D"}
+
+
+def step_limits(steps, scenario, law, folder, provenance):
+    """From steps.csv: per engine configuration, the largest stable step (black bar from the smallest
+    step searched, the smallest unstable step as a red x) and the largest step at which each headline
+    metric is within its tolerance of the reference (one marker each), on a log axis."""
+    rows = data.steps_of(steps, scenario, law)
+    if not rows:
+        return None
+    figure, ax = plt.subplots(figsize=(9, 0.5 * len(rows) + 1.6), constrained_layout=True)
+    metric_colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for y, row in enumerate(rows):
+        low, stable = row.number("step_range_min_s"), row.number("largest_stable_step_s")
+        if not math.isnan(stable):
+            ax.plot([low, stable], [y, y], color="black", linewidth=3, solid_capstyle="butt")
+        unstable = row.number("smallest_unstable_step_s")
+        if not math.isnan(unstable):
+            ax.scatter([unstable], [y], marker="x", color=VERDICT_COLOURS["unstable"], s=40, zorder=3)
+        for i, (prefix, label, _) in enumerate(data.STEP_METRICS):
+            step = row.number(f"{prefix}_largest_step_within_tolerance_s")
+            if not math.isnan(step):
+                ax.scatter([step], [y + 0.12 * (i - 1)], marker=STEP_MARKERS[prefix], color=metric_colours[i], s=30,
+                           zorder=4)
+    ax.set_yticks(range(len(rows)))
+    ax.set_yticklabels([r.config for r in rows], fontsize=7)
+    ax.set_ylim(-0.6, len(rows) - 0.4)
+    ax.invert_yaxis()
+    ax.set_xscale("log")
+    ax.set_xlabel("time step [s]")
+    ax.grid(True, which="both", axis="x", linewidth=0.3)
+    # the legend from empty proxies, so that it is complete whichever rows have which markers
+    ax.plot([], [], color="black", linewidth=3, label="stable (from the smallest step searched)")
+    ax.scatter([], [], marker="x", color=VERDICT_COLOURS["unstable"], s=40, label="smallest unstable step found")
+    for i, (prefix, label, _) in enumerate(data.STEP_METRICS):
+        ax.scatter([], [], marker=STEP_MARKERS[prefix], color=metric_colours[i], s=30, label=f"{label}: largest step within tolerance")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1))
+    tolerances = ", ".join(f"{label} {rows[0].number(data.STEP_TOLERANCE_COLUMNS[prefix]):g}"
+                           + (" relative" if kind == "relative" else "")
+                           for prefix, label, kind in data.STEP_METRICS)
+    return save(figure, folder, f"steps_{scenario}_{law}",
+                f"{scenario}, {law}: largest stable step and largest step within tolerance of the reference on the "
+                f"engine's own chain ({tolerances}), found by bisection on a grid of "
+                f"{rows[0].number('grid_points_per_octave'):g} steps per octave; {provenance}")
