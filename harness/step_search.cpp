@@ -233,11 +233,13 @@ Bracket StepSearch::bracket(int predicate) const {
     b.why_not_applicable = not_applicable_.at(predicate);
     return b;
   }
+  // The smallest step that failed bounds the search: a pass at a larger step than a failure is not
+  // trusted (errors that cancel by chance at one long step are common) and is noted instead.
   for (const auto& [index, result] : results_)
-    if (judge(predicate, result) == Outcome3::pass && (!b.pass || index < *b.pass)) b.pass = index;
+    if (judge(predicate, result) == Outcome3::fail && (!b.fail || index > *b.fail)) b.fail = index;
   for (const auto& [index, result] : results_)
-    if (judge(predicate, result) == Outcome3::fail && (!b.pass || index < *b.pass) && (!b.fail || index > *b.fail))
-      b.fail = index;
+    if (judge(predicate, result) == Outcome3::pass && (!b.fail || index > *b.fail) && (!b.pass || index < *b.pass))
+      b.pass = index;
   return b;
 }
 
@@ -307,17 +309,17 @@ StepSearch::Outcome StepSearch::accuracy(HeadlineMetric metric) const { return o
 
 std::vector<std::string> StepSearch::notes() const {
   std::vector<std::string> notes;
-  // Non-monotone: a pass at a larger step than a failure. Bisection assumes the opposite; the
-  // bracket keeps the largest passing step, and the failures below it are reported here.
+  // Non-monotone: a pass at a larger step than a failure. The bracket ends at the smallest failing
+  // step (the result is a step below which every probe passed); the passes above it are reported here.
   for (int p : predicates()) {
     const Bracket b = bracket(p);
-    if (!b.pass) continue;
-    std::string below;
+    if (!b.fail) continue;
+    std::string above;
     for (const auto& [index, result] : results_)
-      if (index > *b.pass && judge(p, result) == Outcome3::fail) below += (below.empty() ? "" : ", ") + step_text(grid_[index]);
-    if (below.empty()) continue;
+      if (index < *b.fail && judge(p, result) == Outcome3::pass) above += (above.empty() ? "" : ", ") + step_text(grid_[index]);
+    if (above.empty()) continue;
     const std::string what = p == kStability ? "stable" : std::string(to_string(static_cast<HeadlineMetric>(p))) + " within tolerance";
-    notes.push_back("non-monotone: " + what + " at " + step_text(grid_[*b.pass]) + " s but not at the smaller " + below + " s");
+    notes.push_back("non-monotone: " + what + " at the larger " + above + " s but not at " + step_text(grid_[*b.fail]) + " s");
   }
   for (const auto& [index, result] : results_) {
     if (result.timed_out)

@@ -65,9 +65,10 @@ struct ReferenceFacts {
 ProbeResult probe_from_json(const std::string& json_line, bool with_chain);
 ReferenceFacts reference_from_json(const std::string& json_line);
 
-// A predicate's bracket over grid indices (0 = the largest step). pass: the smallest index (largest
-// step) that passed; fail: the largest index below it that failed. Closed when adjacent, when it
-// holds at the largest step, or when it fails at the smallest.
+// A predicate's bracket over grid indices (0 = the largest step). fail: the largest index (smallest
+// step) that failed; pass: the smallest index beyond it that passed, so that every probe at a smaller
+// step passed too. Closed when adjacent, when it holds at the largest step, or when it fails at the
+// smallest. Passes at larger steps than a failure (non-monotone) are noted, not used.
 struct Bracket {
   std::optional<int> pass, fail;
   bool not_applicable = false;

@@ -231,6 +231,12 @@ def step_limits(steps, scenario, law, folder, provenance):
             if not math.isnan(step):
                 ax.scatter([step], [y + 0.12 * (i - 1)], marker=STEP_MARKERS[prefix], color=metric_colours[i], s=30,
                            zorder=4)
+        # what the markers cannot show: a metric within tolerance at no step of the range, or not decided
+        missing = [f"{label}: {row[prefix + '_status']}" for prefix, label, _ in data.STEP_METRICS
+                   if math.isnan(row.number(f"{prefix}_largest_step_within_tolerance_s"))
+                   and not row[f"{prefix}_status"].startswith("not applicable")]
+        if missing:
+            ax.annotate("; ".join(missing), (low, y + 0.32), fontsize=6, color="#555555", va="center")
     ax.set_yticks(range(len(rows)))
     ax.set_yticklabels([r.config for r in rows], fontsize=7)
     ax.set_ylim(-0.6, len(rows) - 0.4)
