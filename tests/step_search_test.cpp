@@ -6,9 +6,11 @@
 #include "step_search.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -342,6 +344,43 @@ TEST_F(StepSearchSuite, AProbeAtTheTimeLimitIsNotDecidedNotUnstable) {
   const std::string notes = rows[0]["notes"];
   EXPECT_NE(notes.find("reached the time limit"), std::string::npos) << notes;
   EXPECT_EQ(notes.find("non-monotone"), std::string::npos) << notes;
+}
+
+// ---- the command line -----------------------------------------------------------------------------
+
+struct Command {
+  int exit_code;
+  std::string output;
+};
+
+Command run_command(const std::string& arguments) {
+  const std::string command = std::string(IMPACTBENCH_EXECUTABLE) + " " + arguments + " 2>&1";
+  std::FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  while (pipe && std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+TEST(StepSearchCommand, BadSearchOptionsAreClearErrors) {
+  const std::string suite = "suite --engines reference --out /nonexistent/never_written ";
+  const Command range = run_command(suite + "--find-steps --step-range 1e-3,1e-6");
+  EXPECT_EQ(range.exit_code, 2) << range.output;
+  EXPECT_NE(range.output.find("--step-range 1e-3,1e-6: allowed: MIN <= MAX"), std::string::npos) << range.output;
+  const Command tolerance = run_command(suite + "--find-steps --tolerance sensor=0.1");
+  EXPECT_EQ(tolerance.exit_code, 2) << tolerance.output;
+  EXPECT_NE(tolerance.output.find("--tolerance sensor=0.1: expected metric=value with metric frame1_sensor_peak"),
+            std::string::npos) << tolerance.output;
+  const Command negative = run_command(suite + "--find-steps --tolerance contact_duration=-1");
+  EXPECT_EQ(negative.exit_code, 2) << negative.output;
+  EXPECT_NE(negative.output.find("-1: allowed: a number > 0"), std::string::npos) << negative.output;
+  const Command both = run_command(suite + "--find-steps --dt 1e-4");
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  EXPECT_NE(both.output.find("--dt cannot be combined with --find-steps"), std::string::npos) << both.output;
+  const Command alone = run_command(suite + "--step-range 1e-5,1e-4");
+  EXPECT_EQ(alone.exit_code, 2) << alone.output;
+  EXPECT_NE(alone.output.find("need --find-steps"), std::string::npos) << alone.output;
 }
 
 }  // namespace
