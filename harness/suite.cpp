@@ -5,10 +5,10 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <deque>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -224,7 +224,9 @@ class SuiteRunner {
                 add(chain, planned);
               }
             }
-            if (settings_.step_search) step_groups_.push_back(job);  // its probes are planned by the search
+            if (settings_.step_search) {
+              if (planned.insert(job.id).second) step_groups_.push_back(job);  // its probes are planned by the search
+            }
             else add(job, planned);
           }
         }

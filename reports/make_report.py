@@ -100,7 +100,7 @@ def main():
             paths.append(figures.step_limits(steps, scenario, law, figures_folder, stamp))
         sections.append((f"{scenario}, {law}", markdown_text, html_text, [p for p in paths if p]))
     for law in sorted(chosen_by_law):
-        paths = [figures.stability_map(suite, law, figures_folder, stamp),
+        paths = [figures.stability_map(suite, law, figures_folder, stamp, steps),
                  figures.against_experiment(suite, law, chosen_by_law[law], experiment, figures_folder, stamp)]
         sections.append((f"{law}: stability and the experiment", "", "", [p for p in paths if p]))
 

@@ -141,8 +141,10 @@ def impact_zoom(suite, scenario, law, chosen, folder, provenance):
                 f"(reference: 1 MHz samples; engines: every step); {provenance}")
 
 
-def stability_map(suite, law, folder, provenance):
-    """Engine configuration x time step x contact stiffness, each run a point coloured by its verdict."""
+def stability_map(suite, law, folder, provenance, steps=None):
+    """Engine configuration x time step x contact stiffness, each run a point coloured by its verdict;
+    with steps.csv, each searched case's largest stable step (black bar, joined across stiffnesses) and
+    largest step within tolerance per metric (markers) over it."""
     runs = [r for r in suite.runs if r["law"] == law and r["engine"] != "reference"]
     configs = analysis.configurations(runs)
     if not configs:
@@ -158,6 +160,25 @@ def stability_map(suite, law, folder, provenance):
             k = stiffness_of[file]
             x = k if not math.isnan(k) else 1.0
             ax.scatter([x], [r.number("time_step_s")], color=VERDICT_COLOURS.get(r["verdict"], "black"), s=18)
+        searched = []
+        for row in (s for s in (steps or []) if s["law"] == law and s.config == config):
+            file = next((r["scenario_file"] for r in suite.runs if r["scenario"] == row["scenario"]), "")
+            if file not in stiffness_of:
+                stiffness_of[file] = data.contact_stiffness(data.read_scenario(file), law)
+            k = stiffness_of[file]
+            searched.append((k if not math.isnan(k) else 1.0, row))
+        searched.sort(key=lambda pair: pair[0])
+        stable = [(x, row.number("largest_stable_step_s")) for x, row in searched
+                  if not math.isnan(row.number("largest_stable_step_s"))]
+        if stable:
+            ax.plot(*zip(*stable), "_-", color="black", markersize=14, markeredgewidth=2, linewidth=0.8, zorder=3)
+        palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        for i, (prefix, _, _) in enumerate(data.STEP_METRICS):
+            points = [(x, row.number(f"{prefix}_largest_step_within_tolerance_s")) for x, row in searched
+                      if not math.isnan(row.number(f"{prefix}_largest_step_within_tolerance_s"))]
+            if points:
+                ax.scatter(*zip(*points), marker=STEP_MARKERS[prefix], facecolors="none", edgecolors=palette[i], s=40,
+                           zorder=4)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(config, fontsize=8)
@@ -166,8 +187,18 @@ def stability_map(suite, law, folder, provenance):
     axes[0][0].set_ylabel("time step [s]")
     for verdict, colour in VERDICT_COLOURS.items():
         axes[0][-1].scatter([], [], color=colour, label=verdict, s=18)
+    searched = any(s["law"] == law for s in (steps or []))
+    if searched:
+        palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        axes[0][-1].plot([], [], "_-", color="black", markersize=14, markeredgewidth=2, linewidth=0.8,
+                         label="largest stable step")
+        for i, (prefix, label, _) in enumerate(data.STEP_METRICS):
+            axes[0][-1].scatter([], [], marker=STEP_MARKERS[prefix], facecolors="none", edgecolors=palette[i], s=40,
+                                label=f"{label} within tolerance up to")
     axes[0][-1].legend(fontsize=7, loc="best")
-    return save(figure, folder, f"stability_{law}", f"{law}: verdict of every engine run by time step and contact stiffness; {provenance}")
+    return save(figure, folder, f"stability_{law}", f"{law}: verdict of every engine run by time step and contact stiffness"
+                + ("; the largest stable and accurate steps found by the step search (steps.csv)" if searched else "")
+                + f"; {provenance}")
 
 
 def against_experiment(suite, law, chosen_by_case, experiment, folder, provenance):
