@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -57,7 +58,7 @@ RunRecord unrunnable(const std::string& id, const std::string& scenario, const s
 
 std::string describe_exit(int status, double time_limit_s, bool timed_out, const std::string& log_tail) {
   std::ostringstream why;
-  if (timed_out) why << "stopped after the time limit of " << time_limit_s << " s";
+  if (timed_out) why << kTimeLimitReason << " of " << time_limit_s << " s";
   else if (WIFSIGNALED(status)) why << "the job's process died of signal " << WTERMSIG(status) << " (" << strsignal(WTERMSIG(status)) << ")";
   else if (WIFEXITED(status)) why << "the job's process exited with code " << WEXITSTATUS(status) << " without a result";
   else why << "the job's process ended abnormally";
@@ -90,6 +91,7 @@ std::string read_file(const std::string& path) {
 class Progress {
  public:
   explicit Progress(int total) : total_(total), start_(Clock::now()), terminal_(isatty(STDERR_FILENO)) {}
+  void add_to_total(int jobs) { total_ += jobs; }  // jobs planned on the fly (step-search probes)
   void job_done(const std::string& id, Verdict verdict) {
     ++done_;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
@@ -140,6 +142,10 @@ class SuiteRunner {
     for (const RunRecord& r : unrunnable_) finish(r);
     // References first (beam, then chain): engine jobs are compared with them.
     for (JobKind phase : {JobKind::beam_reference, JobKind::chain_reference, JobKind::engine}) {
+      if (phase == JobKind::engine && settings_.step_search) {
+        run_step_searches();
+        continue;
+      }
       for (const PlannedJob& job : jobs_) {
         if (job.kind != phase || recorded_.count(job.id)) continue;
         while (static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) reap(true);
@@ -195,7 +201,9 @@ class SuiteRunner {
           if (engine == "reference") continue;
           const auto engine_options = settings_.engine_options.count(engine) ? settings_.engine_options.at(engine)
                                                                              : std::map<std::string, std::string>{};
-          const std::vector<double> steps = settings_.time_steps_s.empty() ? std::vector<double>{0} : settings_.time_steps_s;
+          const std::vector<double> steps = settings_.time_steps_s.empty() || settings_.step_search
+                                                ? std::vector<double>{0}
+                                                : settings_.time_steps_s;
           const std::vector<std::string> paths =
               settings_.contact_paths.empty() ? std::vector<std::string>{""} : settings_.contact_paths;
           for (const std::string& path : paths)
@@ -216,7 +224,10 @@ class SuiteRunner {
                 add(chain, planned);
               }
             }
-            add(job, planned);
+            if (settings_.step_search) {
+              if (planned.insert(job.id).second) step_groups_.push_back(job);  // its probes are planned by the search
+            }
+            else add(job, planned);
           }
         }
       }
@@ -305,8 +316,9 @@ class SuiteRunner {
     _exit(0);
   }
 
-  // Waits for a job to end (or stops one past its time limit) and records it.
-  void reap(bool block) {
+  // Waits for a job to end (or stops one past its time limit) and records it; returns the job and the
+  // runs.jsonl line recorded for it (none when nothing ended).
+  std::optional<std::pair<const PlannedJob*, std::string>> reap(bool block) {
     while (true) {
       int status = 0;
       const pid_t pid = waitpid(-1, &status, WNOHANG);
@@ -315,8 +327,7 @@ class SuiteRunner {
         if (it == running_.end()) continue;
         const Running r = it->second;
         running_.erase(it);
-        collect(*r.job, status, r.timed_out);
-        return;
+        return std::pair{r.job, collect(*r.job, status, r.timed_out)};
       }
       const auto now = Clock::now();
       for (auto& [child, r] : running_) {
@@ -325,12 +336,12 @@ class SuiteRunner {
           kill(child, SIGKILL);
         }
       }
-      if (!block || running_.empty()) return;
+      if (!block || running_.empty()) return std::nullopt;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   }
 
-  void collect(const PlannedJob& job, int status, bool timed_out) {
+  std::string collect(const PlannedJob& job, int status, bool timed_out) {
     const std::string folder = folder_of(job);
     const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
     if (clean) {
@@ -340,7 +351,7 @@ class SuiteRunner {
       count_and_show(job.id, verdict.value_or(Verdict::failed));
       fs::remove(folder + "/row.jsonl");
       fs::remove(folder + "/row.csv");
-      return;
+      return json;
     }
     const Scenario& s = scenarios_[job.scenario];
     RunRecord record = unrunnable(job.id, s.name, s.source_path, job.spec.engine, to_string(job.spec.settings.law),
@@ -350,6 +361,7 @@ class SuiteRunner {
     record.chain_links = job.chain_links;
     record.duration_s = s.duration_s;
     finish(record);
+    return json_line(record);
   }
 
   void finish(const RunRecord& record) {
@@ -363,9 +375,84 @@ class SuiteRunner {
     progress_->job_done(id, verdict);
   }
 
+  // --find-steps: each group's search picks its next probe when its previous one has ended; groups
+  // share the worker processes. Probes already in runs.jsonl (--resume) are read, not run again.
+  void run_step_searches() {
+    const StepSearchSettings& search_settings = *settings_.step_search;
+    const std::set<std::string> rows_done =
+        settings_.resume ? repair_and_list_step_rows(settings_.out) : std::set<std::string>{};
+    std::map<std::string, std::string> recorded = recorded_run_lines(settings_.out);  // references and probes
+    struct Group {
+      const PlannedJob* job;  // the group's job with dt = 0: its id is the group's id
+      StepGroup info;
+      std::unique_ptr<StepSearch> search;
+      bool with_chain = false, running = false, finished = false;
+      int probe_index = -1;
+    };
+    std::vector<Group> groups;
+    for (const PlannedJob& job : step_groups_) {
+      Group g;
+      g.job = &job;
+      g.with_chain = !job.chain_reference.empty();
+      const Scenario& s = scenarios_[job.scenario];
+      g.info = StepGroup{job.id, s.name, to_string(job.spec.settings.law), job.spec.engine,
+                         options_text(job.spec.settings.options),
+                         g.with_chain ? "reference on the " + std::to_string(job.chain_links) + "-link chain" : "beam reference",
+                         job.chain_links};
+      if (rows_done.count(step_row_key(g.info, search_settings))) continue;
+      const std::string& reference_id = g.with_chain ? job.chain_reference : job.beam_reference;
+      const ReferenceFacts facts = recorded.count(reference_id) ? reference_from_json(recorded[reference_id]) : ReferenceFacts{};
+      g.search = std::make_unique<StepSearch>(search_settings, facts, g.info.accuracy_reference);
+      groups.push_back(std::move(g));
+    }
+    std::map<std::string, std::size_t> group_of_probe;
+    while (true) {
+      for (std::size_t i = 0; i < groups.size(); ++i) {
+        Group& g = groups[i];
+        if (g.finished || g.running) continue;
+        std::optional<int> next;
+        PlannedJob probe;
+        while ((next = g.search->next_probe())) {
+          probe = make_job(g.job->scenario, JobKind::engine, g.job->spec.engine, g.job->spec.settings.law,
+                           g.search->grid()[*next], g.job->spec.settings.options);
+          probe.beam_reference = g.job->beam_reference;
+          probe.chain_reference = g.job->chain_reference;
+          probe.chain_links = g.job->chain_links;
+          if (!recorded.count(probe.id)) break;
+          g.search->add(*next, probe_from_json(recorded[probe.id], g.with_chain));  // run before (--resume)
+          ++outcome_.jobs_skipped;
+        }
+        if (!next) {
+          append_step_row(settings_.out, StepRow{g.info, search_settings, g.search.get()});
+          g.finished = true;
+          ++outcome_.step_searches;
+          continue;
+        }
+        if (static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) continue;  // waits for a worker
+        probe_jobs_.push_back(probe);
+        group_of_probe[probe.id] = i;
+        g.probe_index = *next;
+        g.running = true;
+        progress_->add_to_total(1);
+        start(probe_jobs_.back());
+      }
+      if (running_.empty()) break;  // every group has finished
+      if (const auto ended = reap(true)) {
+        const auto found = group_of_probe.find(ended->first->id);
+        if (found == group_of_probe.end()) continue;
+        Group& g = groups[found->second];
+        recorded[ended->first->id] = ended->second;
+        g.search->add(g.probe_index, probe_from_json(ended->second, g.with_chain));
+        g.running = false;
+      }
+    }
+  }
+
   const SuiteSettings& settings_;
   std::vector<Scenario> scenarios_;
   std::vector<PlannedJob> jobs_;
+  std::vector<PlannedJob> step_groups_;  // --find-steps: one job (dt = 0) per group, not run itself
+  std::deque<PlannedJob> probe_jobs_;    // the searches' probes (a deque keeps their addresses)
   std::vector<RunRecord> unrunnable_;
   std::set<std::string> recorded_;
   std::map<std::string, std::unique_ptr<ReferenceData>> references_;

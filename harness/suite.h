@@ -5,11 +5,13 @@
 // computed once and reused for every engine's errors.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "run_job.h"
 #include "simulator.h"
+#include "step_search.h"
 
 namespace ib {
 
@@ -29,12 +31,17 @@ struct SuiteSettings {
   bool resume = false;
   Measurement measurement;
   SimulatorFactory factory = make_simulator;
+  // Set: instead of fixed time steps, each (scenario, law, engine, options) group searches its largest
+  // stable and accurate steps by bisection (step_search.h) and appends a row to DIR/steps.csv and
+  // DIR/steps.jsonl when its search ends. time_steps_s is then ignored for the engines.
+  std::optional<StepSearchSettings> step_search;
 };
 
 struct SuiteOutcome {
   int jobs_run = 0;         // in this invocation
   int jobs_skipped = 0;     // already recorded (--resume)
   int not_ok = 0;           // unstable or failed among those run
+  int step_searches = 0;    // groups whose step search ended (a row in steps.csv) in this invocation
 };
 
 // Runs the suite; progress goes to stderr (a bar on a terminal, lines otherwise). Throws

@@ -33,6 +33,11 @@ CAVEATS = [
 ]
 
 
+STEPS_NOTE = ("Largest stable and accurate time steps (steps.csv), found by bisection: stable means the verdict "
+              "ok or inaccurate; accuracy is judged against the reference on the engine's own chain. Each step is "
+              "exact to one grid step (a ratio of 2^(1/4)); a probe that reached the time limit decides nothing.")
+
+
 def machine():
     model = ""
     try:
@@ -69,6 +74,7 @@ def main():
     os.makedirs(figures_folder, exist_ok=True)
 
     suite = data.read_runs(args.suite)
+    steps = data.read_steps(args.suite)  # None unless the suite searched steps (--find-steps)
     experiment = data.read_experiment(os.path.join(os.path.dirname(os.path.abspath(__file__)), "experiment.toml"))
     facts = provenance(suite)
     versions = ", ".join(sorted({r["engine_version"] for r in suite.runs if r["engine_version"] and r["engine"] != "reference"}))
@@ -85,10 +91,16 @@ def main():
         paths = [figures.error_against_cost(suite, scenario, law, figures_folder, stamp),
                  figures.sensor_time_history(suite, scenario, law, chosen, figures_folder, stamp),
                  figures.impact_zoom(suite, scenario, law, chosen, figures_folder, stamp)]
-        sections.append((f"{scenario}, {law}", tables.markdown(header, rows) + "\n\n" + winner,
-                         tables.html_table(header, rows) + f"<p>{winner}</p>", [p for p in paths if p]))
+        markdown_text = tables.markdown(header, rows) + "\n\n" + winner
+        html_text = tables.html_table(header, rows) + f"<p>{winner}</p>"
+        steps_header, steps_rows = tables.steps_table(steps, scenario, law)
+        if steps_rows:
+            markdown_text += "\n\n" + STEPS_NOTE + "\n\n" + tables.markdown(steps_header, steps_rows)
+            html_text += f"<p>{STEPS_NOTE}</p>" + tables.html_table(steps_header, steps_rows)
+            paths.append(figures.step_limits(steps, scenario, law, figures_folder, stamp))
+        sections.append((f"{scenario}, {law}", markdown_text, html_text, [p for p in paths if p]))
     for law in sorted(chosen_by_law):
-        paths = [figures.stability_map(suite, law, figures_folder, stamp),
+        paths = [figures.stability_map(suite, law, figures_folder, stamp, steps),
                  figures.against_experiment(suite, law, chosen_by_law[law], experiment, figures_folder, stamp)]
         sections.append((f"{law}: stability and the experiment", "", "", [p for p in paths if p]))
 

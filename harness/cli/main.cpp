@@ -177,7 +177,47 @@ struct SuiteOptions {
   double time_limit_s = 600, rate_hz = 4096, max_duration_s = 0;
   bool resume = false;
   std::vector<std::string> options;
+  bool find_steps = false;
+  std::string step_range = "1e-6,1e-3", tolerances;
 };
+
+double parse_positive(const std::string& text, const std::string& option) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+  }
+  if (used != text.size() || !(value > 0) || !std::isfinite(value))
+    throw std::invalid_argument(option + " " + text + ": allowed: a number > 0");
+  return value;
+}
+
+// --find-steps with --step-range MIN,MAX and --tolerance metric=value,...
+ib::StepSearchSettings parse_step_search(const SuiteOptions& o) {
+  ib::StepSearchSettings s;
+  const auto range = split(o.step_range, ',');
+  if (range.size() != 2) throw std::invalid_argument("--step-range " + o.step_range + ": expected MIN,MAX in seconds, e.g. 1e-6,1e-3");
+  s.min_step_s = parse_positive(range[0], "--step-range");
+  s.max_step_s = parse_positive(range[1], "--step-range");
+  if (s.min_step_s > s.max_step_s) throw std::invalid_argument("--step-range " + o.step_range + ": allowed: MIN <= MAX");
+  for (const auto& pair : split(o.tolerances, ',')) {
+    const auto eq = pair.find('=');
+    const std::string name = pair.substr(0, eq);
+    bool known = false;
+    for (ib::HeadlineMetric m : ib::kHeadlineMetrics) {
+      if (eq == std::string::npos || name != ib::to_string(m)) continue;
+      s.tolerance[m] = parse_positive(pair.substr(eq + 1), "--tolerance " + name + "=");
+      known = true;
+    }
+    if (!known)
+      throw std::invalid_argument("--tolerance " + pair +
+                                  ": expected metric=value with metric frame1_sensor_peak (relative), contact_duration "
+                                  "(relative) or impacts_per_cycle (absolute)");
+  }
+  ib::step_grid(s);  // fail now on a range the grid cannot take
+  return s;
+}
 
 int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
   ib::SuiteSettings s;
@@ -222,9 +262,17 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   s.out = o.out;
   s.resume = o.resume;
   s.measurement = measurement_options.build();
+  if (o.find_steps) {
+    if (!s.time_steps_s.empty()) throw std::invalid_argument("--dt cannot be combined with --find-steps (the search chooses the steps)");
+    s.step_search = parse_step_search(o);
+  } else if (o.step_range != SuiteOptions{}.step_range || !o.tolerances.empty()) {
+    throw std::invalid_argument("--step-range and --tolerance need --find-steps");
+  }
   const ib::SuiteOutcome outcome = ib::run_suite(s);
   std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed\n",
               outcome.jobs_run, o.out.c_str(), outcome.jobs_skipped, outcome.not_ok);
+  if (o.find_steps)
+    std::printf("suite: %d step searches recorded in %s/steps.csv\n", outcome.step_searches, o.out.c_str());
   return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
 }
 
@@ -329,6 +377,15 @@ int main(int argc, char** argv) {
                     "run scenarios longer than this for this long only, keeping their scoring window [s]");
   suite->add_option("--option", suite_options.options, "engine.name=value, repeatable (e.g. reference.n=5)");
   suite_measurement.add_to(suite);
+  suite->add_flag("--find-steps", suite_options.find_steps,
+                  "per scenario, law, engine and options: search the largest stable step and the largest step at "
+                  "which each headline metric is within tolerance, by bisection on a grid of 4 steps per octave; "
+                  "writes DIR/steps.csv and DIR/steps.jsonl");
+  suite->add_option("--step-range", suite_options.step_range, "with --find-steps: MIN,MAX step searched [s]")
+      ->capture_default_str();
+  suite->add_option("--tolerance", suite_options.tolerances,
+                    "with --find-steps: metric=value,... for frame1_sensor_peak (relative, default 0.05), "
+                    "contact_duration (relative, 0.10), impacts_per_cycle (absolute, 0.05)");
 
   std::string export_engine = "mujoco", export_out;
   CLI::App* export_model = app.add_subcommand("export", "write the model an engine builds for a scenario (MuJoCo: MJCF for its viewer)");

@@ -133,3 +133,63 @@ def contact_stiffness(scenario, law):
     if law == "viscoelastic":
         return float(contact.get("viscoelastic", {}).get("stiffness_n_per_m", math.nan))
     return math.nan
+
+
+# steps.csv (suite --find-steps): the headline metrics whose largest accurate step was searched, as
+# (column prefix, label, kind of tolerance).
+STEP_METRICS = [
+    ("frame1_sensor_peak", "frame 1 sensor peak", "relative"),
+    ("contact_duration", "contact duration", "relative"),
+    ("impacts_per_cycle", "impacts per cycle", "absolute"),
+]
+STEP_TOLERANCE_COLUMNS = {
+    "frame1_sensor_peak": "frame1_sensor_peak_relative_error_tolerance",
+    "contact_duration": "contact_duration_relative_error_tolerance",
+    "impacts_per_cycle": "impacts_per_cycle_difference_tolerance",
+}
+
+
+@dataclass
+class StepRow:
+    """One row of steps.csv (one engine configuration's step search) with numbers as floats."""
+    values: dict
+
+    def __getitem__(self, name):
+        return self.values[name]
+
+    def number(self, name):
+        value = self.values.get(name, math.nan)
+        return value if isinstance(value, float) else math.nan
+
+    @property
+    def config(self):
+        """The same text as Run.config: the engine and its options."""
+        options = self.values["options"]
+        return self.values["engine"] + (f" [{options}]" if options else "")
+
+
+def read_steps(folder):
+    """steps.csv's rows, or None when the suite ran no step search. Columns ending in _s, _tolerance,
+    and the counts are numbers; the rest text. A later row of the same group and settings (a search
+    repeated) replaces an earlier one."""
+    path = os.path.join(folder, "steps.csv")
+    if not os.path.exists(path):
+        return None
+    numeric = ("_s", "_tolerance", "_at_largest_step")
+    rows = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            values = {}
+            for name, text in row.items():
+                if name.endswith(numeric) or name in ("chain_links", "grid_points_per_octave", "probes"):
+                    values[name] = float(text) if text not in ("", None) else math.nan
+                else:
+                    values[name] = text or ""
+            key = (values["group_id"], values["step_range_min_s"], values["step_range_max_s"],
+                   tuple(values[c] for c in STEP_TOLERANCE_COLUMNS.values()))
+            rows[key] = StepRow(values)
+    return list(rows.values())
+
+
+def steps_of(steps, scenario, law):
+    return [s for s in (steps or []) if s["scenario"] == scenario and s["law"] == law]

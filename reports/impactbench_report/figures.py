@@ -141,8 +141,10 @@ def impact_zoom(suite, scenario, law, chosen, folder, provenance):
                 f"(reference: 1 MHz samples; engines: every step); {provenance}")
 
 
-def stability_map(suite, law, folder, provenance):
-    """Engine configuration x time step x contact stiffness, each run a point coloured by its verdict."""
+def stability_map(suite, law, folder, provenance, steps=None):
+    """Engine configuration x time step x contact stiffness, each run a point coloured by its verdict;
+    with steps.csv, each searched case's largest stable step (black bar, joined across stiffnesses) and
+    largest step within tolerance per metric (markers) over it."""
     runs = [r for r in suite.runs if r["law"] == law and r["engine"] != "reference"]
     configs = analysis.configurations(runs)
     if not configs:
@@ -158,6 +160,25 @@ def stability_map(suite, law, folder, provenance):
             k = stiffness_of[file]
             x = k if not math.isnan(k) else 1.0
             ax.scatter([x], [r.number("time_step_s")], color=VERDICT_COLOURS.get(r["verdict"], "black"), s=18)
+        searched = []
+        for row in (s for s in (steps or []) if s["law"] == law and s.config == config):
+            file = next((r["scenario_file"] for r in suite.runs if r["scenario"] == row["scenario"]), "")
+            if file not in stiffness_of:
+                stiffness_of[file] = data.contact_stiffness(data.read_scenario(file), law)
+            k = stiffness_of[file]
+            searched.append((k if not math.isnan(k) else 1.0, row))
+        searched.sort(key=lambda pair: pair[0])
+        stable = [(x, row.number("largest_stable_step_s")) for x, row in searched
+                  if not math.isnan(row.number("largest_stable_step_s"))]
+        if stable:
+            ax.plot(*zip(*stable), "_-", color="black", markersize=14, markeredgewidth=2, linewidth=0.8, zorder=3)
+        palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        for i, (prefix, _, _) in enumerate(data.STEP_METRICS):
+            points = [(x, row.number(f"{prefix}_largest_step_within_tolerance_s")) for x, row in searched
+                      if not math.isnan(row.number(f"{prefix}_largest_step_within_tolerance_s"))]
+            if points:
+                ax.scatter(*zip(*points), marker=STEP_MARKERS[prefix], facecolors="none", edgecolors=palette[i], s=40,
+                           zorder=4)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(config, fontsize=8)
@@ -166,8 +187,18 @@ def stability_map(suite, law, folder, provenance):
     axes[0][0].set_ylabel("time step [s]")
     for verdict, colour in VERDICT_COLOURS.items():
         axes[0][-1].scatter([], [], color=colour, label=verdict, s=18)
+    searched = any(s["law"] == law for s in (steps or []))
+    if searched:
+        palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        axes[0][-1].plot([], [], "_-", color="black", markersize=14, markeredgewidth=2, linewidth=0.8,
+                         label="largest stable step")
+        for i, (prefix, label, _) in enumerate(data.STEP_METRICS):
+            axes[0][-1].scatter([], [], marker=STEP_MARKERS[prefix], facecolors="none", edgecolors=palette[i], s=40,
+                                label=f"{label} within tolerance up to")
     axes[0][-1].legend(fontsize=7, loc="best")
-    return save(figure, folder, f"stability_{law}", f"{law}: verdict of every engine run by time step and contact stiffness; {provenance}")
+    return save(figure, folder, f"stability_{law}", f"{law}: verdict of every engine run by time step and contact stiffness"
+                + ("; the largest stable and accurate steps found by the step search (steps.csv)" if searched else "")
+                + f"; {provenance}")
 
 
 def against_experiment(suite, law, chosen_by_case, experiment, folder, provenance):
@@ -205,3 +236,55 @@ def against_experiment(suite, law, chosen_by_case, experiment, folder, provenanc
     return save(figure, folder, f"experiment_{law}",
                 f"{law}: simulated sensor peaks and impacts per cycle beside the experiment's (rig.md section 7; the "
                 f"experiment gives no impacts per cycle); {provenance}")
+
+
+STEP_MARKERS = {"frame1_sensor_peak": "o", "contact_duration": "^", "impacts_per_cycle": "D"}
+
+
+def step_limits(steps, scenario, law, folder, provenance):
+    """From steps.csv: per engine configuration, the largest stable step (black bar from the smallest
+    step searched, the smallest unstable step as a red x) and the largest step at which each headline
+    metric is within its tolerance of the reference (one marker each), on a log axis."""
+    rows = data.steps_of(steps, scenario, law)
+    if not rows:
+        return None
+    figure, ax = plt.subplots(figsize=(9, 0.5 * len(rows) + 1.6), constrained_layout=True)
+    metric_colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for y, row in enumerate(rows):
+        low, stable = row.number("step_range_min_s"), row.number("largest_stable_step_s")
+        if not math.isnan(stable):
+            ax.plot([low, stable], [y, y], color="black", linewidth=3, solid_capstyle="butt")
+        unstable = row.number("smallest_unstable_step_s")
+        if not math.isnan(unstable):
+            ax.scatter([unstable], [y], marker="x", color=VERDICT_COLOURS["unstable"], s=40, zorder=3)
+        for i, (prefix, label, _) in enumerate(data.STEP_METRICS):
+            step = row.number(f"{prefix}_largest_step_within_tolerance_s")
+            if not math.isnan(step):
+                ax.scatter([step], [y + 0.12 * (i - 1)], marker=STEP_MARKERS[prefix], color=metric_colours[i], s=30,
+                           zorder=4)
+        # what the markers cannot show: a metric within tolerance at no step of the range, or not decided
+        missing = [f"{label}: {row[prefix + '_status']}" for prefix, label, _ in data.STEP_METRICS
+                   if math.isnan(row.number(f"{prefix}_largest_step_within_tolerance_s"))
+                   and not row[f"{prefix}_status"].startswith("not applicable")]
+        if missing:
+            ax.annotate("; ".join(missing), (low, y + 0.32), fontsize=6, color="#555555", va="center")
+    ax.set_yticks(range(len(rows)))
+    ax.set_yticklabels([r.config for r in rows], fontsize=7)
+    ax.set_ylim(-0.6, len(rows) - 0.4)
+    ax.invert_yaxis()
+    ax.set_xscale("log")
+    ax.set_xlabel("time step [s]")
+    ax.grid(True, which="both", axis="x", linewidth=0.3)
+    # the legend from empty proxies, so that it is complete whichever rows have which markers
+    ax.plot([], [], color="black", linewidth=3, label="stable (from the smallest step searched)")
+    ax.scatter([], [], marker="x", color=VERDICT_COLOURS["unstable"], s=40, label="smallest unstable step found")
+    for i, (prefix, label, _) in enumerate(data.STEP_METRICS):
+        ax.scatter([], [], marker=STEP_MARKERS[prefix], color=metric_colours[i], s=30, label=f"{label}: largest step within tolerance")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1))
+    tolerances = ", ".join(f"{label} {rows[0].number(data.STEP_TOLERANCE_COLUMNS[prefix]):g}"
+                           + (" relative" if kind == "relative" else "")
+                           for prefix, label, kind in data.STEP_METRICS)
+    return save(figure, folder, f"steps_{scenario}_{law}",
+                f"{scenario}, {law}: largest stable step and largest step within tolerance of the reference on the "
+                f"engine's own chain ({tolerances}), found by bisection on a grid of "
+                f"{rows[0].number('grid_points_per_octave'):g} steps per octave; {provenance}")

@@ -72,3 +72,33 @@ def html_table(header, rows):
     head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
     body = "".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in row) + "</tr>" for row in rows)
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def step_cell(row, prefix):
+    """A largest-step cell: the step, or why there is none (the search's status)."""
+    value = row.number(f"{prefix}_largest_step_within_tolerance_s" if prefix != "stability" else "largest_stable_step_s")
+    if not math.isnan(value):
+        return fmt(value)
+    status = row[f"{prefix}_status"]
+    return status.replace("not applicable: ", "n/a: ") if status else "–"
+
+
+def steps_table(steps, scenario, law):
+    """From steps.csv: per engine configuration, the largest stable step, the smallest unstable step
+    found, the largest step within tolerance per headline metric, and the search's cost and notes."""
+    from .data import STEP_METRICS, STEP_TOLERANCE_COLUMNS, steps_of
+    rows = steps_of(steps, scenario, law)
+    if not rows:
+        return None, None
+    header = ["configuration", "largest stable step [s]", "smallest unstable step [s]"]
+    for prefix, label, kind in STEP_METRICS:
+        tolerance = rows[0].number(STEP_TOLERANCE_COLUMNS[prefix])
+        header.append(f"{label} within {100 * tolerance:g} % up to [s]" if kind == "relative"
+                      else f"{label} within {tolerance:g} up to [s]")
+    header += ["probes", "probe run time [s]", "notes"]
+    table = []
+    for row in rows:
+        table.append([row.config, step_cell(row, "stability"), fmt(row.number("smallest_unstable_step_s"))]
+                     + [step_cell(row, prefix) for prefix, _, _ in STEP_METRICS]
+                     + [fmt(row.number("probes")), fmt(row.number("probes_wall_time_s"), 3), row["notes"] or ""])
+    return header, table

@@ -90,12 +90,84 @@ class Report(unittest.TestCase):
                 checked += 1
         self.assertGreater(checked, 10)
 
+    def test_without_steps_csv_there_is_no_steps_view(self):
+        self.assertFalse(os.path.exists(os.path.join(self.suite, "steps.csv")))
+        self.assertFalse(any(n.startswith("steps_") for n in os.listdir(os.path.join(self.report, "figures"))))
+        with open(os.path.join(self.report, "summary.md")) as f:
+            self.assertNotIn("largest stable step [s]", f.read())
+
     def test_a_report_is_made_again_from_the_saved_results_alone(self):
         again = os.path.join(self.folder, "again")
         report = subprocess.run([EXECUTABLE, "report", self.suite, "--out", again], capture_output=True, text=True)
         self.assertEqual(report.returncode, 0, report.stderr)
         strip = lambda path: [l for l in open(path) if not l.startswith("- date")]  # noqa: E731
         self.assertEqual(strip(os.path.join(self.report, "summary.md")), strip(os.path.join(again, "summary.md")))
+
+
+class StepsReport(unittest.TestCase):
+    """A suite that searched its largest stable and accurate steps (--find-steps): the report draws them
+    per case and law and lists them in a table whose numbers equal steps.csv's."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.folder = tempfile.mkdtemp(prefix="impactbench_steps_report_test_")
+        cls.suite = os.path.join(cls.folder, "suite")
+        run = subprocess.run([EXECUTABLE, "suite", SCENARIOS, "--engines", "mujoco", "--laws", "viscoelastic",
+                              "--paths", "matched", "--find-steps", "--step-range", "5e-5,4e-4", "--jobs", "2",
+                              "--out", cls.suite], capture_output=True, text=True)
+        assert run.returncode in (0, 1), run.stderr
+        report = subprocess.run([EXECUTABLE, "report", cls.suite], capture_output=True, text=True)
+        assert report.returncode == 0, report.stderr
+        cls.report = os.path.join(cls.suite, "report")
+        with open(os.path.join(cls.suite, "steps.csv"), newline="") as f:
+            cls.rows = list(csv.DictReader(f))
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.folder)
+
+    def test_one_row_and_one_figure_per_case(self):
+        cases = {(r["scenario"], r["law"]) for r in self.rows}
+        self.assertEqual(len(self.rows), len(cases))
+        self.assertGreaterEqual(len(cases), 2)
+        figures = set(os.listdir(os.path.join(self.report, "figures")))
+        for scenario, law in cases:
+            name = f"steps_{scenario}_{law}.svg"
+            self.assertIn(name, figures)
+            root = ElementTree.parse(os.path.join(self.report, "figures", name)).getroot()
+            self.assertTrue(root.tag.endswith("svg"), name)
+
+    def test_table_numbers_equal_steps_csv(self):
+        with open(os.path.join(self.report, "summary.md")) as f:
+            text = f.read()
+        checked = 0
+        for section in re.split(r"\n## ", text)[1:]:
+            match = re.match(r"(\w+), (\w+)$", section.splitlines()[0])
+            if not match:
+                continue
+            scenario, law = match.groups()
+            lines = section.splitlines()
+            starts = [i for i, line in enumerate(lines) if line.startswith("| configuration | largest stable step [s]")]
+            self.assertEqual(len(starts), 1, section[:200])
+            for line in lines[starts[0] + 2:]:
+                if not line.startswith("|"):
+                    break
+                cells = [c.strip() for c in line.strip().strip("|").split("|")]
+                engine, _, options = cells[0].partition(" [")
+                row = next(r for r in self.rows if r["scenario"] == scenario and r["law"] == law
+                           and r["engine"] == engine and r["options"] == options.rstrip("]"))
+                for cell, column, status in (
+                        (cells[1], "largest_stable_step_s", "stability_status"),
+                        (cells[3], "frame1_sensor_peak_largest_step_within_tolerance_s", "frame1_sensor_peak_status"),
+                        (cells[4], "contact_duration_largest_step_within_tolerance_s", "contact_duration_status"),
+                        (cells[5], "impacts_per_cycle_largest_step_within_tolerance_s", "impacts_per_cycle_status")):
+                    if row[column]:
+                        self.assertEqual(cell, tables.fmt(float(row[column])))
+                    else:
+                        self.assertEqual(cell, row[status].replace("not applicable: ", "n/a: "))
+                self.assertEqual(cells[6], tables.fmt(float(row["probes"])))
+                checked += 1
+        self.assertEqual(checked, len(self.rows))
 
 
 if __name__ == "__main__":

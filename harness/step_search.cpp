@@ -1,0 +1,429 @@
+#include "step_search.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+#include <variant>
+
+namespace ib {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using Json = nlohmann::ordered_json;
+
+// The runs.csv name of each metric's error against a reference (metrics.cpp flatten()).
+const char* error_name(HeadlineMetric m) {
+  switch (m) {
+    case HeadlineMetric::frame1_sensor_peak: return "frame1_sensor_peak_relative_error";
+    case HeadlineMetric::contact_duration: return "contact_duration_relative_error";
+    case HeadlineMetric::impacts_per_cycle: return "impacts_per_cycle_difference";
+  }
+  return "";
+}
+
+double number_or_nan(const Json& j, const std::string& name) {
+  return j.contains(name) && j[name].is_number() ? j[name].get<double>() : kNaN;
+}
+
+std::string text_or_empty(const Json& j, const std::string& name) {
+  return j.contains(name) && j[name].is_string() ? j[name].get<std::string>() : "";
+}
+
+std::string step_text(double dt) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", dt);
+  return text;
+}
+
+std::string exact_text(double value) {
+  if (!std::isfinite(value)) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+std::string csv_escape(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+void append_text(const std::string& path, const std::string& text) {
+  std::FILE* f = std::fopen(path.c_str(), "a");
+  if (!f) throw std::runtime_error(path + ": cannot append: " + std::strerror(errno));
+  const bool written = std::fputs(text.c_str(), f) >= 0 && std::fflush(f) == 0;
+  const int error = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!written || !closed) throw std::runtime_error(path + ": write failed: " + std::strerror(error));
+}
+
+using StepField = std::pair<std::string, std::variant<std::string, double>>;
+
+std::vector<StepField> step_fields(const StepRow& row) {
+  const StepGroup& g = row.group;
+  const StepSearchSettings& s = row.settings;
+  std::vector<StepField> out = {
+      {"group_id", g.group_id},
+      {"scenario", g.scenario},
+      {"law", g.law},
+      {"engine", g.engine},
+      {"options", g.options},
+      {"chain_links", static_cast<double>(g.chain_links)},
+      {"accuracy_reference", g.accuracy_reference},
+      {"step_range_min_s", s.min_step_s},
+      {"step_range_max_s", s.max_step_s},
+      {"grid_points_per_octave", static_cast<double>(s.points_per_octave)},
+  };
+  const StepSearch* search = row.search;
+  const auto stability = search ? search->stability() : StepSearch::Outcome{"", kNaN, kNaN, kNaN, kNaN};
+  out.push_back({"largest_stable_step_s", stability.largest_pass_step_s});
+  out.push_back({"smallest_unstable_step_s", stability.smallest_fail_step_s});
+  out.push_back({"stability_status", stability.status});
+  for (HeadlineMetric m : kHeadlineMetrics) {
+    const std::string name = to_string(m), error = error_name(m);
+    const auto a = search ? search->accuracy(m) : StepSearch::Outcome{"", kNaN, kNaN, kNaN, kNaN};
+    out.push_back({error + "_tolerance", s.tolerance.at(m)});
+    out.push_back({name + "_largest_step_within_tolerance_s", a.largest_pass_step_s});
+    out.push_back({name + "_smallest_step_beyond_tolerance_s", a.smallest_fail_step_s});
+    out.push_back({name + "_" + error + "_at_largest_step", a.error_at_largest_pass});
+    out.push_back({name + "_" + error + "_vs_beam_reference_at_largest_step", a.beam_error_at_largest_pass});
+    out.push_back({name + "_status", a.status});
+  }
+  std::string notes;
+  if (search)
+    for (const std::string& n : search->notes()) notes += (notes.empty() ? "" : "; ") + n;
+  out.push_back({"probes", search ? static_cast<double>(search->probes()) : 0.0});
+  out.push_back({"probes_wall_time_s", search ? search->probes_wall_time_s() : 0.0});
+  out.push_back({"probe_outcomes", search ? search->probe_list() : ""});
+  out.push_back({"notes", notes});
+  return out;
+}
+
+Json step_json(const StepRow& row) {
+  Json j;
+  for (const auto& [name, value] : step_fields(row)) {
+    if (const auto* text = std::get_if<std::string>(&value)) j[name] = *text;
+    else j[name] = std::isfinite(std::get<double>(value)) ? Json(std::get<double>(value)) : Json(nullptr);
+  }
+  return j;
+}
+
+std::string key_text(const std::string& group_id, double min_s, double max_s, double points,
+                     const std::vector<double>& tolerances) {
+  std::string key = group_id + "|" + exact_text(min_s) + "|" + exact_text(max_s) + "|" + exact_text(points);
+  for (double t : tolerances) key += "|" + exact_text(t);
+  return key;
+}
+
+}  // namespace
+
+const char* to_string(HeadlineMetric metric) {
+  switch (metric) {
+    case HeadlineMetric::frame1_sensor_peak: return "frame1_sensor_peak";
+    case HeadlineMetric::contact_duration: return "contact_duration";
+    case HeadlineMetric::impacts_per_cycle: return "impacts_per_cycle";
+  }
+  return "";
+}
+
+std::vector<double> step_grid(const StepSearchSettings& s) {
+  if (!(s.min_step_s > 0) || !(s.max_step_s >= s.min_step_s) || !std::isfinite(s.max_step_s))
+    throw std::invalid_argument("step range " + exact_text(s.min_step_s) + "," + exact_text(s.max_step_s) +
+                                ": allowed: 0 < MIN <= MAX [s]");
+  if (s.points_per_octave < 1)
+    throw std::invalid_argument("grid points per octave " + std::to_string(s.points_per_octave) + ": allowed: >= 1");
+  std::vector<double> grid;
+  // dt_k = max 2^(-k/n), computed from k each time (no accumulated rounding), while dt_k >= min
+  for (int k = 0;; ++k) {
+    const double dt = s.max_step_s * std::exp2(-static_cast<double>(k) / s.points_per_octave);
+    if (dt < s.min_step_s * (1 - 1e-12)) break;
+    grid.push_back(dt);
+    if (grid.size() > 10000) throw std::invalid_argument("step range: more than 10000 grid points");
+  }
+  return grid;
+}
+
+ProbeResult probe_from_json(const std::string& json_line, bool with_chain) {
+  const Json j = Json::parse(json_line, nullptr, false);
+  ProbeResult r;
+  if (!j.is_object()) {
+    r.verdict = "failed";
+    r.reason = "unreadable record";
+    return r;
+  }
+  r.verdict = text_or_empty(j, "verdict");
+  r.reason = text_or_empty(j, "reason");
+  r.timed_out = r.verdict == "failed" && r.reason.rfind(kTimeLimitReason, 0) == 0;
+  r.wall_time_s = number_or_nan(j, "wall_time_s");
+  const std::string prefix = with_chain ? "vs_chain_reference_" : "vs_reference_";
+  for (HeadlineMetric m : kHeadlineMetrics) {
+    r.error[m] = number_or_nan(j, prefix + error_name(m));
+    r.beam_error[m] = number_or_nan(j, std::string("vs_reference_") + error_name(m));
+  }
+  return r;
+}
+
+ReferenceFacts reference_from_json(const std::string& json_line) {
+  const Json j = Json::parse(json_line, nullptr, false);
+  ReferenceFacts f;
+  if (!j.is_object()) return f;
+  f.finished = text_or_empty(j, "verdict") == "ok" || text_or_empty(j, "verdict") == "inaccurate";
+  f.frame1_sensor_peak_g = number_or_nan(j, "frame1_sensor_peak_acceleration_g");
+  f.contact_duration_mean_s = number_or_nan(j, "contact_duration_mean_s");
+  f.impacts_per_cycle = number_or_nan(j, "impacts_per_cycle");
+  return f;
+}
+
+// ---- the search -------------------------------------------------------------------------------------
+
+StepSearch::StepSearch(const StepSearchSettings& settings, const ReferenceFacts& reference,
+                       const std::string& reference_name)
+    : settings_(settings), grid_(step_grid(settings)) {
+  for (HeadlineMetric m : kHeadlineMetrics) {
+    const int p = static_cast<int>(m);
+    if (!settings_.tolerance.count(m)) settings_.tolerance[m] = StepSearchSettings{}.tolerance.at(m);
+    if (!reference.finished) {
+      not_applicable_[p] = "the " + reference_name + " did not finish";
+      continue;
+    }
+    // A relative error needs a non-zero reference value (metrics.cpp relative_error()).
+    const double value = m == HeadlineMetric::frame1_sensor_peak  ? reference.frame1_sensor_peak_g
+                         : m == HeadlineMetric::contact_duration ? reference.contact_duration_mean_s
+                                                                 : reference.impacts_per_cycle;
+    if (std::isnan(value) || (m != HeadlineMetric::impacts_per_cycle && value == 0))
+      not_applicable_[p] = m == HeadlineMetric::frame1_sensor_peak  ? "the " + reference_name + " has no sensor peak"
+                           : m == HeadlineMetric::contact_duration ? "the " + reference_name + " has no impacts in the window"
+                                                                   : "the scenario has no excitation";
+  }
+}
+
+std::vector<int> StepSearch::predicates() const {
+  std::vector<int> out = {kStability};
+  for (HeadlineMetric m : kHeadlineMetrics)
+    if (!not_applicable_.count(static_cast<int>(m))) out.push_back(static_cast<int>(m));
+  return out;
+}
+
+StepSearch::Outcome3 StepSearch::judge(int predicate, const ProbeResult& r) const {
+  if (r.timed_out) return Outcome3::undecided;
+  // stable: the run's verdict is ok or inaccurate; unstable and failed (the simulator's error, a crash)
+  // runs gave no usable trajectory at that step
+  const bool stable = r.verdict == "ok" || r.verdict == "inaccurate";
+  if (predicate == kStability) return stable ? Outcome3::pass : Outcome3::fail;
+  if (!stable) return Outcome3::fail;
+  const HeadlineMetric m = static_cast<HeadlineMetric>(predicate);
+  const double error = r.error.count(m) ? r.error.at(m) : kNaN;
+  // NaN while the reference has the metric: the run lacks it (e.g. no impacts), which is a failure
+  return std::abs(error) <= settings_.tolerance.at(m) ? Outcome3::pass : Outcome3::fail;
+}
+
+Bracket StepSearch::bracket(int predicate) const {
+  Bracket b;
+  if (not_applicable_.count(predicate)) {
+    b.not_applicable = true;
+    b.why_not_applicable = not_applicable_.at(predicate);
+    return b;
+  }
+  // The smallest step that failed bounds the search: a pass at a larger step than a failure is not
+  // trusted (errors that cancel by chance at one long step are common) and is noted instead.
+  for (const auto& [index, result] : results_)
+    if (judge(predicate, result) == Outcome3::fail && (!b.fail || index > *b.fail)) b.fail = index;
+  for (const auto& [index, result] : results_)
+    if (judge(predicate, result) == Outcome3::pass && (!b.fail || index > *b.fail) && (!b.pass || index < *b.pass))
+      b.pass = index;
+  return b;
+}
+
+std::optional<int> StepSearch::unprobed_inside(const Bracket& b) const {
+  const int lo = b.fail ? *b.fail : -1, hi = b.pass ? *b.pass : static_cast<int>(grid_.size());
+  // The grid index nearest the bracket's middle that has not been probed. A probe that reached the
+  // time limit decides nothing, and a smaller step costs more: steps below it are not tried.
+  int end = hi;
+  for (const auto& [index, result] : results_)
+    if (result.timed_out) end = std::min(end, index);
+  const double middle = 0.5 * (lo + end);
+  std::optional<int> best;
+  for (int k = lo + 1; k < end; ++k)
+    if (!results_.count(k) && (!best || std::abs(k - middle) < std::abs(*best - middle))) best = k;
+  return best;
+}
+
+bool StepSearch::closed(const Bracket& b) const { return b.not_applicable || !unprobed_inside(b); }
+
+std::optional<int> StepSearch::next_probe() const {
+  std::optional<int> next;
+  int widest = -1;
+  for (int p : predicates()) {
+    const Bracket b = bracket(p);
+    const auto inside = unprobed_inside(b);
+    if (!inside) continue;
+    const int width = (b.pass ? *b.pass : static_cast<int>(grid_.size())) - (b.fail ? *b.fail : -1);
+    if (width > widest) {
+      widest = width;
+      next = inside;
+    }
+  }
+  return next;
+}
+
+void StepSearch::add(int index, const ProbeResult& result) {
+  if (index < 0 || index >= static_cast<int>(grid_.size())) throw std::out_of_range("step search: grid index out of range");
+  results_[index] = result;
+}
+
+StepSearch::Outcome StepSearch::outcome(int predicate) const {
+  Outcome o{"", kNaN, kNaN, kNaN, kNaN};
+  const Bracket b = bracket(predicate);
+  if (b.not_applicable) {
+    o.status = "not applicable: " + b.why_not_applicable;
+    return o;
+  }
+  const int last = static_cast<int>(grid_.size()) - 1;
+  if (b.pass) o.largest_pass_step_s = grid_[*b.pass];
+  if (b.fail) o.smallest_fail_step_s = grid_[*b.fail];
+  if (b.pass && predicate != kStability) {
+    const ProbeResult& r = results_.at(*b.pass);
+    const HeadlineMetric m = static_cast<HeadlineMetric>(predicate);
+    o.error_at_largest_pass = r.error.count(m) ? r.error.at(m) : kNaN;
+    o.beam_error_at_largest_pass = r.beam_error.count(m) ? r.beam_error.at(m) : kNaN;
+  }
+  if (unprobed_inside(b)) o.status = "search not finished";
+  else if (b.pass && *b.pass == 0) o.status = "holds at the largest step";
+  else if (!b.pass && b.fail && *b.fail == last) o.status = "fails at the smallest step";
+  else if (b.pass && b.fail && *b.pass - *b.fail == 1) o.status = "bracketed to one grid step";
+  else o.status = "not decided: probes reached the time limit";
+  return o;
+}
+
+StepSearch::Outcome StepSearch::stability() const { return outcome(kStability); }
+StepSearch::Outcome StepSearch::accuracy(HeadlineMetric metric) const { return outcome(static_cast<int>(metric)); }
+
+std::vector<std::string> StepSearch::notes() const {
+  std::vector<std::string> notes;
+  // Non-monotone: a pass at a larger step than a failure. The bracket ends at the smallest failing
+  // step (the result is a step below which every probe passed); the passes above it are reported here.
+  for (int p : predicates()) {
+    const Bracket b = bracket(p);
+    if (!b.fail) continue;
+    std::string above;
+    for (const auto& [index, result] : results_)
+      if (index < *b.fail && judge(p, result) == Outcome3::pass) above += (above.empty() ? "" : ", ") + step_text(grid_[index]);
+    if (above.empty()) continue;
+    const std::string what = p == kStability ? "stable" : std::string(to_string(static_cast<HeadlineMetric>(p))) + " within tolerance";
+    notes.push_back("non-monotone: " + what + " at the larger " + above + " s but not at " + step_text(grid_[*b.fail]) + " s");
+  }
+  for (const auto& [index, result] : results_) {
+    if (result.timed_out)
+      notes.push_back("not decided at " + step_text(grid_[index]) + " s: the probe reached the time limit (smaller steps not tried)");
+    else if (result.verdict == "failed") {
+      const std::string reason = result.reason.size() > 160 ? result.reason.substr(0, 160) + "..." : result.reason;
+      notes.push_back("failed at " + step_text(grid_[index]) + " s (counted as not stable): " + reason);
+    }
+  }
+  return notes;
+}
+
+double StepSearch::probes_wall_time_s() const {
+  double total = 0;
+  for (const auto& [index, result] : results_)
+    if (std::isfinite(result.wall_time_s)) total += result.wall_time_s;
+  return total;
+}
+
+std::string StepSearch::probe_list() const {
+  std::string list;
+  for (const auto& [index, result] : results_)
+    list += (list.empty() ? "" : ";") + step_text(grid_[index]) + ":" + (result.timed_out ? "timed_out" : result.verdict);
+  return list;
+}
+
+// ---- steps.csv and steps.jsonl ----------------------------------------------------------------------
+
+std::string steps_csv_header() {
+  std::string line;
+  for (const auto& [name, value] : step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}))
+    line += (line.empty() ? "" : ",") + name;
+  return line + "\n";
+}
+
+std::string steps_csv_row(const StepRow& row) {
+  std::string line;
+  bool first = true;
+  for (const auto& [name, value] : step_fields(row)) {
+    line += first ? "" : ",";
+    first = false;
+    if (const auto* text = std::get_if<std::string>(&value)) line += csv_escape(*text);
+    else line += exact_text(std::get<double>(value));
+  }
+  return line + "\n";
+}
+
+std::string steps_json_line(const StepRow& row) { return step_json(row).dump() + "\n"; }
+
+void append_step_row(const std::string& folder, const StepRow& row) {
+  append_text(folder + "/steps.jsonl", steps_json_line(row));
+  const std::string csv = folder + "/steps.csv";
+  std::ifstream existing(csv);
+  const bool fresh = !existing.good() || existing.peek() == std::ifstream::traits_type::eof();
+  append_text(csv, (fresh ? steps_csv_header() : "") + steps_csv_row(row));
+}
+
+std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
+  std::vector<double> tolerances;
+  for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(s.tolerance.count(m) ? s.tolerance.at(m) : kNaN);
+  return key_text(group.group_id, s.min_step_s, s.max_step_s, s.points_per_octave, tolerances);
+}
+
+std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
+  std::set<std::string> keys;
+  std::ifstream in(folder + "/steps.jsonl");
+  if (!in) return keys;
+  std::string jsonl, csv = steps_csv_header();
+  for (std::string line; std::getline(in, line);) {
+    const Json j = Json::parse(line, nullptr, false);
+    if (!j.is_object() || !j.contains("notes")) continue;  // cut short by a kill
+    std::vector<double> tolerances;
+    for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(number_or_nan(j, std::string(error_name(m)) + "_tolerance"));
+    keys.insert(key_text(text_or_empty(j, "group_id"), number_or_nan(j, "step_range_min_s"),
+                         number_or_nan(j, "step_range_max_s"), number_or_nan(j, "grid_points_per_octave"), tolerances));
+    jsonl += line + "\n";
+    std::string row;
+    for (const auto& [name, value] : j.items()) {
+      row += row.empty() ? "" : ",";
+      if (value.is_string()) row += csv_escape(value.get<std::string>());
+      else if (value.is_number()) row += exact_text(value.get<double>());
+    }
+    csv += row + "\n";
+  }
+  in.close();
+  for (const auto& [name, text] : {std::pair{"/steps.jsonl", &jsonl}, std::pair{"/steps.csv", &csv}}) {
+    const std::string path = folder + name, temporary = path + ".tmp";
+    std::ofstream out(temporary, std::ios::trunc);
+    out << *text;
+    out.close();
+    if (!out || std::rename(temporary.c_str(), path.c_str()) != 0)
+      throw std::runtime_error(path + ": cannot rewrite: " + std::strerror(errno));
+  }
+  return keys;
+}
+
+std::map<std::string, std::string> recorded_run_lines(const std::string& folder) {
+  std::map<std::string, std::string> lines;
+  std::ifstream in(folder + "/runs.jsonl");
+  for (std::string line; std::getline(in, line);) {
+    const Json j = Json::parse(line, nullptr, false);
+    if (j.is_object() && j.contains("job_id") && j["job_id"].is_string()) lines[j["job_id"].get<std::string>()] = line;
+  }
+  return lines;
+}
+
+}  // namespace ib
