@@ -139,11 +139,11 @@ constexpr const char* kPostResonance =
     "hinge springs add omega h / 2 to zeta, which shortens the start-up transient: measured -0.6 %)";
 constexpr const char* kFreeVibration =
     "free vibration at 1e-5 s for every law (4 s runs are cheap); the largest sensor reading is the first "
-    "impact's (t = 0.048 s, before any drift), so 5 %";
+    "impact's (t = 0.048 s, before any drift; chain reference: Hertz 11.69 g, Newton 10.64 g both from it), so 5 %";
 constexpr const char* kFreeVibrationSpringDashpot =
     "finding: frame 1's sensor peak in free vibration is a phase-sampled statistic of a few impacts. With the "
-    "0.6 ms spring-dashpot contact (longer than the 0.49 ms sensor window) the peak comes from a later impact, "
-    "and where it falls on the 2048 Hz grid decides it: a 0.4 % change of the sensor rate moves the reference's "
+    "0.6 ms spring-dashpot contact (longer than the 0.49 ms sensor window) the peak comes from a later impact "
+    "(chain reference: the first impact alone reads 7.33 g, the whole run 8.11 g), and where it falls on the 2048 Hz grid decides it: a 0.4 % change of the sensor rate moves the reference's "
     "own value by -30 % to +19 %. Engines whose later impacts drift by tens of us land anywhere in that range, "
     "and a smaller step does not help (ODE -6.6 % at 1e-5 s, -10.3 % at 2e-6 s; Bullet +4.0 % at 1e-5 s, -9.3 % "
     "at 5e-6 s): the bound 12 % is the measured spread plus margin, not a convergence check";
