@@ -614,13 +614,18 @@ class Solver {
         event.restitution = event.approach_velocity_m_s > 0 ? event.rebound_velocity_m_s / event.approach_velocity_m_s : 0;
         if (phase == Phase::sticking) {
           ++solution_.sticking_phases;
-          // the sticking phase continues the impact episode that started it
+          // the sticking phase continues the impact episode that started it. Held at delta' = 0 and
+          // released where the holding force would turn tensile, the tips part with zero relative
+          // speed: what the state shows there is rounding (about 1e-17 m/s, of either sign).
           ContactEvent& start = solution_.trajectory.events.back();
           start.end_time_s = event.end_time_s;
           start.impulse_n_s = event.impulse_n_s;
           start.peak_force_n = event.peak_force_n;
-          start.rebound_velocity_m_s = event.rebound_velocity_m_s;
-          start.restitution = event.restitution;
+          start.rebound_velocity_m_s = std::max(0.0, event.rebound_velocity_m_s);
+          // rebound over the approach of the impact that started the episode (the sticking phase's own
+          // "approach" is the rounding left after the plastic impulse)
+          start.restitution =
+              start.approach_velocity_m_s > 0 ? start.rebound_velocity_m_s / start.approach_velocity_m_s : 0;
         } else {
           ++solution_.impacts;
           solution_.trajectory.events.push_back(event);
