@@ -272,6 +272,24 @@ SensorSeries sensor_acceleration(const Trajectory& trajectory, int frame, double
   return out;
 }
 
+// ---- energy ----------------------------------------------------------------------------------------
+
+// Read at the last sample of the window where the tips exchange no force: inside a contact the stored
+// elastic energy depends on how a step resolved the overlap (the verdict reads energy the same way).
+void add_energy_metric(Metrics& m, const Trajectory& t, const MetricSettings& settings) {
+  m.energy_change_relative = kNaN;
+  if (settings.excitation_frequency_hz > 0 || t.mechanical_energy_j.size() != t.size()) return;
+  const double initial = t.initial_mechanical_energy_j;
+  if (!std::isfinite(initial) || initial <= 0) return;
+  for (std::size_t k = t.size(); k-- > 0;) {
+    if (t.time_s[k] > settings.window_end_s) continue;
+    if (t.time_s[k] < settings.window_start_s) break;
+    if (t.contact_force_n[k] != 0) continue;
+    m.energy_change_relative = (t.mechanical_energy_j[k] - initial) / initial;
+    return;
+  }
+}
+
 Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& settings) {
   Metrics m;
   for (int f = 0; f < 2; ++f) m.frames[f] = frame_metrics(trajectory, f, settings);
@@ -279,6 +297,7 @@ Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& sett
                                       settings.merge_window_s));
   m.raw_onsets = onsets_in(trajectory.events, settings.window_start_s, settings.window_end_s);
   add_rate_metrics(m, settings);
+  add_energy_metric(m, trajectory, settings);
   return m;
 }
 
@@ -320,6 +339,7 @@ std::vector<std::pair<std::string, double>> flatten(const Metrics& m) {
   out.emplace_back("mean_approach_velocity_m_s", m.mean_approach_velocity_m_s);
   out.emplace_back("max_penetration_m", m.max_penetration_m);
   out.emplace_back("mean_impulse_n_s", m.mean_impulse_n_s);
+  out.emplace_back("energy_change_relative", m.energy_change_relative);
   return out;
 }
 

@@ -73,6 +73,9 @@ struct Metrics {
   double mean_approach_velocity_m_s = 0;  // NaN without impacts
   double max_penetration_m = 0;           // largest indentation of any impact (0 without impacts)
   double mean_impulse_n_s = 0;            // impulse per impact; NaN without impacts
+  // (E(end of window) - E(0)) / E(0) of the rig's mechanical energy: the energy drift of an unforced run
+  // (with elastic contact and no damping it must stay 0). NaN with a motor or without energy data.
+  double energy_change_relative = 0;
 };
 
 Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& settings);

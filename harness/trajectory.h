@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct Trajectory {
   // Mechanical energy of the whole rig at each sample [J] (kinetic + elastic, contact spring included),
   // for the "energy grows without input" verdict; empty when a simulator cannot provide it.
   std::vector<double> mechanical_energy_j;
+  // The rig's mechanical energy at t = 0 [J] (NaN when unknown): the baseline of the energy verdict and
+  // of the energy change, since the series itself may start long after the run did.
+  double initial_mechanical_energy_j = std::numeric_limits<double>::quiet_NaN();
 
   std::vector<ContactEvent> events;   // every contact episode of the whole run, in time order
 

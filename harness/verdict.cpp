@@ -64,8 +64,11 @@ Judgement judge_stability(const Scenario& scenario, const RunResult& result, con
   // Without a motor nothing feeds energy in: a rise beyond the tolerance is the simulator's doing.
   // Judged while the tips are apart: inside a contact, the elastic energy a simulator stores depends
   // on how it resolves the overlap within a step (a penetration not yet pushed back counts fully).
-  if (!scenario.motor && t.mechanical_energy_j.size() == t.size()) {
-    const double initial = t.mechanical_energy_j.front();
+  // Compared with the energy at t = 0 where the simulator gives it: the series may start long after the
+  // run did, and a run that lost most of its energy must not be judged by its swings late in the run.
+  if (!scenario.motor && t.mechanical_energy_j.size() == t.size() && t.size() > 0) {
+    const double initial = std::isfinite(t.initial_mechanical_energy_j) ? t.initial_mechanical_energy_j
+                                                                         : t.mechanical_energy_j.front();
     for (std::size_t k = 0; k < t.mechanical_energy_j.size(); ++k) {
       const double e = t.mechanical_energy_j[k];
       const bool apart = t.contact_force_n[k] == 0 && t.displacement_m[0][k] - t.displacement_m[1][k] < scenario.gap_m;

@@ -87,6 +87,7 @@ class ReferenceSimulator final : public Simulator {
     // after the cost is taken: the zoom is the report's, not the run's
     result.impact_zoom = zoom_on_strongest_impact(model, scenario, solution.trajectory.events, window, settings);
     result.trajectory = std::move(solution.trajectory);
+    result.trajectory.initial_mechanical_energy_j = solution.energy.initial_energy_j;
     result.status = solution.status;
     result.reason = solution.reason;
     auto& d = result.diagnostics;

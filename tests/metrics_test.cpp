@@ -505,13 +505,14 @@ TEST(Metrics, FlattenNamesEveryFigureOnceWithItsUnit) {
 
   // counts and ratios carry no unit
   const std::set<std::string> dimensionless = {"impacts", "raw_onsets", "excitation_cycles",
-                                               "impacts_per_cycle", "impacts_per_beat", "mean_restitution"};
+                                               "impacts_per_cycle", "impacts_per_beat", "mean_restitution",
+                                               "energy_change_relative"};
   std::set<std::string> names;
   for (const auto& [name, value] : flat) {
     EXPECT_TRUE(names.insert(name).second) << "duplicate " << name;
     EXPECT_TRUE(has_unit_suffix(name) || dimensionless.count(name)) << name;
   }
-  ASSERT_EQ(flat.size(), 21u);
+  ASSERT_EQ(flat.size(), 22u);
 
   auto value = [&](const std::string& name) {
     for (const auto& [n, v] : flat)
@@ -520,7 +521,7 @@ TEST(Metrics, FlattenNamesEveryFigureOnceWithItsUnit) {
     return std::numeric_limits<double>::quiet_NaN();
   };
   EXPECT_EQ(flat.front().first, "frame1_sensor_peak_acceleration_g");
-  EXPECT_EQ(flat.back().first, "mean_impulse_n_s");
+  EXPECT_EQ(flat.back().first, "energy_change_relative");
   EXPECT_EQ(value("frame1_sensor_peak_acceleration_g"), m.frames[0].sensor_peak_acceleration_g);
   EXPECT_EQ(value("frame1_true_peak_acceleration_g"), m.frames[0].true_peak_acceleration_g);
   EXPECT_EQ(value("frame1_rms_acceleration_g"), m.frames[0].rms_acceleration_g);
@@ -539,6 +540,21 @@ TEST(Metrics, FlattenNamesEveryFigureOnceWithItsUnit) {
   EXPECT_EQ(value("mean_approach_velocity_m_s"), m.mean_approach_velocity_m_s);
   EXPECT_EQ(value("max_penetration_m"), m.max_penetration_m);
   EXPECT_EQ(value("mean_impulse_n_s"), m.mean_impulse_n_s);
+}
+
+// The energy drift of an unforced run: the last force-free sample of the window against t = 0.
+TEST(Metrics, EnergyChangeIsTheLastForceFreeSampleAgainstTheStart) {
+  Trajectory t = sampled(100, 0, 101, {});
+  t.initial_mechanical_energy_j = 2e-3;
+  for (std::size_t k = 0; k < t.size(); ++k) t.mechanical_energy_j.push_back(2e-3 - 1e-5 * static_cast<double>(k));
+  t.contact_force_n.back() = 10;  // in contact at the very end: the sample before counts
+  Metrics m = compute_metrics(t, window(0, 1));
+  EXPECT_NEAR(m.energy_change_relative, -99e-5 / 2e-3, 1e-12);
+  MetricSettings forced = window(0, 1);
+  forced.excitation_frequency_hz = 7;  // a motor does work: no drift to speak of
+  EXPECT_TRUE(std::isnan(compute_metrics(t, forced).energy_change_relative));
+  t.initial_mechanical_energy_j = std::numeric_limits<double>::quiet_NaN();  // unknown start
+  EXPECT_TRUE(std::isnan(compute_metrics(t, window(0, 1)).energy_change_relative));
 }
 
 TEST(Metrics, FlattenErrorsPrefixesEveryName) {

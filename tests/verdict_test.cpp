@@ -94,6 +94,21 @@ TEST(Verdict, EnergyGrowingWithoutInputIsUnstableButNotWithAMotor) {
   EXPECT_EQ(judge_stability(free_rig(), r, {}).verdict, Verdict::ok);
 }
 
+// The series of a long run covers its last seconds only: energy is judged against the run's start, so a
+// run that lost most of its energy is not called unstable for swings late in the run, and a run that
+// gained energy before the series began is caught.
+TEST(Verdict, EnergyIsJudgedAgainstTheRunsStart) {
+  RunResult r = quiet_run();
+  r.trajectory.initial_mechanical_energy_j = 5e-3;  // lost 80 % before the series began
+  for (std::size_t k = 0; k < r.trajectory.size(); ++k) r.trajectory.mechanical_energy_j[k] = k % 2 ? 1.1e-3 : 0.9e-3;
+  EXPECT_EQ(judge_stability(free_rig(), r, {}).verdict, Verdict::ok);
+  r = quiet_run();
+  r.trajectory.initial_mechanical_energy_j = 0.5e-3;  // doubled before the series began
+  const Judgement j = judge_stability(free_rig(), r, {});
+  EXPECT_EQ(j.verdict, Verdict::unstable);
+  EXPECT_NE(j.reason.find("from 0.0005 J to 0.001 J at t = 0 s"), std::string::npos) << j.reason;
+}
+
 TEST(Verdict, TheSimulatorsOwnErrorIsKeptWithItsReason) {
   RunResult r = quiet_run();
   r.status = RunStatus::failed;

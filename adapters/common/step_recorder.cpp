@@ -18,6 +18,7 @@ void StepRecorder::record(const StepState& s) {
   ++steps_;
   if (steps_ == 0) {  // the initial state
     previous_ = s;
+    out_.initial_mechanical_energy_j = s.energy_j;
     sample_between(s, s, {0, 0});
     return;
   }
