@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "metrics.h"
+#include "modal_model.h"
 #include "reporters.h"
 #include "run_files.h"
 #include "scenario_toml.h"
@@ -73,6 +74,25 @@ inline std::string feed_scenario_toml(std::string_view text) {
     parse_scenario(text, "fuzz.toml");
   } catch (const ScenarioError& e) {
     return e.what();
+  }
+  return "";
+}
+
+// A scenario file's text, and if it is accepted, the first thing every run computes from it: the
+// frames' first natural frequencies and the motor's (the beam roots with the tip mass). A scenario the
+// loader accepts must not crash or hang them.
+inline std::string feed_scenario_frequencies(std::string_view text) {
+  Scenario scenario;
+  try {
+    scenario = parse_scenario(text, "fuzz.toml");
+  } catch (const ScenarioError& e) {
+    return e.what();
+  }
+  try {
+    frame1_first_frequency_hz(scenario);
+    motor_frequency_hz(scenario);
+  } catch (const std::exception& e) {
+    return std::string("fuzz.toml: ") + e.what();  // a clear refusal, if not the loader's
   }
   return "";
 }

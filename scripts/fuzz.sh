@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 minutes=${1:-3}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(fuzz_scenario_toml fuzz_series_csv fuzz_events_csv fuzz_runs_jsonl)
+((${#targets[@]})) || targets=(fuzz_scenario_toml fuzz_scenario_frequencies fuzz_series_csv fuzz_events_csv fuzz_runs_jsonl)
 
 scripts/install-deps.sh
 IMPACTBENCH_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev" scripts/install-deps.sh --only-extra
@@ -31,7 +31,7 @@ for target in "${targets[@]}"; do
   mkdir -p "$corpus" "$findings"
   seeds=()
   for s in tests/data/fuzz_seeds/$target tests/data/fuzz_regressions/$target; do [[ -d $s ]] && seeds+=("$s"); done
-  if [[ $target == fuzz_scenario_toml ]]; then
+  if [[ $target == fuzz_scenario_* ]]; then
     seeds+=(tests/data/malformed_scenarios scenarios/paper tests/data/report_suite)
   fi
   echo "fuzz: $target for $minutes min (seeds: ${seeds[*]:-none})"

@@ -62,6 +62,11 @@ TEST(FuzzRegressions, ScenarioFilesAreReadOrRefusedWithTheFileNamed) {
   feed_all("fuzz_scenario_toml", "fuzz.toml", [](const std::string& text) { return fuzz::feed_scenario_toml(text); }, 1);
 }
 
+TEST(FuzzRegressions, AcceptedScenariosGiveTheirFrequencies) {
+  feed_all("fuzz_scenario_frequencies", "fuzz.toml",
+           [](const std::string& text) { return fuzz::feed_scenario_frequencies(text); }, 1);
+}
+
 TEST(FuzzRegressions, SavedSeriesAreReadOrRefusedWithTheFileNamed) {
   feed_all("fuzz_series_csv", "series.csv", [](const std::string& text) { return fuzz::feed_series_csv(text); }, 1);
 }
