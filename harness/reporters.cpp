@@ -7,6 +7,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <vector>
+
+#include "run_files.h"
 
 namespace ib {
 namespace {
@@ -44,11 +47,35 @@ Json to_json(const RunRecord& record) {
 
 void append_text(const std::string& path, const std::string& text) {
   std::FILE* f = std::fopen(path.c_str(), "a");
-  if (!f) throw std::runtime_error(path + ": cannot append: " + std::strerror(errno));
+  if (!f) throw OutputError(output_error_text(path, "append to", errno));
+  errno = 0;
   const bool written = std::fputs(text.c_str(), f) >= 0 && std::fflush(f) == 0;
-  const int error = errno;
-  std::fclose(f);
-  if (!written) throw std::runtime_error(path + ": write failed: " + std::strerror(error));
+  int error = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (closed == false && error == 0) error = errno;
+  if (!written || !closed) throw OutputError(output_error_text(path, "append to", error));
+}
+
+// Writes a whole file through a temporary next to it and a rename, so that a failed write leaves the
+// old file as it was.
+void replace_file(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp";
+  std::FILE* f = std::fopen(temporary.c_str(), "w");
+  if (!f) throw OutputError(output_error_text(temporary, "create", errno));
+  errno = 0;
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
+  int error = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!closed && error == 0) error = errno;
+  if (!written || !closed) {
+    std::remove(temporary.c_str());
+    throw OutputError(output_error_text(path, "rewrite", error));
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    error = errno;
+    std::remove(temporary.c_str());
+    throw OutputError(output_error_text(path, "rewrite", error));
+  }
 }
 
 }  // namespace
@@ -71,13 +98,22 @@ std::string csv_row(const RunRecord& record) {
   return line + "\n";
 }
 
-std::string json_line(const RunRecord& record) { return to_json(record).dump() + "\n"; }
+// Invalid UTF-8 in a text field (a scenario name, a reason quoting an engine's message) is replaced,
+// not an exception that would lose the run.
+std::string json_line(const RunRecord& record) {
+  return to_json(record).dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
+}
 
 void write_summary_json(const std::string& path, const RunRecord& record) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
-  out << to_json(record).dump(2) << '\n';
-  if (!out) throw std::runtime_error(path + ": write failed: " + std::strerror(errno));
+  const std::string text = to_json(record).dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw OutputError(output_error_text(path, "create", errno));
+  errno = 0;
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
+  int error = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!closed && error == 0) error = errno;
+  if (!written || !closed) throw OutputError(output_error_text(path, "write", error));
 }
 
 void append_rows(const std::string& folder, const std::string& csv_row_text, const std::string& json_line_text) {
@@ -94,32 +130,37 @@ void append_run(const std::string& folder, const RunRecord& record) {
 
 std::set<std::string> repair_and_list_runs(const std::string& folder) {
   std::set<std::string> ids;
-  std::ifstream in(folder + "/runs.jsonl");
-  if (!in) return ids;
+  errno = 0;
+  std::ifstream in(folder + "/runs.jsonl", std::ios::binary);
+  if (!in) {
+    if (errno == ENOENT) return ids;
+    throw std::runtime_error(folder + "/runs.jsonl: cannot read: " + std::strerror(errno));
+  }
+  // runs.csv is laid out by the header's names, whatever the order or the gaps of a line's keys.
+  const std::vector<Field> columns = fields(RunRecord{});
   std::string jsonl, csv = csv_header(RunRecord{});
   for (std::string line; std::getline(in, line);) {
     const Json j = Json::parse(line, nullptr, /*allow_exceptions=*/false);
-    if (!j.is_object() || !j.contains("job_id") || !j["job_id"].is_string()) continue;  // cut short by a kill
+    // A line a kill cut short, or one that is not a run's record, is dropped: its job runs again.
+    if (!j.is_object() || !j.contains("job_id") || !j["job_id"].is_string() || !j.contains("verdict") ||
+        !j["verdict"].is_string())
+      continue;
     ids.insert(j["job_id"].get<std::string>());
     jsonl += line + "\n";
     std::string row;
-    for (const auto& [name, value] : j.items()) {
-      if (name == "diagnostics") continue;
-      row += row.empty() ? "" : ",";
-      if (value.is_string()) row += csv_escape(value.get<std::string>());
-      else if (value.is_number()) row += number_text(value.get<double>());
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (c) row += ",";
+      const auto value = j.find(columns[c].name);
+      if (value == j.end()) continue;
+      if (value->is_string()) row += csv_escape(value->get<std::string>());
+      else if (value->is_number()) row += number_text(value->get<double>());
     }
     csv += row + "\n";
   }
+  if (in.bad()) throw std::runtime_error(folder + "/runs.jsonl: read error");
   in.close();
-  for (const auto& [name, text] : {std::pair{"/runs.jsonl", &jsonl}, std::pair{"/runs.csv", &csv}}) {
-    const std::string path = folder + name, temporary = path + ".tmp";
-    std::ofstream out(temporary, std::ios::trunc);
-    out << *text;
-    out.close();
-    if (!out || std::rename(temporary.c_str(), path.c_str()) != 0)
-      throw std::runtime_error(path + ": cannot rewrite: " + std::strerror(errno));
-  }
+  replace_file(folder + "/runs.jsonl", jsonl);
+  replace_file(folder + "/runs.csv", csv);
   return ids;
 }
 

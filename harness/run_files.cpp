@@ -21,13 +21,18 @@ using File = std::unique_ptr<std::FILE, FileCloser>;
 
 File open_for_writing(const std::string& path) {
   File f(std::fopen(path.c_str(), "w"));
-  if (!f) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+  if (!f) throw OutputError(output_error_text(path, "create", errno));
   return f;
 }
 
+// Flushes and closes: a full disk shows at the flush or the close, never silently.
 void finish(File& f, const std::string& path) {
-  if (std::fflush(f.get()) != 0 || std::ferror(f.get()))
-    throw std::runtime_error(path + ": write failed: " + std::strerror(errno));
+  errno = 0;
+  const bool flushed = std::fflush(f.get()) == 0 && !std::ferror(f.get());
+  int error = errno;
+  const bool closed = std::fclose(f.release()) == 0;
+  if (!closed && error == 0) error = errno;
+  if (!flushed || !closed) throw OutputError(output_error_text(path, "write", error));
 }
 
 constexpr const char* kSeriesHeader =
@@ -39,9 +44,8 @@ constexpr const char* kEventsHeader =
     "peak_force_n,impulse_n_s,max_indentation_m";
 
 // Rows of numbers after a known header; an empty cell is NaN.
-std::vector<std::vector<double>> read_table(const std::string& path, const std::string& header, std::size_t columns) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot read: " + std::strerror(errno));
+std::vector<std::vector<double>> read_table(std::istream& in, const std::string& path, const std::string& header,
+                                            std::size_t columns) {
   std::string line;
   if (!std::getline(in, line) || line != header)
     throw std::runtime_error(path + ":1: unexpected header; expected: " + header);
@@ -65,7 +69,15 @@ std::vector<std::vector<double>> read_table(const std::string& path, const std::
                                " values; expected " + std::to_string(columns));
     rows.push_back(std::move(row));
   }
+  if (in.bad()) throw std::runtime_error(path + ": read error");
   return rows;
+}
+
+std::ifstream open_for_reading(const std::string& path) {
+  errno = 0;
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot read: " + std::strerror(errno ? errno : ENOENT));
+  return in;
 }
 
 void print(std::FILE* f, double value, const char* format) {
@@ -73,6 +85,27 @@ void print(std::FILE* f, double value, const char* format) {
 }
 
 }  // namespace
+
+std::string output_error_text(const std::string& path, const std::string& action, int error) {
+  std::string advice;
+  switch (error) {
+    case ENOSPC:
+    case EDQUOT:
+      advice = "free space on that disk (or choose another output folder), then continue the suite with --resume";
+      break;
+    case EACCES:
+    case EPERM:
+    case EROFS:
+      advice = "make the folder writable (or choose another output folder)";
+      break;
+    case ENOTDIR:
+      advice = "a part of the path is a file, not a folder: choose another output folder";
+      break;
+    default:
+      advice = "check the output folder (or choose another one)";
+  }
+  return path + ": cannot " + action + ": " + (error ? std::strerror(error) : "unknown error") + "; " + advice;
+}
 
 void write_series_csv(const std::string& path, const Trajectory& t) {
   File f = open_for_writing(path);
@@ -113,7 +146,17 @@ void write_events_csv(const std::string& path, const Trajectory& t) {
 }
 
 void read_series_csv(const std::string& path, Trajectory& t) {
-  const auto rows = read_table(path, kSeriesHeader, 12);
+  std::ifstream in = open_for_reading(path);
+  read_series_csv(in, path, t);
+}
+
+void read_events_csv(const std::string& path, Trajectory& t) {
+  std::ifstream in = open_for_reading(path);
+  read_events_csv(in, path, t);
+}
+
+void read_series_csv(std::istream& in, const std::string& path, Trajectory& t) {
+  const auto rows = read_table(in, path, kSeriesHeader, 12);
   t = Trajectory{};
   t.reserve(rows.size());
   for (const auto& r : rows) {
@@ -135,9 +178,9 @@ void read_series_csv(const std::string& path, Trajectory& t) {
   }
 }
 
-void read_events_csv(const std::string& path, Trajectory& t) {
+void read_events_csv(std::istream& in, const std::string& path, Trajectory& t) {
   t.events.clear();
-  for (const auto& r : read_table(path, kEventsHeader, 9)) {
+  for (const auto& r : read_table(in, path, kEventsHeader, 9)) {
     ContactEvent e;
     e.onset_time_s = r[0];
     e.end_time_s = r[1];

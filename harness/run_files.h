@@ -3,17 +3,32 @@
 // every column.
 #pragma once
 
+#include <istream>
+#include <stdexcept>
 #include <string>
 
 #include "trajectory.h"
 
 namespace ib {
 
-// Throw std::runtime_error naming the file when it cannot be written or read.
+// A result file or folder that cannot be written (full disk, no permission, a path under a file). It
+// stops a suite: every later run would be lost the same way. what() names the file, the OS's reason and
+// what to do; the command exits with its own code (harness/cli/main.cpp).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+// The message of an OutputError: "<path>: cannot <action>: <reason>; <what to do>". `error` is an errno.
+std::string output_error_text(const std::string& path, const std::string& action, int error);
+
+// Write errors throw OutputError; read errors std::runtime_error, both naming the file.
 void write_series_csv(const std::string& path, const Trajectory& trajectory);
 void write_events_csv(const std::string& path, const Trajectory& trajectory);
 // Fills the series (and output rate, start time) or the events of `trajectory` from a file written above.
 void read_series_csv(const std::string& path, Trajectory& trajectory);
 void read_events_csv(const std::string& path, Trajectory& trajectory);
+// The same from a stream; `name` is the file named in messages (the fuzz targets read from memory).
+void read_series_csv(std::istream& in, const std::string& name, Trajectory& trajectory);
+void read_events_csv(std::istream& in, const std::string& name, Trajectory& trajectory);
 
 }  // namespace ib

@@ -85,7 +85,7 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   if (!run_folder.empty()) {
     std::error_code error;
     std::filesystem::create_directories(run_folder, error);
-    if (error) throw std::runtime_error(run_folder + ": cannot create the run folder: " + error.message());
+    if (error) throw OutputError(output_error_text(run_folder, "create the run folder", error.value()));
     write_series_csv(run_folder + "/series.csv", result.trajectory);
     write_events_csv(run_folder + "/events.csv", result.trajectory);
     if (result.impact_zoom.size() > 0) write_series_csv(run_folder + "/impact.csv", result.impact_zoom);

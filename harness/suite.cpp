@@ -1,6 +1,7 @@
 #include "suite.h"
 
 #include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,6 +22,7 @@
 
 #include "reference_simulator.h"
 #include "reporters.h"
+#include "run_files.h"
 #include "scenario_toml.h"
 
 namespace ib {
@@ -87,6 +89,80 @@ std::string read_file(const std::string& path) {
   return buffer.str();
 }
 
+// ---- Interruption: SIGINT and SIGTERM stop the suite between results, never in the middle of one.
+// The handler only notes the signal; the runner stops its workers, records nothing half-done and
+// returns. A terminal's Ctrl-C reaches the workers too (same process group): they die at once, and
+// what they had not finished is not recorded, so that --resume runs it again.
+
+volatile std::sig_atomic_t interrupt_signal = 0;
+
+extern "C" void note_interruption(int signal) { interrupt_signal = signal; }
+
+// Installs the handler for the runner's lifetime and restores the previous one after.
+class InterruptionHandler {
+ public:
+  InterruptionHandler() {
+    interrupt_signal = 0;
+    struct sigaction action {};
+    action.sa_handler = note_interruption;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &previous_int_);
+    sigaction(SIGTERM, &action, &previous_term_);
+  }
+  ~InterruptionHandler() {
+    sigaction(SIGINT, &previous_int_, nullptr);
+    sigaction(SIGTERM, &previous_term_, nullptr);
+  }
+  InterruptionHandler(const InterruptionHandler&) = delete;
+  InterruptionHandler& operator=(const InterruptionHandler&) = delete;
+
+ private:
+  struct sigaction previous_int_ {}, previous_term_ {};
+};
+
+bool interrupted() { return interrupt_signal != 0; }
+
+// In a job's process, right after fork: the default signal actions (the parent's handler would only
+// set a flag nobody reads), and death with the parent, so that a suite killed with SIGKILL leaves no
+// orphan writing into the folder a --resume is about to use.
+void become_worker(pid_t parent) {
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (getppid() != parent) _exit(1);  // the parent died before prctl
+}
+
+// ---- Write errors inside a job's process: the message goes to the parent through a pipe and the
+// process exits with this code; the parent stops the suite with that message (OutputError).
+constexpr int kWorkerOutputError = 75;
+
+void send_and_exit(int pipe_fd, const std::string& message) {
+  if (pipe_fd >= 0) {
+    const ssize_t written = write(pipe_fd, message.data(), std::min<std::size_t>(message.size(), 4000));
+    (void)written;
+  }
+  _exit(kWorkerOutputError);
+}
+
+std::string receive(int pipe_fd) {
+  std::string message;
+  char buffer[4096];
+  for (ssize_t n; (n = read(pipe_fd, buffer, sizeof buffer)) > 0;) message.append(buffer, static_cast<std::size_t>(n));
+  return message;
+}
+
+// A small file written whole, checked at every step (row.csv and row.jsonl of a job).
+void write_whole_file(const std::string& path, const std::string& text) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw OutputError(output_error_text(path, "create", errno));
+  errno = 0;
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
+  int error = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!closed && error == 0) error = errno;
+  if (!written || !closed) throw OutputError(output_error_text(path, "write", error));
+}
+
 // Progress on stderr: a bar that redraws itself on a terminal, one plain line per job elsewhere.
 class Progress {
  public:
@@ -124,13 +200,17 @@ class Progress {
 class SuiteRunner {
  public:
   explicit SuiteRunner(const SuiteSettings& settings) : settings_(settings) {}
+  // On an exception (a result that cannot be written), no worker outlives the runner.
+  ~SuiteRunner() { stop_workers(/*collect_finished=*/false); }
+  SuiteRunner(const SuiteRunner&) = delete;
+  SuiteRunner& operator=(const SuiteRunner&) = delete;
 
   SuiteOutcome run() {
     std::error_code error;
     fs::create_directories(settings_.out, error);
-    if (error) throw std::runtime_error(settings_.out + ": cannot create the output folder: " + error.message());
+    if (error) throw OutputError(output_error_text(settings_.out, "create the output folder", error.value()));
     if (access(settings_.out.c_str(), W_OK) != 0)
-      throw std::runtime_error(settings_.out + ": the output folder is not writable: " + std::strerror(errno));
+      throw OutputError(output_error_text(settings_.out, "write into the output folder", errno));
     if (settings_.resume) recorded_ = repair_and_list_runs(settings_.out);
     else if (fs::exists(settings_.out + "/runs.jsonl"))
       throw std::runtime_error(settings_.out + " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
@@ -139,6 +219,7 @@ class SuiteRunner {
     for (const auto& job : jobs_) to_run += recorded_.count(job.id) ? 0 : 1;
     outcome_.jobs_skipped = static_cast<int>(jobs_.size()) - (to_run - static_cast<int>(unrunnable_.size()));
     progress_ = std::make_unique<Progress>(to_run);
+    outcome_.jobs_total = static_cast<int>(jobs_.size() + unrunnable_.size());
     for (const RunRecord& r : unrunnable_) finish(r);
     // References first (beam, then chain): engine jobs are compared with them.
     for (JobKind phase : {JobKind::beam_reference, JobKind::chain_reference, JobKind::engine}) {
@@ -148,10 +229,16 @@ class SuiteRunner {
       }
       for (const PlannedJob& job : jobs_) {
         if (job.kind != phase || recorded_.count(job.id)) continue;
-        while (static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) reap(true);
+        while (!interrupted() && static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) reap(true);
+        if (interrupted()) break;
         start(job);
       }
-      while (!running_.empty()) reap(true);
+      while (!interrupted() && !running_.empty()) reap(true);
+      if (interrupted()) break;
+    }
+    if (interrupted()) {
+      stop_workers(/*collect_finished=*/true);
+      outcome_.interrupted_by = interrupt_signal;
     }
     return outcome_;
   }
@@ -161,7 +248,31 @@ class SuiteRunner {
     const PlannedJob* job;
     Clock::time_point started;
     bool timed_out = false;
+    int message_pipe = -1;  // read end: a write error's message from the job's process
   };
+
+  // Stops every worker. With collect_finished, a job that ended cleanly before the stop is recorded
+  // first (nothing finished is lost); the others are killed and not recorded (--resume reruns them).
+  void stop_workers(bool collect_finished) {
+    if (collect_finished) {
+      for (int status = 0;;) {
+        const pid_t pid = waitpid(-1, &status, WNOHANG);
+        if (pid <= 0) break;
+        auto it = running_.find(pid);
+        if (it == running_.end()) continue;
+        const Running r = it->second;
+        running_.erase(it);
+        collect(*r.job, status, r.timed_out, r.message_pipe);
+      }
+    }
+    for (const auto& [pid, r] : running_) kill(pid, SIGKILL);
+    for (const auto& [pid, r] : running_) {
+      int status = 0;
+      waitpid(pid, &status, 0);
+      if (r.message_pipe >= 0) close(r.message_pipe);
+    }
+    running_.clear();
+  }
 
   std::string folder_of(const PlannedJob& job) const { return settings_.out + "/runs/" + job.id; }
 
@@ -274,21 +385,30 @@ class SuiteRunner {
     std::error_code error;
     fs::remove_all(folder, error);  // a previous, unfinished attempt
     fs::create_directories(folder, error);
-    if (error) throw std::runtime_error(folder + ": cannot create the run folder: " + error.message());
+    if (error) throw OutputError(output_error_text(folder, "create the run folder", error.value()));
     const Scenario& scenario = scenarios_[job.scenario];
     // Load the references in this process, so that the job's process inherits them.
     const ReferenceData* beam = reference(job.beam_reference, scenario);
     const ReferenceData* chain = reference(job.chain_reference, scenario);
     std::fflush(nullptr);
+    int message_pipe[2] = {-1, -1};
+    if (pipe2(message_pipe, O_CLOEXEC) != 0)
+      throw std::runtime_error(std::string("cannot start a job's process: pipe: ") + std::strerror(errno));
+    const pid_t parent = getpid();
     const pid_t pid = fork();
     if (pid < 0) throw std::runtime_error(std::string("cannot start a job's process: ") + std::strerror(errno));
-    if (pid == 0) run_in_child(job, folder, scenario, beam, chain);  // never returns
-    running_.emplace(pid, Running{&job, Clock::now()});
+    if (pid == 0) {
+      become_worker(parent);
+      close(message_pipe[0]);
+      run_in_child(job, folder, scenario, beam, chain, message_pipe[1]);  // never returns
+    }
+    close(message_pipe[1]);
+    running_.emplace(pid, Running{&job, Clock::now(), false, message_pipe[0]});
   }
 
   // The job's process: its output goes to log.txt; its record to row.csv and row.jsonl for the parent.
   [[noreturn]] void run_in_child(const PlannedJob& job, const std::string& folder, const Scenario& scenario,
-                                 const ReferenceData* beam, const ReferenceData* chain) {
+                                 const ReferenceData* beam, const ReferenceData* chain, int message_pipe) {
     const int log = open((folder + "/log.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (log >= 0) {
       dup2(log, STDOUT_FILENO);
@@ -298,6 +418,8 @@ class SuiteRunner {
     RunRecord record;
     try {
       record = run_job(scenario, job.spec, settings_.measurement, beam, chain, folder, nullptr, settings_.factory);
+    } catch (const OutputError& e) {
+      send_and_exit(message_pipe, e.what());
     } catch (const std::exception& e) {
       record = unrunnable(job.id, scenario.name, scenario.source_path, job.spec.engine, to_string(job.spec.settings.law),
                           e.what());
@@ -307,10 +429,10 @@ class SuiteRunner {
     record.job_id = job.id;
     record.chain_links = job.chain_links;
     try {
-      std::ofstream(folder + "/row.csv") << csv_row(record);
-      std::ofstream(folder + "/row.jsonl") << json_line(record);
-    } catch (...) {
-      _exit(3);
+      write_whole_file(folder + "/row.csv", csv_row(record));
+      write_whole_file(folder + "/row.jsonl", json_line(record));
+    } catch (const std::exception& e) {
+      send_and_exit(message_pipe, e.what());
     }
     std::fflush(nullptr);
     _exit(0);
@@ -327,7 +449,7 @@ class SuiteRunner {
         if (it == running_.end()) continue;
         const Running r = it->second;
         running_.erase(it);
-        return std::pair{r.job, collect(*r.job, status, r.timed_out)};
+        return std::pair{r.job, collect(*r.job, status, r.timed_out, r.message_pipe)};
       }
       const auto now = Clock::now();
       for (auto& [child, r] : running_) {
@@ -336,13 +458,19 @@ class SuiteRunner {
           kill(child, SIGKILL);
         }
       }
-      if (!block || running_.empty()) return std::nullopt;
+      if (!block || running_.empty() || interrupted()) return std::nullopt;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   }
 
-  std::string collect(const PlannedJob& job, int status, bool timed_out) {
+  // Records a job that ended; returns its runs.jsonl line ("" when an interruption stopped it: nothing
+  // is recorded and --resume reruns it).
+  std::string collect(const PlannedJob& job, int status, bool timed_out, int message_pipe) {
     const std::string folder = folder_of(job);
+    const std::string output_error = message_pipe >= 0 ? receive(message_pipe) : "";
+    if (message_pipe >= 0) close(message_pipe);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerOutputError)
+      throw OutputError(output_error.empty() ? output_error_text(folder, "write the run's files", 0) : output_error);
     const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
     if (clean) {
       const std::string json = read_file(folder + "/row.jsonl"), csv = read_file(folder + "/row.csv");
@@ -353,6 +481,7 @@ class SuiteRunner {
       fs::remove(folder + "/row.csv");
       return json;
     }
+    if (interrupted()) return "";  // stopped by the interruption, not by its own fault: --resume reruns it
     const Scenario& s = scenarios_[job.scenario];
     RunRecord record = unrunnable(job.id, s.name, s.source_path, job.spec.engine, to_string(job.spec.settings.law),
                                   describe_exit(status, settings_.time_limit_s, timed_out, last_line(folder + "/log.txt")));
@@ -406,7 +535,7 @@ class SuiteRunner {
       groups.push_back(std::move(g));
     }
     std::map<std::string, std::size_t> group_of_probe;
-    while (true) {
+    while (!interrupted()) {  // an interruption leaves the rest to --resume (run() stops the workers)
       for (std::size_t i = 0; i < groups.size(); ++i) {
         Group& g = groups[i];
         if (g.finished || g.running) continue;
@@ -428,7 +557,7 @@ class SuiteRunner {
           ++outcome_.step_searches;
           continue;
         }
-        if (static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) continue;  // waits for a worker
+        if (interrupted() || static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) continue;  // waits for a worker
         probe_jobs_.push_back(probe);
         group_of_probe[probe.id] = i;
         g.probe_index = *next;
@@ -439,7 +568,7 @@ class SuiteRunner {
       if (running_.empty()) break;  // every group has finished
       if (const auto ended = reap(true)) {
         const auto found = group_of_probe.find(ended->first->id);
-        if (found == group_of_probe.end()) continue;
+        if (found == group_of_probe.end() || ended->second.empty()) continue;
         Group& g = groups[found->second];
         recorded[ended->first->id] = ended->second;
         g.search->add(g.probe_index, probe_from_json(ended->second, g.with_chain));
@@ -463,6 +592,9 @@ class SuiteRunner {
 
 }  // namespace
 
-SuiteOutcome run_suite(const SuiteSettings& settings) { return SuiteRunner(settings).run(); }
+SuiteOutcome run_suite(const SuiteSettings& settings) {
+  const InterruptionHandler handler;  // outlives the runner, which stops its workers when it ends
+  return SuiteRunner(settings).run();
+}
 
 }  // namespace ib

@@ -42,10 +42,14 @@ struct SuiteOutcome {
   int jobs_skipped = 0;     // already recorded (--resume)
   int not_ok = 0;           // unstable or failed among those run
   int step_searches = 0;    // groups whose step search ended (a row in steps.csv) in this invocation
+  int jobs_total = 0;       // the whole matrix, recorded or not
+  int interrupted_by = 0;   // the signal (SIGINT, SIGTERM) that stopped the suite early; 0: it ran to the end
 };
 
-// Runs the suite; progress goes to stderr (a bar on a terminal, lines otherwise). Throws
-// std::runtime_error when the output folder cannot be written.
+// Runs the suite; progress goes to stderr (a bar on a terminal, lines otherwise). SIGINT or SIGTERM
+// stops the worker processes, keeps every finished result and returns with interrupted_by set (a
+// later --resume runs the rest). Throws OutputError (run_files.h) when a result cannot be written:
+// the output folder, a run's folder or files, runs.csv or runs.jsonl; the workers are stopped first.
 SuiteOutcome run_suite(const SuiteSettings& settings);
 
 }  // namespace ib

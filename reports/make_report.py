@@ -73,8 +73,11 @@ def main():
     figures_folder = os.path.join(out, "figures")
     os.makedirs(figures_folder, exist_ok=True)
 
-    suite = data.read_runs(args.suite)
-    steps = data.read_steps(args.suite)  # None unless the suite searched steps (--find-steps)
+    try:
+        suite = data.read_runs(args.suite)
+        steps = data.read_steps(args.suite)  # None unless the suite searched steps (--find-steps)
+    except data.ResultsError as error:
+        sys.exit(f"make_report: {error}")
     experiment = data.read_experiment(os.path.join(os.path.dirname(os.path.abspath(__file__)), "experiment.toml"))
     facts = provenance(suite)
     versions = ", ".join(sorted({r["engine_version"] for r in suite.runs if r["engine_version"] and r["engine"] != "reference"}))

@@ -18,6 +18,12 @@ packages=(
   libbenchmark-dev               # bench/: speed measurements
 )
 
+# scripts/fuzz.sh alone needs clang-14 and libclang-rt-14-dev (libFuzzer): it passes them in
+# IMPACTBENCH_EXTRA_PACKAGES with --only-extra, so that the normal build never installs them.
+if [[ "${1:-}" == --only-extra ]]; then
+  read -r -a packages <<<"${IMPACTBENCH_EXTRA_PACKAGES:-}"
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

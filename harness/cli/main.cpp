@@ -1,11 +1,18 @@
-// impactbench: the command line. Exit codes: 0 all runs ok, 1 some run unstable or failed,
-// 2 bad usage or input.
+// impactbench: the command line. Exit codes:
+//   0    every run ok (or inaccurate)
+//   1    some run unstable or failed (its files and reason are still written)
+//   2    bad usage or input (the message names the file, line, key or option, the value and what is allowed)
+//   3    a result could not be written (full disk, unwritable folder): the message names the file, the
+//        OS's reason and what to do; everything recorded before it is kept, and `suite --resume` goes on
+//   130  `suite` stopped by SIGINT (143: SIGTERM), every finished result kept; the message says how to resume
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -16,6 +23,7 @@
 
 #include "modal_model.h"
 #include "reference_simulator.h"
+#include "run_files.h"
 #include "run_job.h"
 #include "scenario_toml.h"
 #include "simulator.h"
@@ -26,7 +34,26 @@
 
 namespace {
 
-constexpr int kExitOk = 0, kExitRunNotOk = 1, kExitBadInput = 2;
+constexpr int kExitOk = 0, kExitRunNotOk = 1, kExitBadInput = 2, kExitOutputError = 3;
+constexpr int kExitInterrupted = 128;  // + the signal's number, as a shell reports a process it stopped
+
+// The command line as typed, with --resume added when missing: what continues an interrupted suite.
+std::string resume_command(int argc, char** argv) {
+  std::string command = "impactbench";
+  bool resume = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    resume = resume || arg == "--resume";
+    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789-_=.,/:+@%") == std::string::npos;
+    std::string quoted = "'";
+    for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    command += " " + (plain ? arg : quoted + "'");
+  }
+  return command + (resume ? "" : " --resume");
+}
+int g_argc = 0;
+char** g_argv = nullptr;
 
 std::vector<std::string> split(const std::string& text, char separator) {
   std::vector<std::string> parts;
@@ -269,6 +296,11 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
     throw std::invalid_argument("--step-range and --tolerance need --find-steps");
   }
   const ib::SuiteOutcome outcome = ib::run_suite(s);
+  if (outcome.interrupted_by != 0) {
+    std::fprintf(stderr, "\nimpactbench: interrupted after %d of %d jobs; continue with: %s\n",
+                 outcome.jobs_skipped + outcome.jobs_run, outcome.jobs_total, resume_command(g_argc, g_argv).c_str());
+    return kExitInterrupted + outcome.interrupted_by;
+  }
   std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed\n",
               outcome.jobs_run, o.out.c_str(), outcome.jobs_skipped, outcome.not_ok);
   if (o.find_steps)
@@ -294,8 +326,10 @@ int command_export(const std::string& path, const std::string& engine, const std
     std::cout << text;
   } else {
     std::ofstream file(out);
+    if (!file) throw ib::OutputError(ib::output_error_text(out, "create", errno));
     file << text;
-    if (!file) throw std::runtime_error(out + ": cannot write");
+    file.close();
+    if (!file) throw ib::OutputError(ib::output_error_text(out, "write", errno));
     std::fprintf(stderr, "model written to %s\n", out.c_str());
   }
   return kExitOk;
@@ -304,6 +338,16 @@ int command_export(const std::string& path, const std::string& engine, const std
 // The report is made by reports/make_report.py with Debian's matplotlib (python3-matplotlib), from
 // the saved results alone.
 int command_report(const std::string& suite_folder, const std::string& out) {
+  // An unwritable report folder is said here, in the words of every other write error, not as a traceback.
+  // (A folder without runs.csv is left to make_report.py, which says so.)
+  const std::string folder = out.empty() ? suite_folder + "/report" : out;
+  if (std::filesystem::exists(suite_folder + "/runs.csv")) {
+    std::error_code error;
+    std::filesystem::create_directories(folder, error);
+    if (error) throw ib::OutputError(ib::output_error_text(folder, "create the report folder", error.value()));
+    if (access(folder.c_str(), W_OK) != 0)
+      throw ib::OutputError(ib::output_error_text(folder, "write into the report folder", errno));
+  }
   std::string command = std::string(IMPACTBENCH_PYTHON) + " " + IMPACTBENCH_SOURCE_DIR + "/reports/make_report.py '" +
                         suite_folder + "'";
   if (!out.empty()) command += " --out '" + out + "'";
@@ -335,6 +379,8 @@ int command_list(const std::string& folder) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  g_argc = argc;
+  g_argv = argv;
   CLI::App app{"impactbench: a benchmark of physics engines on a two-frame vibro-impact rig"};
   app.require_subcommand(1);
 
@@ -418,6 +464,9 @@ int main(int argc, char** argv) {
     if (report->parsed()) return command_report(report_folder, report_out);
     if (export_model->parsed()) return command_export(scenario_path, export_engine, law, export_out, time_step_s, options);
     return command_list(list_folder);
+  } catch (const ib::OutputError& error) {
+    std::fprintf(stderr, "impactbench: %s\n", error.what());
+    return kExitOutputError;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "impactbench: %s\n", error.what());
     return kExitBadInput;

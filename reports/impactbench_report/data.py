@@ -66,18 +66,35 @@ class Suite:
         return read_series(path) if os.path.exists(path) else None
 
 
+class ResultsError(ValueError):
+    """A runs.csv the report cannot read: the message names the file, the line, the column and the value."""
+
+
 def read_runs(folder):
+    """The rows of runs.csv, sorted by job id: the report does not depend on the order in which jobs
+    finished (parallel workers, a suite interrupted and resumed)."""
     path = os.path.join(folder, "runs.csv")
     suite = Suite(folder)
     with open(path, newline="") as f:
-        for row in csv.DictReader(f):
+        reader = csv.DictReader(f)
+        if not reader.fieldnames or "job_id" not in reader.fieldnames:
+            raise ResultsError(f"{path}:1: no header with job_id (is this a suite's runs.csv?)")
+        for row in reader:
+            line = reader.line_num
+            if None in row or any(text is None for text in row.values()):
+                raise ResultsError(f"{path}:{line}: not the header's {len(reader.fieldnames)} columns: a cut or "
+                                   "garbled row (`impactbench suite ... --resume` rebuilds runs.csv from runs.jsonl)")
             values = {}
             for name, text in row.items():
                 if name in TEXT_COLUMNS:
                     values[name] = text
-                else:
+                    continue
+                try:
                     values[name] = float(text) if text != "" else math.nan
+                except ValueError:
+                    raise ResultsError(f"{path}:{line}: {name} = '{text}': not a number") from None
             suite.runs.append(Run(values))
+    suite.runs.sort(key=lambda r: r["job_id"])
     return suite
 
 

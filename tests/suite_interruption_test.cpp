@@ -1,0 +1,286 @@
+// A suite interrupted midway and resumed with --resume loses no finished result and ends with the
+// same results and report as an uninterrupted one. Through the command, as a user meets it:
+//   - Ctrl-C: SIGINT to the whole process group (the suite and its workers), as a terminal sends it;
+//   - SIGTERM to the suite alone (a scheduler's stop): it must stop its workers itself;
+//   - SIGKILL to the suite alone (no chance to clean up): its workers must not outlive it.
+// Each is sent once a few results are recorded. The suite (two short scenarios, two laws, the reference
+// and MuJoCo when built) is compared with an uninterrupted run of the same command: the same job ids and
+// every field of runs.jsonl and runs.csv equal except the timing ones (wall_time_s, cpu_time_s,
+// wall_time_per_simulated_s), compared sorted by job id, and every run's series.csv, events.csv and
+// impact.csv equal byte for byte. The report is made from nothing else, so one test (Ctrl-C) also makes
+// both reports (it takes matplotlib several seconds each) and compares summary.md with its date, its
+// folder and the timing it shows masked (the run-time column, and the "at equal run time" line, whose
+// choice depends on measured times). The report sorts its runs by job id, so that the order in which
+// jobs finished does not show.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+const std::vector<std::string> kTimingFields = {"wall_time_s", "cpu_time_s", "wall_time_per_simulated_s"};
+
+std::vector<std::string> suite_arguments(const fs::path& out) {
+  std::vector<std::string> args = {IMPACTBENCH_EXECUTABLE, "suite", std::string(IMPACTBENCH_TEST_DATA_DIR) + "/report_suite",
+                                   "--laws", "hertz,viscoelastic", "--jobs", "2", "--out", out.string()};
+#if IMPACTBENCH_WITH_MUJOCO
+  for (const char* a : {"--engines", "reference,mujoco", "--dt", "1e-4"}) args.push_back(a);
+#endif
+  return args;
+}
+
+// Starts the command in a process group of its own (as a shell does), output to `log`.
+pid_t start(const std::vector<std::string>& args, const fs::path& log) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setpgid(0, 0);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, STDOUT_FILENO);
+    dup2(fd, STDERR_FILENO);
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  setpgid(pid, pid);  // also here: no race with the signal below
+  return pid;
+}
+
+int wait_for(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::size_t lines_of(const fs::path& path) {
+  std::ifstream in(path);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) n += line.empty() ? 0 : 1;
+  return n;
+}
+
+// Processes still alive (not zombies) in process group `group`, from /proc.
+int live_processes_in_group(pid_t group) {
+  int n = 0;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string stat = read_text(entry.path() / "stat");
+    const auto close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(stat.substr(close + 2));
+    char state = 0;
+    long parent = 0, pgrp = 0;
+    rest >> state >> parent >> pgrp;
+    if (pgrp == group && state != 'Z' && state != 'X') ++n;
+  }
+  return n;
+}
+
+// runs.jsonl as job id -> record without its timing fields.
+std::map<std::string, Json> results(const fs::path& out) {
+  std::map<std::string, Json> by_id;
+  std::ifstream in(out / "runs.jsonl");
+  for (std::string line; std::getline(in, line);) {
+    Json j = Json::parse(line);
+    for (const std::string& f : kTimingFields) j.erase(f);
+    const std::string id = j["job_id"];
+    EXPECT_EQ(by_id.count(id), 0u) << "recorded twice: " << id;
+    by_id[id] = j;
+  }
+  return by_id;
+}
+
+// runs.csv as job id -> row with the timing cells emptied (the header checked equal separately).
+std::map<std::string, std::string> csv_results(const fs::path& out, std::string& header) {
+  std::ifstream in(out / "runs.csv");
+  std::getline(in, header);
+  std::vector<std::string> names;
+  std::stringstream h(header);
+  for (std::string n; std::getline(h, n, ',');) names.push_back(n);
+  std::map<std::string, std::string> by_id;
+  for (std::string line; std::getline(in, line);) {
+    // no quoted commas in these runs (reasons are empty or plain); split plainly
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
+    std::string masked;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const bool timing = i < names.size() && std::find(kTimingFields.begin(), kTimingFields.end(), names[i]) != kTimingFields.end();
+      masked += (i ? "," : "") + (timing ? std::string("<time>") : cells[i]);
+    }
+    by_id[cells.empty() ? "" : cells[0]] = masked;
+  }
+  return by_id;
+}
+
+// summary.md with what legitimately differs between two runs of the same suite masked: the date, the
+// run-time column of the tables and the equal-run-time line.
+std::string masked_summary(const fs::path& report) {
+  std::istringstream in(read_text(report / "summary.md"));
+  std::string out;
+  int run_time_column = -1;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("- date:", 0) == 0) line = "- date: <date>";
+    if (line.rfind("- suite:", 0) == 0) line = "- suite: <folder>";  // the two suites' folders
+    if (line.rfind("At equal run time", 0) == 0) line = "At equal run time: <depends on measured times>";
+    if (line.rfind("| ", 0) == 0) {
+      std::vector<std::string> cells;
+      std::size_t at = 0;
+      for (std::size_t next; (next = line.find(" | ", at)) != std::string::npos; at = next + 3) cells.push_back(line.substr(at, next - at));
+      cells.push_back(line.substr(at));
+      for (std::size_t i = 0; i < cells.size(); ++i)
+        if (cells[i] == "run time [s]") run_time_column = static_cast<int>(i);
+      if (run_time_column >= 0 && run_time_column < static_cast<int>(cells.size()) && cells[run_time_column] != "run time [s]")
+        cells[run_time_column] = "<time>";
+      line.clear();
+      for (std::size_t i = 0; i < cells.size(); ++i) line += (i ? " | " : "") + cells[i];
+    } else if (line.rfind("|", 0) != 0) {
+      run_time_column = line.empty() ? run_time_column : -1;
+    }
+    out += line + "\n";
+  }
+  return out;
+}
+
+class SuiteInterruption : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("impactbench_interruption_" + std::to_string(getpid()) + "_" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+    // the uninterrupted suite
+    baseline_status_ = wait_for(start(suite_arguments(root_ / "whole"), root_ / "whole.log"));
+    ASSERT_TRUE(WIFEXITED(baseline_status_)) << read_text(root_ / "whole.log");
+    ASSERT_LE(WEXITSTATUS(baseline_status_), 1) << read_text(root_ / "whole.log");
+    jobs_ = lines_of(root_ / "whole" / "runs.jsonl");
+    ASSERT_GE(jobs_, 6u);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(root_);
+  }
+
+  // Starts the suite, waits until `recorded` results are in runs.jsonl, sends `signal` to the group or
+  // to the suite alone, and returns the suite's exit status.
+  int interrupt(int signal, bool whole_group, std::size_t recorded) {
+    const pid_t pid = start(suite_arguments(root_ / "cut"), root_ / "cut.log");
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+    while (lines_of(root_ / "cut" / "runs.jsonl") < recorded && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    kill(whole_group ? -pid : pid, signal);
+    const int status = wait_for(pid);
+    // no worker outlives the suite, whatever stopped it
+    for (int i = 0; i < 200 && live_processes_in_group(pid) > 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    EXPECT_EQ(live_processes_in_group(pid), 0) << "a worker outlived the suite";
+    return status;
+  }
+
+  void resume_and_compare(std::size_t recorded_before, bool compare_reports = true) {
+    std::vector<std::string> args = suite_arguments(root_ / "cut");
+    args.push_back("--resume");
+    const int status = wait_for(start(args, root_ / "resume.log"));
+    const std::string log = read_text(root_ / "resume.log");
+    ASSERT_TRUE(WIFEXITED(status)) << log;
+    EXPECT_EQ(WEXITSTATUS(status), WEXITSTATUS(baseline_status_)) << log;
+    EXPECT_NE(log.find("(" + std::to_string(recorded_before) + " skipped as already done)"), std::string::npos) << log;
+    // the same job ids and the same results
+    const auto whole = results(root_ / "whole"), cut = results(root_ / "cut");
+    ASSERT_EQ(cut.size(), whole.size());
+    for (const auto& [id, record] : whole) {
+      ASSERT_EQ(cut.count(id), 1u) << "missing after resume: " << id;
+      EXPECT_EQ(cut.at(id), record) << id;
+    }
+    std::string whole_header, cut_header;
+    EXPECT_EQ(csv_results(root_ / "cut", cut_header), csv_results(root_ / "whole", whole_header));
+    EXPECT_EQ(cut_header, whole_header);
+    // and the same files of every run (a killed job's half-written folder was replaced by its rerun)
+    for (const auto& [id, record] : whole)
+      for (const char* file : {"series.csv", "events.csv", "impact.csv"}) {
+        const fs::path a = root_ / "whole" / "runs" / id / file, b = root_ / "cut" / "runs" / id / file;
+        EXPECT_EQ(fs::exists(b), fs::exists(a)) << b;
+        if (fs::exists(a)) {
+          EXPECT_TRUE(read_text(a) == read_text(b)) << b << " differs from " << a;
+        }
+      }
+    if (!compare_reports) return;
+    // the same report
+    for (const char* folder : {"whole", "cut"}) {
+      const std::string command = std::string(IMPACTBENCH_EXECUTABLE) + " report " + (root_ / folder).string() + " > " +
+                                  (root_ / folder).string() + ".report.log 2>&1";
+      ASSERT_EQ(std::system(command.c_str()), 0) << read_text((root_ / folder).string() + ".report.log");
+    }
+    EXPECT_EQ(masked_summary(root_ / "cut" / "report"), masked_summary(root_ / "whole" / "report"));
+  }
+
+  fs::path root_;
+  int baseline_status_ = 0;
+  std::size_t jobs_ = 0;
+};
+
+TEST_F(SuiteInterruption, CtrlCKeepsEveryFinishedResultAndSaysHowToResume) {
+  const int status = interrupt(SIGINT, /*whole_group=*/true, 3);
+  const std::string log = read_text(root_ / "cut.log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << log;
+  const std::size_t recorded = lines_of(root_ / "cut" / "runs.jsonl");
+  EXPECT_GE(recorded, 3u);
+  EXPECT_LT(recorded, jobs_) << "the suite finished before the interruption: the test proves nothing";
+  EXPECT_EQ(lines_of(root_ / "cut" / "runs.csv"), recorded + 1);
+  const std::string message = "impactbench: interrupted after " + std::to_string(recorded) + " of " + std::to_string(jobs_) +
+                              " jobs; continue with: impactbench suite ";
+  EXPECT_NE(log.find(message), std::string::npos) << log;
+  EXPECT_NE(log.find(" --resume\n"), std::string::npos) << log;
+  EXPECT_EQ(log.find("failed"), std::string::npos) << "a worker stopped by Ctrl-C was recorded as failed:\n" << log;
+  resume_and_compare(recorded);
+}
+
+TEST_F(SuiteInterruption, SigtermToTheSuiteAloneStopsItsWorkers) {
+  const int status = interrupt(SIGTERM, /*whole_group=*/false, 2);
+  const std::string log = read_text(root_ / "cut.log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM) << log;
+  const std::size_t recorded = lines_of(root_ / "cut" / "runs.jsonl");
+  EXPECT_LT(recorded, jobs_) << "the suite finished before the interruption: the test proves nothing";
+  EXPECT_NE(log.find("interrupted after " + std::to_string(recorded) + " of " + std::to_string(jobs_) + " jobs"),
+            std::string::npos)
+      << log;
+  resume_and_compare(recorded, /*compare_reports=*/false);  // results and run files equal: so is the report
+}
+
+TEST_F(SuiteInterruption, SigkillLosesNoFinishedResult) {
+  const int status = interrupt(SIGKILL, /*whole_group=*/false, 3);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const std::size_t recorded = lines_of(root_ / "cut" / "runs.jsonl");
+  EXPECT_GE(recorded, 3u);
+  EXPECT_LT(recorded, jobs_) << "the suite finished before the kill: the test proves nothing";
+  resume_and_compare(recorded, /*compare_reports=*/false);  // results and run files equal: so is the report
+}
+
+}  // namespace
