@@ -297,8 +297,10 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   }
   const ib::SuiteOutcome outcome = ib::run_suite(s);
   if (outcome.interrupted_by != 0) {
-    std::fprintf(stderr, "\nimpactbench: interrupted after %d of %d jobs; continue with: %s\n",
-                 outcome.jobs_skipped + outcome.jobs_run, outcome.jobs_total, resume_command(g_argc, g_argv).c_str());
+    // A step search plans its probes as they end, so its total is not known in advance.
+    const std::string total = s.step_search ? "" : " of " + std::to_string(outcome.jobs_total);
+    std::fprintf(stderr, "\nimpactbench: interrupted after %d%s jobs; continue with: %s\n",
+                 outcome.jobs_skipped + outcome.jobs_run, total.c_str(), resume_command(g_argc, g_argv).c_str());
     return kExitInterrupted + outcome.interrupted_by;
   }
   std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed\n",
