@@ -47,7 +47,8 @@ class Suite:
     def cases(self):
         """(scenario, law) pairs in a stable order: published cases first."""
         order = ["resonance", "post_resonance", "pre_resonance", "free_vibration"]
-        pairs = sorted({(r["scenario"], r["law"]) for r in self.runs if r["scenario"] and r["law"]},
+        # a law the scenario has no parameters for is recorded with no engine: not a case to draw
+        pairs = sorted({(r["scenario"], r["law"]) for r in self.runs if r["scenario"] and r["law"] and r["engine"]},
                        key=lambda p: (order.index(p[0]) if p[0] in order else len(order), p[0], p[1]))
         return pairs
 

@@ -145,7 +145,10 @@ def stability_map(suite, law, folder, provenance, steps=None):
     """Engine configuration x time step x contact stiffness, each run a point coloured by its verdict;
     with steps.csv, each searched case's largest stable step (black bar, joined across stiffnesses) and
     largest step within tolerance per metric (markers) over it."""
-    runs = [r for r in suite.runs if r["law"] == law and r["engine"] != "reference"]
+    # Engine runs with a step: not the references, nor a law a scenario has no parameters for (recorded
+    # as failed with no engine and no step, which a log axis cannot place).
+    runs = [r for r in suite.runs if r["law"] == law and r["engine"] not in ("reference", "")
+            and r.number("time_step_s") > 0]
     configs = analysis.configurations(runs)
     if not configs:
         return None
