@@ -94,8 +94,8 @@ std::vector<StepField> step_fields(const StepRow& row) {
     out.push_back({error + "_tolerance", s.tolerance.at(m)});
     out.push_back({name + "_largest_step_within_tolerance_s", a.largest_pass_step_s});
     out.push_back({name + "_smallest_step_beyond_tolerance_s", a.smallest_fail_step_s});
-    out.push_back({name + "_" + error + "_at_largest_step", a.error_at_largest_pass});
-    out.push_back({name + "_" + error + "_vs_beam_reference_at_largest_step", a.beam_error_at_largest_pass});
+    out.push_back({error + "_at_largest_step", a.error_at_largest_pass});
+    out.push_back({error + "_vs_beam_reference_at_largest_step", a.beam_error_at_largest_pass});
     out.push_back({name + "_status", a.status});
   }
   std::string notes;
