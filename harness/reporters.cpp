@@ -45,39 +45,6 @@ Json to_json(const RunRecord& record) {
   return j;
 }
 
-void append_text(const std::string& path, const std::string& text) {
-  std::FILE* f = std::fopen(path.c_str(), "a");
-  if (!f) throw OutputError(output_error_text(path, "append to", errno));
-  errno = 0;
-  const bool written = std::fputs(text.c_str(), f) >= 0 && std::fflush(f) == 0;
-  int error = errno;
-  const bool closed = std::fclose(f) == 0;
-  if (closed == false && error == 0) error = errno;
-  if (!written || !closed) throw OutputError(output_error_text(path, "append to", error));
-}
-
-// Writes a whole file through a temporary next to it and a rename, so that a failed write leaves the
-// old file as it was.
-void replace_file(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".tmp";
-  std::FILE* f = std::fopen(temporary.c_str(), "w");
-  if (!f) throw OutputError(output_error_text(temporary, "create", errno));
-  errno = 0;
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
-  int error = errno;
-  const bool closed = std::fclose(f) == 0;
-  if (!closed && error == 0) error = errno;
-  if (!written || !closed) {
-    std::remove(temporary.c_str());
-    throw OutputError(output_error_text(path, "rewrite", error));
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    error = errno;
-    std::remove(temporary.c_str());
-    throw OutputError(output_error_text(path, "rewrite", error));
-  }
-}
-
 }  // namespace
 
 std::string csv_header(const RunRecord& record) {
@@ -105,23 +72,15 @@ std::string json_line(const RunRecord& record) {
 }
 
 void write_summary_json(const std::string& path, const RunRecord& record) {
-  const std::string text = to_json(record).dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw OutputError(output_error_text(path, "create", errno));
-  errno = 0;
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
-  int error = errno;
-  const bool closed = std::fclose(f) == 0;
-  if (!closed && error == 0) error = errno;
-  if (!written || !closed) throw OutputError(output_error_text(path, "write", error));
+  write_text_file(path, to_json(record).dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
 }
 
 void append_rows(const std::string& folder, const std::string& csv_row_text, const std::string& json_line_text) {
-  append_text(folder + "/runs.jsonl", json_line_text);
+  append_text_file(folder + "/runs.jsonl", json_line_text);
   const std::string csv = folder + "/runs.csv";
   std::ifstream existing(csv);
   const bool fresh = !existing.good() || existing.peek() == std::ifstream::traits_type::eof();
-  append_text(csv, (fresh ? csv_header(RunRecord{}) : "") + csv_row_text);
+  append_text_file(csv, (fresh ? csv_header(RunRecord{}) : "") + csv_row_text);
 }
 
 void append_run(const std::string& folder, const RunRecord& record) {
@@ -159,8 +118,8 @@ std::set<std::string> repair_and_list_runs(const std::string& folder) {
   }
   if (in.bad()) throw std::runtime_error(folder + "/runs.jsonl: read error");
   in.close();
-  replace_file(folder + "/runs.jsonl", jsonl);
-  replace_file(folder + "/runs.csv", csv);
+  replace_text_file(folder + "/runs.jsonl", jsonl);
+  replace_text_file(folder + "/runs.csv", csv);
   return ids;
 }
 

@@ -18,7 +18,7 @@ std::string json_line(const RunRecord& record);
 void write_summary_json(const std::string& path, const RunRecord& record);
 
 // Appends one run to DIR/runs.jsonl and DIR/runs.csv (writing the header first if the file is new),
-// flushed at once, so that nothing finished is lost. Throws std::runtime_error naming the file.
+// flushed at once, so that nothing finished is lost. Throws OutputError (run_files.h) naming the file.
 void append_run(const std::string& folder, const RunRecord& record);
 // The same with the row and line already rendered (by a job's own process).
 void append_rows(const std::string& folder, const std::string& csv_row_text, const std::string& json_line_text);

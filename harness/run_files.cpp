@@ -107,6 +107,39 @@ std::string output_error_text(const std::string& path, const std::string& action
   return path + ": cannot " + action + ": " + (error ? std::strerror(error) : "unknown error") + "; " + advice;
 }
 
+namespace {
+
+// Writes `text` to a file opened with `mode`; the errno of what failed, 0 when all went well.
+int put_text(const std::string& path, const char* mode, const std::string& text) {
+  std::FILE* f = std::fopen(path.c_str(), mode);
+  if (!f) return errno ? errno : EIO;
+  errno = 0;
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
+  int error = written ? 0 : (errno ? errno : EIO);
+  if (std::fclose(f) != 0 && error == 0) error = errno ? errno : EIO;
+  return error;
+}
+
+}  // namespace
+
+void write_text_file(const std::string& path, const std::string& text) {
+  if (const int error = put_text(path, "w", text)) throw OutputError(output_error_text(path, "write", error));
+}
+
+void append_text_file(const std::string& path, const std::string& text) {
+  if (const int error = put_text(path, "a", text)) throw OutputError(output_error_text(path, "append to", error));
+}
+
+void replace_text_file(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp";
+  int error = put_text(temporary, "w", text);
+  if (!error && std::rename(temporary.c_str(), path.c_str()) != 0) error = errno;
+  if (error) {
+    std::remove(temporary.c_str());
+    throw OutputError(output_error_text(path, "rewrite", error));
+  }
+}
+
 void write_series_csv(const std::string& path, const Trajectory& t) {
   File f = open_for_writing(path);
   std::fprintf(f.get(), "%s\n", kSeriesHeader);

@@ -21,6 +21,13 @@ class OutputError : public std::runtime_error {
 // The message of an OutputError: "<path>: cannot <action>: <reason>; <what to do>". `error` is an errno.
 std::string output_error_text(const std::string& path, const std::string& action, int error);
 
+// Small result files written whole, appended to, or replaced through a temporary and a rename (so that a
+// failed write leaves the old file as it was); each checked after writing, flushing and closing.
+// Throw OutputError.
+void write_text_file(const std::string& path, const std::string& text);
+void append_text_file(const std::string& path, const std::string& text);
+void replace_text_file(const std::string& path, const std::string& text);
+
 // Write errors throw OutputError; read errors std::runtime_error, both naming the file.
 void write_series_csv(const std::string& path, const Trajectory& trajectory);
 void write_events_csv(const std::string& path, const Trajectory& trajectory);

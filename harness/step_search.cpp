@@ -1,5 +1,7 @@
 #include "step_search.h"
 
+#include "run_files.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -12,6 +14,8 @@
 #include <stdexcept>
 #include <utility>
 #include <variant>
+
+#include "run_files.h"
 
 namespace ib {
 namespace {
@@ -55,15 +59,6 @@ std::string csv_escape(const std::string& text) {
   std::string quoted = "\"";
   for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
   return quoted + "\"";
-}
-
-void append_text(const std::string& path, const std::string& text) {
-  std::FILE* f = std::fopen(path.c_str(), "a");
-  if (!f) throw std::runtime_error(path + ": cannot append: " + std::strerror(errno));
-  const bool written = std::fputs(text.c_str(), f) >= 0 && std::fflush(f) == 0;
-  const int error = errno;
-  const bool closed = std::fclose(f) == 0;
-  if (!written || !closed) throw std::runtime_error(path + ": write failed: " + std::strerror(error));
 }
 
 using StepField = std::pair<std::string, std::variant<std::string, double>>;
@@ -370,11 +365,11 @@ std::string steps_csv_row(const StepRow& row) {
 std::string steps_json_line(const StepRow& row) { return step_json(row).dump() + "\n"; }
 
 void append_step_row(const std::string& folder, const StepRow& row) {
-  append_text(folder + "/steps.jsonl", steps_json_line(row));
+  append_text_file(folder + "/steps.jsonl", steps_json_line(row));
   const std::string csv = folder + "/steps.csv";
   std::ifstream existing(csv);
   const bool fresh = !existing.good() || existing.peek() == std::ifstream::traits_type::eof();
-  append_text(csv, (fresh ? steps_csv_header() : "") + steps_csv_row(row));
+  append_text_file(csv, (fresh ? steps_csv_header() : "") + steps_csv_row(row));
 }
 
 std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
@@ -405,14 +400,8 @@ std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
     csv += row + "\n";
   }
   in.close();
-  for (const auto& [name, text] : {std::pair{"/steps.jsonl", &jsonl}, std::pair{"/steps.csv", &csv}}) {
-    const std::string path = folder + name, temporary = path + ".tmp";
-    std::ofstream out(temporary, std::ios::trunc);
-    out << *text;
-    out.close();
-    if (!out || std::rename(temporary.c_str(), path.c_str()) != 0)
-      throw std::runtime_error(path + ": cannot rewrite: " + std::strerror(errno));
-  }
+  replace_text_file(folder + "/steps.jsonl", jsonl);
+  replace_text_file(folder + "/steps.csv", csv);
   return keys;
 }
 

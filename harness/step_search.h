@@ -133,7 +133,7 @@ struct StepRow {
 std::string steps_csv_header();
 std::string steps_csv_row(const StepRow& row);
 std::string steps_json_line(const StepRow& row);
-// Appends one row to DIR/steps.csv and DIR/steps.jsonl, flushed at once. Throws naming the file.
+// Appends one row to DIR/steps.csv and DIR/steps.jsonl, flushed at once. Throws OutputError (run_files.h) naming the file.
 void append_step_row(const std::string& folder, const StepRow& row);
 // The key a group's row is found by on --resume: its id, range, grid and tolerances.
 std::string step_row_key(const StepGroup& group, const StepSearchSettings& settings);

@@ -151,18 +151,6 @@ std::string receive(int pipe_fd) {
   return message;
 }
 
-// A small file written whole, checked at every step (row.csv and row.jsonl of a job).
-void write_whole_file(const std::string& path, const std::string& text) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw OutputError(output_error_text(path, "create", errno));
-  errno = 0;
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
-  int error = errno;
-  const bool closed = std::fclose(f) == 0;
-  if (!closed && error == 0) error = errno;
-  if (!written || !closed) throw OutputError(output_error_text(path, "write", error));
-}
-
 // Progress on stderr: a bar that redraws itself on a terminal, one plain line per job elsewhere.
 class Progress {
  public:
@@ -429,8 +417,8 @@ class SuiteRunner {
     record.job_id = job.id;
     record.chain_links = job.chain_links;
     try {
-      write_whole_file(folder + "/row.csv", csv_row(record));
-      write_whole_file(folder + "/row.jsonl", json_line(record));
+      write_text_file(folder + "/row.csv", csv_row(record));
+      write_text_file(folder + "/row.jsonl", json_line(record));
     } catch (const std::exception& e) {
       send_and_exit(message_pipe, e.what());
     }

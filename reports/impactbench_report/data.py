@@ -13,8 +13,8 @@ TEXT_COLUMNS = {"job_id", "scenario", "law", "engine", "options", "verdict", "re
 
 
 @dataclass
-class Run:
-    """One row of runs.csv with numbers as floats (NaN where empty)."""
+class Record:
+    """One row of a results CSV with numbers as floats (NaN where empty)."""
     values: dict
 
     def __getitem__(self, name):
@@ -29,6 +29,10 @@ class Run:
         """The engine and its options: one curve of the error-against-cost plots."""
         options = self.values["options"]
         return self.values["engine"] + (f" [{options}]" if options else "")
+
+
+class Run(Record):
+    """One row of runs.csv."""
 
     @property
     def is_beam_reference(self):
@@ -167,23 +171,8 @@ STEP_TOLERANCE_COLUMNS = {
 }
 
 
-@dataclass
-class StepRow:
-    """One row of steps.csv (one engine configuration's step search) with numbers as floats."""
-    values: dict
-
-    def __getitem__(self, name):
-        return self.values[name]
-
-    def number(self, name):
-        value = self.values.get(name, math.nan)
-        return value if isinstance(value, float) else math.nan
-
-    @property
-    def config(self):
-        """The same text as Run.config: the engine and its options."""
-        options = self.values["options"]
-        return self.values["engine"] + (f" [{options}]" if options else "")
+class StepRow(Record):
+    """One row of steps.csv: one engine configuration's step search."""
 
 
 def read_steps(folder):
