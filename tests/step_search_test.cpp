@@ -23,6 +23,7 @@
 
 #include "reference_simulator.h"
 #include "suite.h"
+#include "suite_test_support.h"
 
 namespace ib {
 namespace {
@@ -240,17 +241,8 @@ std::vector<nlohmann::json> lines(const std::string& path) {
 class StepSearchSuite : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() / ("impactbench_steps_" + std::to_string(::getpid()) + "_" +
-                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(root_);
-    fs::create_directories(root_ / "scenarios");
-    // a short free vibration: two impacts in 0.4 s
-    std::ifstream in(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/free_vibration.toml");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    replace(text, "duration_s = 14.0", "duration_s = 0.4");
-    replace(text, "scoring_window_s = 14.0", "scoring_window_s = 0.4");
-    replace(text, "name = \"free_vibration\"", "name = \"short_free\"");
-    std::ofstream(root_ / "scenarios" / "short_free.toml") << text;
+    root_ = test::fresh_test_folder("impactbench_steps_");
+    test::write_short_free_vibration(root_ / "scenarios");
     settings_.inputs = {(root_ / "scenarios").string()};
     settings_.out = (root_ / "out").string();
     settings_.laws = {ContactLaw::viscoelastic};
@@ -263,12 +255,6 @@ class StepSearchSuite : public ::testing::Test {
     };
   }
   void TearDown() override { fs::remove_all(root_); }
-  static void replace(std::string& text, const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  }
-
   fs::path root_;
   SuiteSettings settings_;
 };

@@ -2,6 +2,7 @@
 // with its reason and the suite finishes; --resume repeats no finished job; a malformed scenario in a
 // folder fails that scenario alone; the reference of each scenario and law runs once.
 #include "suite.h"
+#include "suite_test_support.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -93,17 +94,8 @@ const Row* find(const std::vector<Row>& rows, const std::string& job_id) {
 class SuiteRunner : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() / ("impactbench_suite_" + std::to_string(::getpid()) + "_" +
-                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(root_);
-    fs::create_directories(root_ / "scenarios");
-    // a short free vibration: two impacts in 0.4 s
-    std::ifstream in(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/free_vibration.toml");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    replace(text, "duration_s = 14.0", "duration_s = 0.4");
-    replace(text, "scoring_window_s = 14.0", "scoring_window_s = 0.4");
-    replace(text, "name = \"free_vibration\"", "name = \"short_free\"");
-    std::ofstream(root_ / "scenarios" / "short_free.toml") << text;
+    root_ = test::fresh_test_folder("impactbench_suite_");
+    test::write_short_free_vibration(root_ / "scenarios");
     settings_.inputs = {(root_ / "scenarios").string()};
     settings_.out = (root_ / "out").string();
     settings_.laws = {ContactLaw::hertz};
@@ -112,12 +104,6 @@ class SuiteRunner : public ::testing::Test {
     settings_.factory = test_factory;
   }
   void TearDown() override { fs::remove_all(root_); }
-  static void replace(std::string& text, const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  }
-
   fs::path root_;
   SuiteSettings settings_;
 };
