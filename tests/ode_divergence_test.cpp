@@ -16,6 +16,7 @@
 #include "reference_fixtures.h"
 #include "rig.h"
 #include "suite.h"
+#include "suite_test_support.h"
 #include "verdict.h"
 
 namespace ib {
@@ -92,22 +93,8 @@ std::unique_ptr<Simulator> factory(const std::string& name) {
 }
 
 TEST(OdeDivergence, TheSuiteRecordsTheVerdictAndAnOdeAbort) {
-  const fs::path root = fs::temp_directory_path() / ("impactbench_ode_divergence_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root / "scenarios");
-  {
-    // a short free vibration (two impacts in 0.4 s)
-    std::ifstream in(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/free_vibration.toml");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    for (const auto& [from, to] : {std::pair<std::string, std::string>{"duration_s = 14.0", "duration_s = 0.4"},
-                                   {"scoring_window_s = 14.0", "scoring_window_s = 0.4"},
-                                   {"name = \"free_vibration\"", "name = \"short_free\""}}) {
-      const auto at = text.find(from);
-      ASSERT_NE(at, std::string::npos) << from;
-      text.replace(at, from.size(), to);
-    }
-    std::ofstream(root / "scenarios" / "short_free.toml") << text;
-  }
+  const fs::path root = test::fresh_test_folder("impactbench_ode_divergence_");
+  test::write_short_free_vibration(root / "scenarios");  // two impacts in 0.4 s
   SuiteSettings settings;
   settings.inputs = {(root / "scenarios").string()};
   settings.out = (root / "out").string();
