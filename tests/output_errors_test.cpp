@@ -17,6 +17,7 @@
 #include "reporters.h"
 #include "run_files.h"
 #include "run_record.h"
+#include "command_test_support.h"
 #include "suite.h"
 
 namespace ib {
@@ -192,22 +193,9 @@ TEST_F(OutputErrors, ARunsFolderThatCannotBeMadeStopsTheSuite) {
 
 // ---- The command: exit code 3 and the message on stderr.
 
-struct Output {
-  int exit_code = -1;
-  std::string text;  // stdout and stderr
-};
+using Output = test::CommandOutput;
 
-Output impactbench(const std::string& arguments, const fs::path& log) {
-  const std::string command = std::string(IMPACTBENCH_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  Output out;
-  out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  out.text = buffer.str();
-  return out;
-}
+Output impactbench(const std::string& arguments, const fs::path& log) { return test::run_impactbench(arguments, log); }
 
 TEST_F(OutputErrors, TheSuiteCommandExitsWith3AndResumesOnceThereIsRoom) {
   const fs::path out = root_ / "out";

@@ -10,25 +10,17 @@
 #include <sstream>
 #include <string>
 
+#include "command_test_support.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Output {
-  int exit_code = -1;
-  std::string text;  // stdout and stderr
-};
+using Output = ib::test::CommandOutput;
 
 Output impactbench(const std::string& arguments) {
   const fs::path log = fs::temp_directory_path() / ("impactbench_cli_" + std::to_string(::getpid()) + ".log");
-  const std::string command = std::string(IMPACTBENCH_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  Output out;
-  out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  out.text = buffer.str();
+  Output out = ib::test::run_impactbench(arguments, log);
   fs::remove(log);
   return out;
 }
