@@ -160,9 +160,15 @@ void check_inputs(const MergeSettings& settings) {
   }
 }
 
-// Which shards lack planned results, and which shards of a suite none of the folders holds.
-void check_completeness(const MergeSettings& settings, const std::map<std::string, Kept>& runs,
-                        const std::map<std::string, Kept>& steps, MergeOutcome& outcome) {
+// What one folder recorded: its job ids and the keys of its step searches' rows.
+struct Recorded {
+  std::set<std::string> jobs, step_searches;
+};
+
+// Which shards lack planned results in their own folder (what their resume command would run), and
+// which shards of a suite none of the folders holds.
+void check_completeness(const MergeSettings& settings, const std::map<std::string, Recorded>& recorded,
+                        MergeOutcome& outcome) {
   std::map<std::pair<std::string, int>, std::set<int>> shards_of_suite;  // (digest, N) -> the K present
   std::map<std::pair<std::string, int>, std::string> command_of_suite;
   for (const std::string& folder : settings.inputs) {
@@ -171,8 +177,9 @@ void check_completeness(const MergeSettings& settings, const std::map<std::strin
     for (const ShardPlan& plan : plans) {
       IncompleteShard gap{folder, plan.shard, static_cast<int>(plan.jobs.size()), 0,
                           static_cast<int>(plan.step_searches.size()), 0, plan.resume_command};
-      for (const std::string& id : plan.jobs) gap.jobs_missing += runs.count(id) ? 0 : 1;
-      for (const std::string& key : plan.step_searches) gap.step_searches_missing += steps.count(key) ? 0 : 1;
+      const Recorded& in_folder = recorded.at(folder);
+      for (const std::string& id : plan.jobs) gap.jobs_missing += in_folder.jobs.count(id) ? 0 : 1;
+      for (const std::string& key : plan.step_searches) gap.step_searches_missing += in_folder.step_searches.count(key) ? 0 : 1;
       if (gap.jobs_missing > 0 || gap.step_searches_missing > 0) outcome.incomplete.push_back(gap);
       shards_of_suite[{plan.suite, plan.shard.count}].insert(plan.shard.index);
       command_of_suite.emplace(std::pair{plan.suite, plan.shard.count}, plan.resume_command);
@@ -190,22 +197,27 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
   // Read and check everything before writing anything.
   MergeOutcome outcome;
   std::map<std::string, Kept> runs, steps;  // by job id; by step_row_key
+  std::map<std::string, Recorded> recorded;  // by folder
   bool any_steps = false;
   for (const std::string& folder : settings.inputs) {
+    Recorded& in_folder = recorded[folder];
     check_header(folder + "/runs.csv", csv_header(RunRecord{}));
     check_header(folder + "/steps.csv", steps_csv_header());
-    for (const auto& [id, line] : recorded_run_lines(folder))
+    for (const auto& [id, line] : recorded_run_lines(folder)) {
       join(runs, id, line, folder, "runs.jsonl", "job " + id, kRunTimingFields);
+      in_folder.jobs.insert(id);
+    }
     std::ifstream step_lines(folder + "/steps.jsonl");
     any_steps = any_steps || step_lines.is_open();
     for (std::string line; std::getline(step_lines, line);) {
       const std::string key = step_row_key_of_line(line);
       if (key.empty()) continue;  // cut short by a kill
+      in_folder.step_searches.insert(key);
       join(steps, key, line, folder, "steps.jsonl", "step search " + Json::parse(line).value("group_id", key),
            kStepTimingFields);
     }
   }
-  check_completeness(settings, runs, steps, outcome);
+  check_completeness(settings, recorded, outcome);
 
   std::error_code error;
   fs::create_directories(settings.out, error);
