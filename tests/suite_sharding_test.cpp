@@ -3,9 +3,10 @@
 // (the short free vibration and the resonance cut to 1 s, the reference and up to two engines of this
 // build, two laws, two time steps) is run whole into one folder and as 3 shards merged into another:
 // every job id once, every field of runs.jsonl and runs.csv equal but the timing ones, every run's
-// series.csv, events.csv and impact.csv equal byte for byte; each shard runs its engine jobs and the
-// references those need, no other; one shard of one is the whole suite. A small step search
-// (--find-steps over a narrow range) gives the same steps.csv sharded and merged. A shard stopped early
+// series.csv, events.csv and impact.csv equal byte for byte; each engine job in exactly one shard; one
+// shard of one is the whole suite. A small step search (--find-steps over a narrow range) gives the same
+// steps.csv sharded and merged, and there (where shards need different references) each shard runs the
+// references its own groups need, no other. A shard stopped early
 // is reported by merge with the command that finishes it, and finishing it then gives the whole suite
 // again; a shard no folder holds is reported too. Bad --shard values, a folder that does not exist, a
 // header of another layout, two shards that disagree on a job and an OUT that is not empty are errors.
@@ -134,6 +135,36 @@ void expect_same_results(const fs::path& expected, const fs::path& actual, bool 
   EXPECT_EQ(got_header, want_header);
 }
 
+// The shards divide the whole suite's engine jobs (step-search probes included) among them, each job to
+// exactly one shard, and each shard runs the references its own jobs are compared with, no other.
+void expect_engine_jobs_divided(const fs::path& whole, const std::vector<fs::path>& shards) {
+  std::map<std::string, int> engine_jobs;  // job id -> shards that ran it
+  for (const fs::path& shard : shards) {
+    std::set<std::string> references, needed;
+    for (const auto& [id, r] : records(shard / "runs.jsonl", "job_id", {})) {
+      const std::string beam = r["scenario"].get<std::string>() + "/reference/" + r["law"].get<std::string>();
+      if (r["engine"] == "reference") {
+        references.insert(id);
+        if (id != beam) needed.insert(beam);  // a chain reference is compared with the beam's
+        continue;
+      }
+      ++engine_jobs[id];
+      needed.insert(beam);
+      if (r["chain_links"] > 0) needed.insert(beam + "/links=" + std::to_string(r["chain_links"].get<int>()) + ";modes=chain");
+    }
+    EXPECT_FALSE(references.empty()) << shard;
+    EXPECT_EQ(references, needed) << shard << " runs other references than its jobs need";
+  }
+  std::size_t whole_engine_jobs = 0;
+  for (const auto& [id, r] : records(whole / "runs.jsonl", "job_id", {})) {
+    if (r["engine"] == "reference") continue;
+    ++whole_engine_jobs;
+    EXPECT_EQ(engine_jobs[id], 1) << "not in exactly one shard: " << id;
+  }
+  EXPECT_EQ(engine_jobs.size(), whole_engine_jobs);
+  EXPECT_GE(whole_engine_jobs, 4u);
+}
+
 // Copies a suite folder's record files (not its runs/): enough for merge's checks, which come before it
 // writes anything.
 fs::path copy_records(const fs::path& from, const fs::path& to) {
@@ -199,32 +230,9 @@ fs::path* SuiteSharding::root_ = nullptr;
 std::map<fs::path, int>* SuiteSharding::done_ = nullptr;
 
 TEST_F(SuiteSharding, ShardsMergedGiveTheWholeSuite) {
-  // each shard runs its engine jobs and the references they are compared with, no other
-  std::map<std::string, int> engine_jobs;  // job id -> shards that ran it
-  for (int k = 1; k <= kShards; ++k) {
-    std::set<std::string> references, needed;
-    for (const auto& [id, r] : records(shard(k) / "runs.jsonl", "job_id", {})) {
-      const std::string beam = r["scenario"].get<std::string>() + "/reference/" + r["law"].get<std::string>();
-      if (r["engine"] == "reference") {
-        references.insert(id);
-        if (id != beam) needed.insert(beam);  // a chain reference is compared with the beam's
-        continue;
-      }
-      ++engine_jobs[id];
-      needed.insert(beam);
-      if (r["chain_links"] > 0) needed.insert(beam + "/links=" + std::to_string(r["chain_links"].get<int>()) + ";modes=chain");
-    }
-    EXPECT_FALSE(references.empty()) << shard(k);
-    EXPECT_EQ(references, needed) << shard(k) << " runs other references than its jobs need";
-  }
-  std::size_t whole_engine_jobs = 0;
-  for (const auto& [id, r] : records(whole() / "runs.jsonl", "job_id", {})) {
-    if (r["engine"] == "reference") continue;
-    ++whole_engine_jobs;
-    EXPECT_EQ(engine_jobs[id], 1) << "not in exactly one shard: " << id;
-  }
-  EXPECT_EQ(engine_jobs.size(), whole_engine_jobs);
-  EXPECT_GE(whole_engine_jobs, 8u);
+  std::vector<fs::path> shards;
+  for (int k = 1; k <= kShards; ++k) shards.push_back(shard(k));
+  expect_engine_jobs_divided(whole(), shards);
 
   // joined, they are the whole suite; the report is made by the code of `report`, from the joined folder
   const CommandOutput merge = command("merge " + quoted(*root_ / "merged") + shard_list());
@@ -367,12 +375,16 @@ TEST_F(SuiteSharding, StepSearchShardsMergedGiveTheWholeSearch) {
   const CommandOutput whole = command(search + quoted(*root_ / "steps-whole"));
   ASSERT_LE(whole.exit_code, 1) << whole.text;
   std::string list;
+  std::vector<fs::path> shards;
   for (int k = 1; k <= kShards; ++k) {
-    const fs::path out = *root_ / ("steps-shard-" + std::to_string(k));
-    const CommandOutput part = command(search + quoted(out) + " --shard " + std::to_string(k) + "/" + std::to_string(kShards));
+    shards.push_back(*root_ / ("steps-shard-" + std::to_string(k)));
+    const CommandOutput part =
+        command(search + quoted(shards.back()) + " --shard " + std::to_string(k) + "/" + std::to_string(kShards));
     ASSERT_LE(part.exit_code, 1) << part.text;
-    list += " " + quoted(out);
+    list += " " + quoted(shards.back());
   }
+  // groups in planned order (law, then engine) divided one by one: shards 2 and 3 need one law's references alone
+  expect_engine_jobs_divided(*root_ / "steps-whole", shards);
   const CommandOutput merge = command("merge " + quoted(*root_ / "steps-merged") + list + " --no-report");
   ASSERT_EQ(merge.exit_code, 0) << merge.text;
   expect_same_results(*root_ / "steps-whole", *root_ / "steps-merged", /*steps=*/true);
