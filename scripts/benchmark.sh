@@ -1,43 +1,25 @@
 #!/usr/bin/env bash
-# The benchmark command: installs what is missing, builds, runs the default suite and writes its
+# The benchmark command: installs what is missing, builds, runs the default suite (scripts/default-suite.sh:
+# the published cases at two time steps, then the stiff and extreme cases' step search) and writes its
 # report: results/<date-time>/ (or the folder given as the last argument), report/index.html there.
-#
-# The default suite, in two parts written to the same folder:
-# 1. The published cases x three laws x every engine x its three contact paths x time steps 1e-4 and
-#    5e-5 s, the reference on the beam and on each engine's chain. The forced cases run 50 s instead of
-#    100 s (their transient is over within about 20 s and the scoring window stays the last 14 s);
-#    pass --full to run them for their whole 100 s.
-# 2. The stiff and extreme cases (scenarios/stiff, scenarios/extreme): for every engine's matched
-#    contact path, the largest stable and accurate time steps, by bisection over 1e-5 to 1e-3 s
-#    (--find-steps), each case cut to 5 s (the 1000 s energy-drift case too: its drift over 5 s).
-#    Pass --no-search to skip this part.
+#   scripts/benchmark.sh [--full] [--no-search] [OUT]
+# --full: the forced published cases for their whole 100 s (default 50 s); --no-search: part 1 alone.
 # On 2 cores: about 15 minutes for part 1, 15 for part 2, 3 for the report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-duration=(--duration 50)
-search=1
+options=()
 while [[ ${1:-} == --* ]]; do
   case $1 in
-    --full) duration=() ;;
-    --no-search) search=0 ;;
+    --full | --no-search) options+=("$1") ;;
     *) echo "benchmark.sh: unknown option $1; allowed: --full, --no-search, then an output folder" >&2; exit 2 ;;
   esac
   shift
 done
 scripts/build.sh
 out=${1:-results/$(date +%Y%m%d-%H%M%S)}
-impactbench=build/harness/cli/impactbench
 status=0
-$impactbench suite scenarios/paper --engines reference,mujoco,ode,bullet \
-  --laws hertz,viscoelastic,newton --paths matched,injected,native --dt 1e-4,5e-5 "${duration[@]}" \
-  --out "$out" || status=$?
-if (( search )) && (( status != 2 && status < 3 )); then
-  # --resume: the same results folder, adding the searches' probes and steps.csv
-  $impactbench suite scenarios/stiff scenarios/extreme --engines reference,mujoco,ode,bullet \
-    --laws hertz,viscoelastic,newton --paths matched --find-steps --step-range 1e-5,1e-3 --duration 5 \
-    --out "$out" --resume || { search_status=$?; (( search_status > status )) && status=$search_status; }
-fi
-(( status == 2 || status >= 3 )) || $impactbench report "$out"
+scripts/default-suite.sh "${options[@]}" "$out" || status=$?
+(( status == 2 || status >= 3 )) || build/harness/cli/impactbench report "$out"
 echo "results: $out/runs.csv, runs.jsonl and steps.csv; report: $out/report/index.html"
 # 1: some runs were unstable or failed, a finding recorded in the report; 2 bad input, 3 a write error,
 # 130/143 interrupted (continue with the printed --resume command)
