@@ -135,7 +135,7 @@ void join_run_folder(const std::string& from, const std::string& to) {
 std::string shard_text(const Shard& s) { return std::to_string(s.index) + "/" + std::to_string(s.count); }
 
 void check_inputs(const MergeSettings& settings) {
-  if (settings.inputs.empty()) throw std::runtime_error("merge: no shard folder given; expected: merge OUT SHARD_DIR...");
+  if (settings.inputs.empty()) throw std::runtime_error("merge: no shard folder given; expected: merge OUT SHARD_FOLDER ...");
   std::map<std::string, std::string> seen;  // canonical path -> as given
   for (const std::string& folder : settings.inputs) {
     std::error_code error;

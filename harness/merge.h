@@ -1,4 +1,4 @@
-// `impactbench merge OUT SHARD_DIR...`: joins the folders of a suite's shards (suite --shard K/N,
+// `impactbench merge OUT SHARD_FOLDER ...`: joins the folders of a suite's shards (suite --shard K/N,
 // shard_plan.h) into one suite folder, as if the suite had run on one machine: runs.jsonl and runs.csv
 // with one record per job id, the runs/<job id>/ folders (files hard-linked where the file system
 // allows, copied otherwise), steps.jsonl and steps.csv. A job recorded in several folders (the

@@ -1,4 +1,4 @@
-// A suite divided into shards (suite --shard K/N) and joined again (merge OUT SHARD_DIR...) gives what
+// A suite divided into shards (suite --shard K/N) and joined again (merge OUT SHARD_FOLDER ...) gives what
 // the suite gives on one machine. Through the command, as a batch scheduler's tasks run it. A small suite
 // (the short free vibration and the resonance cut to 1 s, the reference and up to two engines of this
 // build, two laws, two time steps) is run whole into one folder and as 3 shards merged into another:

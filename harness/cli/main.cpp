@@ -314,7 +314,7 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   if (o.find_steps)
     std::printf("suite: %d step searches recorded in %s/steps.csv\n", outcome.step_searches, o.out.c_str());
   if (s.shard)
-    std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_DIR...\n", o.shard.c_str());
+    std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", o.shard.c_str());
   return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
 }
 
