@@ -185,9 +185,14 @@ void check_completeness(const MergeSettings& settings, const std::map<std::strin
       command_of_suite.emplace(std::pair{plan.suite, plan.shard.count}, plan.resume_command);
     }
   }
-  for (const auto& [suite, present] : shards_of_suite)
-    for (int k = 1; k <= suite.second; ++k)
-      if (!present.count(k)) outcome.absent.push_back(AbsentShard{Shard{k, suite.second}, command_of_suite[suite]});
+  for (const auto& [suite, present] : shards_of_suite) {
+    int next = 1;  // the first shard not yet accounted for
+    for (int k : present) {
+      if (k > next) outcome.absent.push_back(AbsentShards{next, k - 1, suite.second, command_of_suite[suite]});
+      next = k + 1;
+    }
+    if (next <= suite.second) outcome.absent.push_back(AbsentShards{next, suite.second, suite.second, command_of_suite[suite]});
+  }
 }
 
 }  // namespace
@@ -253,11 +258,16 @@ std::vector<std::string> merge_messages(const MergeOutcome& outcome) {
                     " (its task failed or was stopped); finish it, then merge again into an empty folder: " +
                     gap.resume_command);
   }
-  for (const AbsentShard& absent : outcome.absent)
-    lines.push_back("shard " + shard_text(absent.shard) + " is in none of the folders given (its task failed before it " +
-                    "began?); run it as the other shards ran, with --shard " + shard_text(absent.shard) +
-                    " and its own --out, then merge again into an empty folder; another shard ran as: " +
-                    absent.sibling_command);
+  for (const AbsentShards& absent : outcome.absent) {
+    const std::string n = std::to_string(absent.count), first = std::to_string(absent.first);
+    const std::string which = absent.first == absent.last
+                                  ? "shard " + first + "/" + n + " is"
+                                  : "shards " + first + " to " + std::to_string(absent.last) + " of " + n + " are";
+    const std::string shard = absent.first == absent.last ? first + "/" + n : "K/" + n;
+    lines.push_back(which + " in none of the folders given (a task failed before it began?); run " +
+                    (absent.first == absent.last ? "it" : "each") + " as the other shards ran, with --shard " + shard + " and its own --out, then merge again into an empty folder; " +
+                    "another shard ran as: " + absent.sibling_command);
+  }
   for (const std::string& folder : outcome.without_plan)
     lines.push_back("note: " + folder + " was not made with --shard (no shard.jsonl): joined as it is, its completeness not checked");
   return lines;

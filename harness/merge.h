@@ -29,9 +29,10 @@ struct IncompleteShard {
   std::string resume_command;  // what finishes it
 };
 
-// A shard of a suite that none of the folders given holds (its task failed before it began).
-struct AbsentShard {
-  Shard shard;
+// Shards first .. last of a suite's N that none of the folders given holds (their tasks failed before
+// they began): a range, so that a large array that did not start is one line.
+struct AbsentShards {
+  int first = 1, last = 1, count = 1;
   std::string sibling_command;  // how another shard of the same suite was run
 };
 
@@ -40,7 +41,7 @@ struct MergeOutcome {
   int runs_in_several = 0;      // of which recorded in more than one folder (and equal there)
   int step_rows = 0;            // rows in OUT/steps.jsonl
   std::vector<IncompleteShard> incomplete;
-  std::vector<AbsentShard> absent;
+  std::vector<AbsentShards> absent;
   std::vector<std::string> without_plan;  // folders not made with --shard: joined, completeness not checked
   bool complete() const { return incomplete.empty() && absent.empty(); }
 };
@@ -51,7 +52,7 @@ struct MergeOutcome {
 // that differ in a field other than timing. Throws OutputError (run_files.h) when OUT cannot be written.
 MergeOutcome merge_suites(const MergeSettings& settings);
 
-// One line per incomplete or absent shard and per folder without a plan, saying what to do.
+// One line per incomplete shard, per range of absent shards and per folder without a plan, saying what to do.
 std::vector<std::string> merge_messages(const MergeOutcome& outcome);
 
 }  // namespace ib

@@ -376,8 +376,8 @@ int command_merge(const std::string& out, const std::vector<std::string>& shards
   for (const std::string& line : ib::merge_messages(outcome)) std::fprintf(stderr, "impactbench: %s\n", line.c_str());
   if (!no_report) command_report(out, "");
   if (outcome.complete()) return kExitOk;
-  std::fprintf(stderr, "impactbench: merged what exists; shards incomplete or absent: %zu (see above; exit code %d)\n",
-               outcome.incomplete.size() + outcome.absent.size(), kExitIncompleteMerge);
+  std::fprintf(stderr, "impactbench: merged what exists, but shards are incomplete or absent (see above; exit code %d)\n",
+               kExitIncompleteMerge);
   return kExitIncompleteMerge;
 }
 
