@@ -14,10 +14,12 @@
 # Every run of part 1 is logged once (its series written) and then timed twice more with nothing
 # written (--repeat, the default 2): runs.csv's wall_time_s is the timed runs' median. The searches'
 # probes are not timed again (--repeat 0): a search asks whether a step is stable and accurate.
-# On 2 cores: about 45 minutes for part 1, 15 for part 2, 3 for the report.
+# Then bench/run-benchmarks.sh into RESULTS/performance (about 2 minutes), then the report.
+# On 2 cores: about 45 minutes for part 1, 15 for part 2, 2 for the timings, 3 for the report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-duration=(--duration 50)
+source scripts/default-suite.sh
+duration=("${paper_suite_duration[@]}")
 search=1
 while [[ ${1:-} == --* ]]; do
   case $1 in
@@ -31,15 +33,14 @@ scripts/build.sh
 out=${1:-results/$(date +%Y%m%d-%H%M%S)}
 impactbench=build/harness/cli/impactbench
 status=0
-$impactbench suite scenarios/paper --engines reference,mujoco,ode,bullet \
-  --laws hertz,viscoelastic,newton --paths matched,injected,native --dt 1e-4,5e-5 "${duration[@]}" \
-  --out "$out" || status=$?
+$impactbench suite "${paper_suite_args[@]}" "${duration[@]}" --out "$out" || status=$?
 if (( search )) && (( status != 2 && status < 3 )); then
   # --resume: the same results folder, adding the searches' probes and steps.csv
-  $impactbench suite scenarios/stiff scenarios/extreme --engines reference,mujoco,ode,bullet \
-    --laws hertz,viscoelastic,newton --paths matched --find-steps --step-range 1e-5,1e-3 --duration 5 --repeat 0 \
-    --out "$out" --resume || { search_status=$?; (( search_status > status )) && status=$search_status; }
+  $impactbench suite "${search_suite_args[@]}" --out "$out" --resume || { search_status=$?; (( search_status > status )) && status=$search_status; }
 fi
+# The bench/ timings (reference, engine steps, harness overhead; about 2 minutes), for the report's
+# performance section; bench/suite_scaling.sh and bench/reference_vs_scipy.py add theirs to the same folder.
+(( status == 2 || status >= 3 )) || bench/run-benchmarks.sh "$out/performance" || status=3
 (( status == 2 || status >= 3 )) || $impactbench report "$out"
 echo "results: $out/runs.csv, runs.jsonl and steps.csv; report: $out/report/index.html"
 # 1: some runs were unstable or failed, a finding recorded in the report; 2 bad input, 3 a write error,
