@@ -27,8 +27,9 @@ struct Measurement {
   double merge_window_s = 0.002;
   VerdictSettings verdicts;
   // Timed runs: after the logged run, the same run this many times more with nothing written, whose
-  // median is the run's cost (RunRecord::cost). 0: the logged run's own time.
-  int timed_repeats = 2;
+  // median is the run's cost (RunRecord::cost). 0: the logged run's own time (the command line's
+  // default is 2: see harness/cli/main.cpp).
+  int timed_repeats = 0;
 };
 
 // A finished reference run that other runs are compared with.

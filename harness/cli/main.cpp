@@ -91,7 +91,7 @@ void require_engine(const std::string& engine) {
 // How runs are measured; shared by `run` and `suite`.
 struct MeasurementOptions {
   double window_s = -1, sensor_rate_hz = 2048, merge_window_s = 0.002;
-  int timed_repeats = ib::Measurement{}.timed_repeats;
+  int timed_repeats = 2;  // timed runs of every run: separate from the logged one, and repeated
   void add_to(CLI::App* app) {
     app->add_option("--window", window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's");
     app->add_option("--sensor-rate", sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]")->capture_default_str();
