@@ -12,6 +12,7 @@
 
 #include "reporters.h"
 #include "run_files.h"
+#include "run_record.h"
 #include "step_search.h"
 
 namespace ib {
@@ -21,7 +22,10 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 // What differs between two runs of the same job on two machines, or at two moments: the measured cost.
-const std::set<std::string> kRunTimingFields = {"wall_time_s", "cpu_time_s", "wall_time_per_simulated_s"};
+std::set<std::string> run_timing_fields() {
+  const std::vector<std::string>& names = timing_field_names();
+  return {names.begin(), names.end()};
+}
 const std::set<std::string> kStepTimingFields = {"probes_wall_time_s"};
 
 // A record kept for OUT, with the folder it came from.
@@ -204,12 +208,13 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
   std::map<std::string, Kept> runs, steps;  // by job id; by step_row_key
   std::map<std::string, Recorded> recorded;  // by folder
   bool any_steps = false;
+  const std::set<std::string> run_timing = run_timing_fields();
   for (const std::string& folder : settings.inputs) {
     Recorded& in_folder = recorded[folder];
     check_header(folder + "/runs.csv", csv_header(RunRecord{}));
     check_header(folder + "/steps.csv", steps_csv_header());
     for (const auto& [id, line] : recorded_run_lines(folder)) {
-      join(runs, id, line, folder, "runs.jsonl", "job " + id, kRunTimingFields);
+      join(runs, id, line, folder, "runs.jsonl", "job " + id, run_timing);
       in_folder.jobs.insert(id);
     }
     std::ifstream step_lines(folder + "/steps.jsonl");

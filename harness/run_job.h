@@ -26,6 +26,10 @@ struct Measurement {
   double sensor_rate_hz = 2048;
   double merge_window_s = 0.002;
   VerdictSettings verdicts;
+  // Timed runs: after the logged run, the same run this many times more with nothing written, whose
+  // median is the run's cost (RunRecord::cost). 0: the logged run's own time (the command line's
+  // default is 2: see harness/cli/main.cpp).
+  int timed_repeats = 0;
 };
 
 // A finished reference run that other runs are compared with.

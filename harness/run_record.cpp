@@ -33,10 +33,20 @@ std::vector<Field> fields(const RunRecord& r) {
   out.push_back({"cpu_time_s", r.cost.cpu_time_s});
   out.push_back({"steps", static_cast<double>(r.cost.steps)});
   out.push_back({"wall_time_per_simulated_s", per_second});
+  out.push_back({"timed_runs", static_cast<double>(r.timed_runs)});
+  out.push_back({"wall_time_min_s", r.timed_runs > 0 ? r.wall_time_min_s : nan});
+  out.push_back({"wall_time_max_s", r.timed_runs > 0 ? r.wall_time_max_s : nan});
+  out.push_back({"logged_wall_time_s", r.logged_wall_time_s});
   out.push_back({"output_rate_hz", r.output_rate_hz});
   out.push_back({"scenario_file", r.scenario_file});
   out.push_back({"engine_version", r.engine_version});
   return out;
+}
+
+const std::vector<std::string>& timing_field_names() {
+  static const std::vector<std::string> names = {"wall_time_s",     "cpu_time_s",      "wall_time_per_simulated_s",
+                                                 "wall_time_min_s", "wall_time_max_s", "logged_wall_time_s"};
+  return names;
 }
 
 }  // namespace ib

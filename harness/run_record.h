@@ -29,7 +29,13 @@ struct RunRecord {
   std::optional<MetricErrors> errors_vs_reference;        // against the continuous-beam reference
   std::optional<MetricErrors> errors_vs_chain_reference;  // against the reference on the engine's own chain
   int chain_links = 0;                 // K of the engine's chain (0: not a chain)
+  // What the run cost: the median of the timed runs (the same run repeated after the logged one, nothing
+  // recorded to disk, so that the logged run's writing and first-touch costs stay out) or, when there were
+  // none, the logged run's own. Wall and CPU time are each the median; steps are the same in every run.
   RunCost cost;
+  int timed_runs = 0;                  // how many timed runs cost comes from (0: the logged run's)
+  double wall_time_min_s = 0, wall_time_max_s = 0;  // the spread of the timed runs' wall times [s]
+  double logged_wall_time_s = 0;       // the logged run's own wall time [s]
   std::vector<std::pair<std::string, double>> diagnostics;  // simulator-specific, named with units
 };
 
@@ -41,5 +47,9 @@ struct Field {
 // Every record yields the same names in the same order (missing values are NaN), so that rows of
 // different runs line up in one table.
 std::vector<Field> fields(const RunRecord& record);
+
+// The fields that measure time rather than the physics (they differ between two runs of the same job):
+// what a comparison of two suites' results leaves out.
+const std::vector<std::string>& timing_field_names();
 
 }  // namespace ib

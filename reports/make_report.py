@@ -4,7 +4,8 @@
     reports/make_report.py SUITE_FOLDER [--out REPORT_FOLDER]
 
 writes REPORT_FOLDER (default SUITE_FOLDER/report): index.html (self-contained: the SVG figures are
-inside it), summary.md, figures/*.svg, and the runs.csv and runs.jsonl it was made from. Needs
+inside it), summary.md, figures/*.svg, and the runs.csv and runs.jsonl it was made from; with a
+performance section when SUITE_FOLDER/performance/ holds bench/ measurements (impactbench_report/performance.py). Needs
 Debian's python3-matplotlib (run with /usr/bin/python3)."""
 
 import argparse
@@ -16,7 +17,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from impactbench_report import analysis, data, figures, tables  # noqa: E402
+from impactbench_report import analysis, data, figures, performance, tables  # noqa: E402
 
 CAVEATS = [
     "The experiment's figures (rig.md section 7) are data shown beside the simulators, not targets: the "
@@ -106,6 +107,13 @@ def main():
         paths = [figures.stability_map(suite, law, figures_folder, stamp, steps),
                  figures.against_experiment(suite, law, chosen_by_law[law], experiment, figures_folder, stamp)]
         sections.append((f"{law}: stability and the experiment", "", "", [p for p in paths if p]))
+
+    try:
+        measured = performance.section(args.suite)  # SUITE/performance/: bench/ timings, if any were saved
+    except ValueError as error:
+        sys.exit(f"make_report: {error}")
+    if measured:
+        sections.append(("Performance", measured[0], measured[1], []))
 
     for name in ("runs.csv", "runs.jsonl"):
         source = os.path.join(args.suite, name)

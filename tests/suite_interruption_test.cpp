@@ -5,8 +5,7 @@
 //   - SIGKILL to the suite alone (no chance to clean up): its workers must not outlive it.
 // Each is sent once a few results are recorded. The suite (two short scenarios, two laws, the reference
 // and MuJoCo when built) is compared with an uninterrupted run of the same command: the same job ids and
-// every field of runs.jsonl and runs.csv equal except the timing ones (wall_time_s, cpu_time_s,
-// wall_time_per_simulated_s), compared sorted by job id, and every run's series.csv, events.csv and
+// every field of runs.jsonl and runs.csv equal except the timing ones (ib::timing_field_names()), compared sorted by job id, and every run's series.csv, events.csv and
 // impact.csv equal byte for byte. The report is made from nothing else, so one test (Ctrl-C) also makes
 // both reports (it takes matplotlib several seconds each) and compares summary.md with its date, its
 // folder and the timing it shows masked (the run-time column, and the "at equal run time" line, whose
@@ -31,12 +30,14 @@
 #include <thread>
 #include <vector>
 
+#include "run_record.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-const std::vector<std::string> kTimingFields = {"wall_time_s", "cpu_time_s", "wall_time_per_simulated_s"};
+const std::vector<std::string>& kTimingFields = ib::timing_field_names();
 
 std::vector<std::string> suite_arguments(const fs::path& out) {
   std::vector<std::string> args = {IMPACTBENCH_EXECUTABLE, "suite", std::string(IMPACTBENCH_TEST_DATA_DIR) + "/report_suite",

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "command_test_support.h"
+#include "run_record.h"
 #include "suite_test_support.h"
 
 namespace {
@@ -32,7 +33,7 @@ using Json = nlohmann::json;
 using ib::test::CommandOutput;
 
 // What may differ between two runs of one job: its measured cost.
-const std::set<std::string> kRunTimingFields = {"wall_time_s", "cpu_time_s", "wall_time_per_simulated_s"};
+const std::set<std::string> kRunTimingFields(ib::timing_field_names().begin(), ib::timing_field_names().end());
 const std::set<std::string> kStepTimingFields = {"probes_wall_time_s"};
 constexpr int kShards = 3;
 
@@ -194,7 +195,7 @@ class SuiteSharding : public ::testing::Test {
   // The small suite's command line with `extra` options, into `out`.
   static std::string suite_arguments(const std::string& extra, const fs::path& out) {
     return "suite " + quoted(*root_ / "scenarios") + " --engines " + engines() +
-           " --laws hertz,viscoelastic --dt 1e-4,5e-5 --duration 1 --jobs 2 " + extra + " --out " + quoted(out);
+           " --laws hertz,viscoelastic --dt 1e-4,5e-5 --duration 1 --repeat 0 --jobs 2 " + extra + " --out " + quoted(out);
   }
   // Runs the small suite into `out` (once) and returns its exit code: 0, or 1 when a run is unstable or failed.
   static int suite(const std::string& extra, const fs::path& out) {
@@ -371,7 +372,7 @@ TEST_F(SuiteSharding, MergeRefusesWhatItCannotJoin) {
 // --find-steps: the step-search groups are divided; the merged steps.csv is the whole search's.
 TEST_F(SuiteSharding, StepSearchShardsMergedGiveTheWholeSearch) {
   const std::string search = "suite " + quoted(*root_ / "scenarios" / "short_free.toml") + " --engines " + engines() +
-                             " --laws hertz,viscoelastic --find-steps --step-range 5e-5,2e-4 --jobs 2 --out ";
+                             " --laws hertz,viscoelastic --find-steps --step-range 5e-5,2e-4 --repeat 0 --jobs 2 --out ";
   const CommandOutput whole = command(search + quoted(*root_ / "steps-whole"));
   ASSERT_LE(whole.exit_code, 1) << whole.text;
   std::string list;

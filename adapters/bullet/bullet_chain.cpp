@@ -111,16 +111,24 @@ class MultiBodyChain final : public BulletChain {
   double tip_x_m() const override { return body_->localPosToWorld(body_->getNumLinks() - 1, tip_in_last_).x(); }
 
   // The tip moves with every hinge rate about its hinge: v = sum_j theta'_j y x (p - h_j), whose
-  // x component is sum_j theta'_j (p_z - h_jz) (exact for the planar chain).
+  // x component is sum_j theta'_j (p_z - h_jz) (exact for the planar chain). The hinge points come from
+  // one pass from the base out (each link's frame from its parent's, as localPosToWorld composes them),
+  // not from localPosToWorld per hinge, which walks back to the base every time: O(K) instead of O(K^2)
+  // per step, a fifth of a step's cost at K = 8.
   double tip_velocity_x_m_s() const override {
     const int links = body_->getNumLinks();
-    const double tip_z = body_->localPosToWorld(links - 1, tip_in_last_).z();
-    double v = 0;
-    for (int j = 0; j < links; ++j) {
-      const double hinge_z = body_->localPosToWorld(j, hinge_in_link_[j]).z();
-      v += body_->getJointVel(j) * (tip_z - hinge_z);
+    btQuaternion to_world = body_->getWorldToBaseRot().inverse();  // link frame -> world rotation
+    btVector3 origin = body_->getBasePos();                         // link frame origin in the world
+    double sum_rate = 0, sum_rate_hinge_z = 0;                      // sum theta'_j, sum theta'_j h_jz
+    for (int j = 0; j < links; ++j) {  // a serial chain: link j's parent is link j - 1 (the base for j = 0)
+      to_world = to_world * body_->getParentToLocalRot(j).inverse();
+      origin += quatRotate(to_world, body_->getRVector(j));
+      const double rate = body_->getJointVel(j);
+      sum_rate += rate;
+      sum_rate_hinge_z += rate * (origin + quatRotate(to_world, hinge_in_link_[j])).z();
     }
-    return v;
+    const double tip_z = (origin + quatRotate(to_world, tip_in_last_)).z();
+    return sum_rate * tip_z - sum_rate_hinge_z;
   }
 
   void joint_state(Eigen::VectorXd& angles, Eigen::VectorXd& rates) const override {

@@ -83,11 +83,21 @@ RigEnergy::RigEnergy(const RigSpec& rig) : law_(rig.law) {
   for (int f = 0; f < 2; ++f) matrices_[f] = linearise(rig.frames[f].chain);
 }
 
+namespace {
+// x^T A x without a temporary vector: the engines call RigEnergy every step, and Eigen's A * x would
+// allocate one per call.
+double quadratic_form(const Eigen::MatrixXd& a, const Eigen::VectorXd& x) {
+  double sum = 0;
+  for (Eigen::Index j = 0; j < a.cols(); ++j) sum += x[j] * a.col(j).dot(x);
+  return sum;
+}
+}  // namespace
+
 double RigEnergy::operator()(const std::array<Eigen::VectorXd, 2>& angles, const std::array<Eigen::VectorXd, 2>& rates,
                              double indentation_m) const {
   double energy = elastic_contact_energy(law_, indentation_m);
   for (int f = 0; f < 2; ++f)
-    energy += 0.5 * rates[f].dot(matrices_[f].mass * rates[f]) + 0.5 * angles[f].dot(matrices_[f].stiffness * angles[f]);
+    energy += 0.5 * quadratic_form(matrices_[f].mass, rates[f]) + 0.5 * quadratic_form(matrices_[f].stiffness, angles[f]);
   return energy;
 }
 

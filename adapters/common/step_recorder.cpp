@@ -69,9 +69,13 @@ void StepRecorder::keep_for_zoom(const StepSample& sample, bool episode_started,
     return;
   }
   recent_.push_back(sample);
-  std::size_t old = 0;
-  while (old < recent_.size() && recent_[old].t < sample.t - kZoomMargin_s) ++old;
-  if (old > 64) recent_.erase(recent_.begin(), recent_.begin() + static_cast<std::ptrdiff_t>(old));
+  // steps older than the margin are dropped in batches of more than 64 (one move per batch, not one per
+  // step); the scan resumes where it stopped instead of rereading the stale ones every step
+  while (recent_stale_ < recent_.size() && recent_[recent_stale_].t < sample.t - kZoomMargin_s) ++recent_stale_;
+  if (recent_stale_ > 64) {
+    recent_.erase(recent_.begin(), recent_.begin() + static_cast<std::ptrdiff_t>(recent_stale_));
+    recent_stale_ = 0;
+  }
 }
 
 void StepRecorder::end_capture() {
@@ -82,6 +86,7 @@ void StepRecorder::end_capture() {
   }
   capture_.clear();
   recent_.clear();
+  recent_stale_ = 0;
 }
 
 Trajectory StepRecorder::impact_zoom() const {

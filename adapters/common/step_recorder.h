@@ -60,6 +60,7 @@ class StepRecorder {
   ContactEvent episode_;
   // impact zoom: the last 1 ms of steps, the impact being captured, the strongest so far
   std::vector<StepSample> recent_, capture_, strongest_;
+  std::size_t recent_stale_ = 0;  // recent_[0, recent_stale_) are older than the zoom's margin
   bool capturing_ = false;
   double capture_until_ = 0, capture_peak_ = 0, strongest_peak_ = 0;
 };

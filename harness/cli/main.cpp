@@ -94,10 +94,14 @@ void require_engine(const std::string& engine) {
 // How runs are measured; shared by `run` and `suite`.
 struct MeasurementOptions {
   double window_s = -1, sensor_rate_hz = 2048, merge_window_s = 0.002;
+  int timed_repeats = 2;  // timed runs of every run: separate from the logged one, and repeated
   void add_to(CLI::App* app) {
     app->add_option("--window", window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's");
     app->add_option("--sensor-rate", sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]")->capture_default_str();
     app->add_option("--merge-window", merge_window_s, "onsets closer than this are one impact [s]")->capture_default_str();
+    app->add_option("--repeat", timed_repeats,
+                    "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's)")
+        ->capture_default_str();
   }
   ib::Measurement build() const {
     if (!(sensor_rate_hz > 0)) throw std::invalid_argument("--sensor-rate " + std::to_string(sensor_rate_hz) + ": allowed: > 0 Hz");
@@ -109,6 +113,9 @@ struct MeasurementOptions {
     }
     m.sensor_rate_hz = sensor_rate_hz;
     m.merge_window_s = merge_window_s;
+    if (timed_repeats < 0 || timed_repeats > 100)
+      throw std::invalid_argument("--repeat " + std::to_string(timed_repeats) + ": allowed: 0 to 100 timed runs");
+    m.timed_repeats = timed_repeats;
     return m;
   }
 };

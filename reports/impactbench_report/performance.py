@@ -1,0 +1,127 @@
+"""The report's performance section, from the measurements saved in SUITE/performance/ (each optional):
+
+- reference_benchmark.json, engine_step_benchmark.json, harness_overhead_benchmark.json: Google
+  Benchmark's JSON (bench/run-benchmarks.sh), machine and versions in its context;
+- scaling.json: the suite on 1, 2, ... workers (bench/suite_scaling.sh);
+- reference_vs_scipy.json: the reference against SciPy's solve_ivp (bench/reference_vs_scipy.py).
+
+Every table says what machine and software it was measured with. Nothing here is computed from the
+suite's runs: these are separate, repeated timings."""
+
+import html
+import json
+import math
+import os
+
+from . import tables
+
+MACHINE_KEYS = ["cpu_model", "cpu_cores", "memory_gib", "os", "compiler", "libmujoco-dev", "libode-dev",
+                "libbullet-dev", "libbenchmark-dev", "python3-scipy", "impactbench_commit"]
+
+
+def read_json(folder, name):
+    path = os.path.join(folder, name)
+    if not os.path.exists(path):
+        return None
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError) as error:
+        raise ValueError(f"{path}: not readable JSON ({error})")
+
+
+def machine_line(machine):
+    """'measured on: AMD EPYC x 2 cores, 23.5 GiB, ...' from bench/machine.sh's keys."""
+    if not machine:
+        return "measured on: (no machine record)"
+    parts = [f"{machine.get('cpu_model', '?')} x {machine.get('cpu_cores', '?')} cores",
+             f"{machine.get('memory_gib', '?')} GiB", machine.get("os", ""), machine.get("compiler", "")]
+    versions = [f"{k} {machine[k]}" for k in MACHINE_KEYS[5:] if k in machine]
+    return "measured on: " + ", ".join(p for p in parts if p) + ("; " + ", ".join(versions) if versions else "")
+
+
+def benchmark_rows(document):
+    """Google Benchmark's records by name, preferring the median aggregate when repetitions ran."""
+    rows = {}
+    for b in document.get("benchmarks", []):
+        name = b.get("run_name", b["name"]).removesuffix("/real_time")
+        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
+            continue
+        if b.get("run_type") == "aggregate" or name not in rows:
+            rows[name] = b
+    return rows
+
+
+def number(record, key):
+    value = record.get(key)
+    return float(value) if isinstance(value, (int, float)) else math.nan
+
+
+def reference_table(document):
+    header = ["case / law", "simulated s per wall s", "impacts", "time per run [ms]"]
+    rows = [[name, tables.fmt(number(b, "sim_s_per_wall_s")), tables.fmt(number(b, "impacts")),
+             tables.fmt(number(b, "real_time"))] for name, b in benchmark_rows(document).items()]
+    return "The reference: each published case and law over its whole duration (rtol 1e-9, 10 modes per frame)", header, rows
+
+
+def engine_step_table(document):
+    header = ["engine / law", "us per step", "steps per run"]
+    rows = [[name, tables.fmt(number(b, "us_per_step"), 3), tables.fmt(number(b, "steps"))]
+            for name, b in benchmark_rows(document).items()]
+    return "Each engine's cost per step on the rig (resonance, 2 s, matched path, default step)", header, rows
+
+
+def overhead_table(document):
+    header = ["engine / law", "through the harness [ms]", "bare loop [ms]", "harness overhead"]
+    rows = [[name, tables.fmt(number(b, "harness_ms"), 3), tables.fmt(number(b, "bare_ms"), 3),
+             f"{number(b, 'overhead_percent'):+.1f} %"] for name, b in benchmark_rows(document).items()]
+    return ("The harness against a bare loop stepping the same engine model (resonance, 2 s, model building "
+            "included; target under 5 %)", header, rows)
+
+
+def scaling_table(document):
+    header = ["workers", "suite wall time [s]", "jobs", "parallel efficiency"]
+    rows = []
+    for r in document.get("rows", []):
+        efficiency = r.get("parallel_efficiency")
+        rows.append([tables.fmt(r["workers"]), tables.fmt(r["wall_time_s"]), tables.fmt(r["jobs"]),
+                     "–" if efficiency is None else f"{100 * efficiency:.1f} %"])
+    duration = document.get("duration_option") or "the default"
+    return (f"Suite scaling: {document.get('suite', 'the default suite')}, run duration {duration} "
+            "(target: efficiency above 90 %)", header, rows)
+
+
+def scipy_table(document):
+    header = ["case / law", "reference [s]", "SciPy solve_ivp [s]", "speed ratio", "largest metric difference"]
+    rows = []
+    for c in document.get("cases", []):
+        rows.append([f"{c.get('case', '?')} / {c.get('law', '?')}", tables.fmt(c.get("reference_wall_time_s"), 3),
+                     tables.fmt(c.get("scipy_wall_time_s"), 3), tables.fmt(c.get("speed_ratio"), 3),
+                     tables.percent(c["largest_relative_difference"]) if "largest_relative_difference" in c else "–"])
+    return "The reference against SciPy's solve_ivp on the same modal equations (same tolerance)", header, rows
+
+
+READERS = [("reference_benchmark.json", reference_table), ("engine_step_benchmark.json", engine_step_table),
+           ("harness_overhead_benchmark.json", overhead_table), ("scaling.json", scaling_table),
+           ("reference_vs_scipy.json", scipy_table)]
+
+
+def section(suite_folder):
+    """(markdown, html) of the performance section, or None when the suite folder has no measurements."""
+    folder = os.path.join(suite_folder, "performance")
+    if not os.path.isdir(folder):
+        return None
+    markdown_parts, html_parts = [], []
+    for name, reader in READERS:
+        document = read_json(folder, name)
+        if document is None:
+            continue
+        title, header, rows = reader(document)
+        machine = document.get("machine") or document.get("context")
+        line = machine_line(machine) + f" (performance/{name})"
+        markdown_parts.append(f"**{title}**\n\n{tables.markdown(header, rows)}\n\n{line}")
+        html_parts.append(f"<h3>{html.escape(title)}</h3>{tables.html_table(header, rows)}"
+                          f"<p><small>{html.escape(line)}</small></p>")
+    if not markdown_parts:
+        return None
+    return "\n\n".join(markdown_parts), "".join(html_parts)

@@ -1,0 +1,76 @@
+"""The report's performance section: every figure it shows is the saved measurement's own (Google
+Benchmark's median aggregate where repetitions ran), each table names the machine and versions, a
+folder without measurements adds no section, and unreadable JSON names its file.
+
+    /usr/bin/python3 reports/tests/test_performance_section.py
+"""
+
+import json
+import os
+import shutil
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from impactbench_report import performance  # noqa: E402
+
+MACHINE = {"cpu_model": "Test CPU 9000", "cpu_cores": "2", "memory_gib": "23.5", "os": "Debian GNU/Linux 12",
+           "libmujoco-dev": "2.2.2-3", "impactbench_commit": "abc1234"}
+
+
+def benchmark(name, **counters):
+    return dict({"name": name, "run_name": name, "run_type": "iteration", "real_time": 12.5, "time_unit": "ms"}, **counters)
+
+
+class PerformanceSection(unittest.TestCase):
+    def setUp(self):
+        self.suite = tempfile.mkdtemp(prefix="impactbench_performance_test_")
+        self.folder = os.path.join(self.suite, "performance")
+        os.makedirs(self.folder)
+
+    def tearDown(self):
+        shutil.rmtree(self.suite)
+
+    def write(self, name, document):
+        with open(os.path.join(self.folder, name), "w") as f:
+            json.dump(document, f)
+
+    def test_no_measurements_no_section(self):
+        self.assertIsNone(performance.section(self.suite))
+        shutil.rmtree(self.folder)
+        self.assertIsNone(performance.section(self.suite))
+
+    def test_the_median_aggregate_is_shown_with_the_machine(self):
+        mean = dict(benchmark("mujoco/hertz", us_per_step=9.0, steps=20000.0), run_type="aggregate", aggregate_name="mean")
+        median = dict(benchmark("mujoco/hertz", us_per_step=6.25, steps=20000.0), run_type="aggregate", aggregate_name="median")
+        self.write("engine_step_benchmark.json", {"context": MACHINE, "benchmarks": [mean, median]})
+        markdown, page = performance.section(self.suite)
+        self.assertIn("| mujoco/hertz | 6.25 | 2e+04 |", markdown)
+        self.assertNotIn("| 9 |", markdown)
+        for text in (markdown, page):
+            self.assertIn("Test CPU 9000 x 2 cores", text)
+            self.assertIn("libmujoco-dev 2.2.2-3", text)
+            self.assertIn("abc1234", text)
+
+    def test_overhead_and_scaling_figures_are_the_files_own(self):
+        self.write("harness_overhead_benchmark.json", {"context": MACHINE, "benchmarks": [
+            benchmark("ode/newton", harness_ms=104.0, bare_ms=100.0, overhead_percent=4.0)]})
+        self.write("scaling.json", {"suite": "default suite part 1", "duration_option": "--duration 50", "machine": MACHINE,
+                                    "rows": [{"workers": 1, "wall_time_s": 1800.0, "jobs": 240, "parallel_efficiency": 1.0},
+                                             {"workers": 2, "wall_time_s": 960.0, "jobs": 240, "parallel_efficiency": 0.9375}]})
+        markdown, _ = performance.section(self.suite)
+        self.assertIn("| ode/newton | 104 | 100 | +4.0 % |", markdown)
+        self.assertIn("| 2 | 960 | 240 | 93.8 % |", markdown)
+        self.assertIn("--duration 50", markdown)
+
+    def test_unreadable_json_names_its_file(self):
+        with open(os.path.join(self.folder, "scaling.json"), "w") as f:
+            f.write("{not json")
+        with self.assertRaises(ValueError) as raised:
+            performance.section(self.suite)
+        self.assertIn("scaling.json", str(raised.exception))
+
+
+if __name__ == "__main__":
+    unittest.main()

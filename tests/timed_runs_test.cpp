@@ -1,0 +1,117 @@
+// Timed runs are separate from the logged run and repeated: run_job runs the simulator once to record
+// (series, events, metrics) and then Measurement::timed_repeats times more with nothing written; the
+// record's cost is the median of those, with their spread and the logged run's own time beside it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "reference_simulator.h"
+#include "run_job.h"
+#include "scenario_toml.h"
+#include "suite_test_support.h"
+
+namespace ib {
+namespace {
+
+// The reference under another name whose reported run times are scripted: the logged run takes 100 s,
+// the timed ones take the times given, in order. Counts its runs.
+class ScriptedClock final : public Simulator {
+ public:
+  explicit ScriptedClock(std::vector<double> timed_wall_s) : timed_wall_s_(std::move(timed_wall_s)) {}
+  std::string name() const override { return "scripted"; }
+  std::string version() const override { return "test"; }
+  std::vector<std::pair<std::string, std::string>> option_help() const override { return {}; }
+  RunResult run(const Scenario& s, const RunSettings& settings) override {
+    RunResult r = make_reference_simulator()->run(s, settings);
+    const double wall = runs_ == 0 ? 100.0 : timed_wall_s_.at(runs_ - 1);
+    r.cost.wall_time_s = wall;
+    r.cost.cpu_time_s = wall / 2;
+    ++runs_;
+    return r;
+  }
+  int runs() const { return runs_; }
+
+ private:
+  std::vector<double> timed_wall_s_;
+  int runs_ = 0;
+};
+
+struct Fixture {
+  Scenario scenario;
+  JobSpec job;
+  Fixture(const std::filesystem::path& folder) {
+    test::write_short_free_vibration(folder);
+    scenario = load_scenario((folder / "short_free.toml").string());
+    job.scenario_path = scenario.source_path;
+    job.engine = "scripted";
+  }
+};
+
+TEST(TimedRuns, TheCostIsTheMedianOfTheTimedRunsWithTheirSpreadAndTheLoggedRunBeside) {
+  const auto folder = test::fresh_test_folder("timed_runs_");
+  Fixture f(folder);
+  ScriptedClock* clock = nullptr;
+  const SimulatorFactory factory = [&](const std::string&) {
+    auto s = std::make_unique<ScriptedClock>(std::vector<double>{5.0, 1.0, 3.0});
+    clock = s.get();
+    return s;
+  };
+  Measurement measurement;
+  measurement.timed_repeats = 3;
+  const RunRecord r = run_job(f.scenario, f.job, measurement, nullptr, nullptr, (folder / "run").string(), nullptr, factory);
+  ASSERT_NE(clock, nullptr);
+  EXPECT_EQ(clock->runs(), 4);  // one logged, three timed
+  EXPECT_EQ(r.timed_runs, 3);
+  EXPECT_DOUBLE_EQ(r.cost.wall_time_s, 3.0);
+  EXPECT_DOUBLE_EQ(r.cost.cpu_time_s, 1.5);
+  EXPECT_DOUBLE_EQ(r.wall_time_min_s, 1.0);
+  EXPECT_DOUBLE_EQ(r.wall_time_max_s, 5.0);
+  EXPECT_DOUBLE_EQ(r.logged_wall_time_s, 100.0);
+  // summary.json carries the same, written after the timed runs
+  std::ifstream summary(folder / "run" / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(summary);
+  EXPECT_DOUBLE_EQ(j.at("wall_time_s").get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(j.at("timed_runs").get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(j.at("logged_wall_time_s").get<double>(), 100.0);
+}
+
+TEST(TimedRuns, WithoutTimedRunsTheCostIsTheLoggedRunsAndNoSpreadIsClaimed) {
+  const auto folder = test::fresh_test_folder("timed_runs_");
+  Fixture f(folder);
+  const SimulatorFactory factory = [](const std::string&) { return std::make_unique<ScriptedClock>(std::vector<double>{}); };
+  Measurement measurement;
+  measurement.timed_repeats = 0;
+  const RunRecord r = run_job(f.scenario, f.job, measurement, nullptr, nullptr, "", nullptr, factory);
+  EXPECT_EQ(r.timed_runs, 0);
+  EXPECT_DOUBLE_EQ(r.cost.wall_time_s, 100.0);
+  for (const Field& field : fields(r))
+    if (field.name == "wall_time_min_s" || field.name == "wall_time_max_s")
+      EXPECT_TRUE(std::isnan(std::get<double>(field.value))) << field.name;
+}
+
+TEST(TimedRuns, TimedRunsDoNotChangeWhatIsMeasured) {
+  const auto folder = test::fresh_test_folder("timed_runs_");
+  Fixture f(folder);
+  f.job.engine = "reference";
+  Measurement once, repeated;
+  once.timed_repeats = 0;
+  repeated.timed_repeats = 2;
+  const RunRecord a = run_job(f.scenario, f.job, once, nullptr, nullptr, "");
+  const RunRecord b = run_job(f.scenario, f.job, repeated, nullptr, nullptr, "");
+  ASSERT_TRUE(a.metrics && b.metrics);
+  const auto fa = flatten(*a.metrics), fb = flatten(*b.metrics);
+  ASSERT_EQ(fa.size(), fb.size());
+  for (std::size_t i = 0; i < fa.size(); ++i)
+    if (!std::isnan(fa[i].second)) EXPECT_EQ(fa[i].second, fb[i].second) << fa[i].first;
+  EXPECT_EQ(b.timed_runs, 2);
+  EXPECT_LE(b.wall_time_min_s, b.cost.wall_time_s);
+  EXPECT_LE(b.cost.wall_time_s, b.wall_time_max_s);
+}
+
+}  // namespace
+}  // namespace ib
