@@ -62,7 +62,9 @@ def summary_row(result):
         "case": result["case"], "law": result["law"], "duration_s": result["duration_s"],
         "scoring_window_s": result["scoring_window_s"], "cut": result["cut"],
         "reference_wall_time_s": t["reference_wall_time_s"], "scipy_integration_time_s": t["scipy_integration_time_s"],
-        "scipy_output_time_s": t["scipy_output_time_s"], "speed_ratio": t["speed_ratio"],
+        "reference_cpu_time_s": t["reference_cpu_time_s"], "scipy_integration_cpu_time_s": t["scipy_integration_cpu_time_s"],
+        "scipy_output_time_s": t["scipy_output_time_s"], "scipy_rhs_evaluations": t["scipy_rhs_evaluations"],
+        "speed_ratio": t["speed_ratio"], "speed_ratio_cpu": t["speed_ratio_cpu"],
         "speed_ratio_with_output": (t["scipy_integration_time_s"] + t["scipy_output_time_s"]) / t["reference_wall_time_s"],
         "impacts_reference": counts["impacts"]["reference"], "impacts_scipy": counts["impacts"]["scipy"],
         "raw_onsets_reference": counts["raw_onsets"]["reference"], "raw_onsets_scipy": counts["raw_onsets"]["scipy"],
@@ -106,20 +108,24 @@ def markdown(record):
         "Speed ratio: SciPy's integration time (solve_ivp calls with their event location and dense output, the "
         f"median of up to {s['repeat']} runs) over the reference's wall time (summary.json, median of "
         f"{s['repeat']}), which includes recording the series and its exact peaks; SciPy's recording is the "
-        "output column, and the ratio with it follows. Largest difference: the largest |SciPy - reference| / "
+        "output column, and the ratio with it follows. CPU time ratio: the same with both CPU times (less "
+        "sensitive to other work on the machine). SciPy f evaluations: right-hand side evaluations, a cost that "
+        "no load changes. Largest difference: the largest |SciPy - reference| / "
         "|reference| over the metrics (and RMS(u_SciPy - u_ref) / RMS(u_ref) of the tip displacements); errors: the "
         "same against the tight reference.",
         "",
-        "| case | law | simulated [s] | reference [s] | SciPy [s] | SciPy output [s] | speed ratio | with output "
-        "| impacts ref / SciPy | largest difference | error: reference | error: SciPy | reference as accurate | >= 100x |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "| case | law | simulated [s] | reference [s] | SciPy [s] | SciPy output [s] | speed ratio | CPU time ratio "
+        "| with output | SciPy f evaluations | impacts ref / SciPy | largest difference | error: reference "
+        "| error: SciPy | reference as accurate | >= 100x |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for c in record["cases"]:
         r = c["summary"]
         lines.append(
             f"| {r['case']} | {r['law']} | {text(r['duration_s'])} | {r['reference_wall_time_s']:.4f} | "
             f"{r['scipy_integration_time_s']:.2f} | {r['scipy_output_time_s']:.2f} | {r['speed_ratio']:.0f} | "
-            f"{r['speed_ratio_with_output']:.0f} | {text(r['impacts_reference'])} / {text(r['impacts_scipy'])} | "
+            f"{text(r['speed_ratio_cpu'] and round(r['speed_ratio_cpu']))} | {r['speed_ratio_with_output']:.0f} | "
+            f"{r['scipy_rhs_evaluations']:.3g} | {text(r['impacts_reference'])} / {text(r['impacts_scipy'])} | "
             f"{text(r['largest_relative_difference'], 2)} | {text(r['largest_reference_error'], 2)} | "
             f"{text(r['largest_scipy_error'], 2)} | {text(r['reference_at_least_as_accurate'])} | "
             f"{text(r['at_least_100x'])} |")

@@ -26,8 +26,11 @@ import subprocess
 import sys
 import tomllib
 
-import numpy
-import scipy
+try:
+    import numpy
+    import scipy
+except ImportError as missing:
+    sys.exit(f"reference_vs_scipy: {missing}: needs NumPy and SciPy (Debian's python3-scipy); run with /usr/bin/python3")
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from comparison_tables import metric_rows, summary_row, write_outputs  # noqa: E402
@@ -132,10 +135,14 @@ def compare_case(args, case, law, out):
 
     reference = os.path.join(folder, "reference")
 
+    reference_cpu_times = []
+
     def reference_once():
         run([ib, "run", scenario, "--engine", "reference", "--law", law, "--out", reference] + tolerances,
             f"{name}: the reference")
-        return read_json(os.path.join(reference, "summary.json"), f"{name}: the reference's summary")["wall_time_s"]
+        summary = read_json(os.path.join(reference, "summary.json"), f"{name}: the reference's summary")
+        reference_cpu_times.append(summary["cpu_time_s"])
+        return summary["wall_time_s"]
 
     reference_time, reference_times = median_of_runs(reference_once, args.repeat, lambda t: True)
     tight = os.path.join(folder, "tight_reference")
@@ -159,8 +166,12 @@ def compare_case(args, case, law, out):
               "scipy_vs_reference": score(ib, scipy_folder, scenario, reference),
               "tight": score(ib, tight, scenario, tight)}
     last = scipy_runs[-1]
+    reference_cpu = statistics.median(reference_cpu_times)
+    scipy_cpu = statistics.median(r["integration_cpu_time_s"] for r in scipy_runs)
     timing = {"reference_wall_times_s": reference_times, "reference_wall_time_s": reference_time,
-              "scipy_integration_times_s": scipy_times, "scipy_integration_time_s": scipy_time,
+              "reference_cpu_time_s": reference_cpu, "scipy_integration_times_s": scipy_times,
+              "scipy_integration_time_s": scipy_time, "scipy_integration_cpu_time_s": scipy_cpu,
+              "speed_ratio_cpu": scipy_cpu / reference_cpu if reference_cpu > 0 else None,
               "scipy_output_time_s": last["output_time_s"], "scipy_rhs_evaluations": last["rhs_evaluations"],
               "scipy_solve_ivp_calls": last["solve_ivp_calls"], "speed_ratio": scipy_time / reference_time}
     return {"case": case_name, "law": law, "scenario_file": scenario, "duration_s": duration, "scoring_window_s": window, "cut": cut,
