@@ -14,6 +14,7 @@ packages=(
   libode-dev                     # ODE 0.16.2, double precision
   libbullet-dev                  # Bullet 3.24, linked as bullet-float64 (double precision)
   python3-matplotlib             # the report's figures (reports/, run with /usr/bin/python3)
+  python3-scipy                  # bench/reference_vs_scipy.py: the reference against SciPy's solve_ivp
   libgtest-dev libgmock-dev      # tests
   libbenchmark-dev               # bench/: speed measurements
 )

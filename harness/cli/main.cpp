@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "modal_model.h"
+#include "modal_model_json.h"
 #include "reference_simulator.h"
 #include "run_files.h"
 #include "merge.h"
@@ -325,20 +326,42 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
 }
 
+// The reference's modal model as JSON (reference/modal_model_json.h), for the run `run` would make
+// with the same scenario, law, options and --rate: for another solver to integrate the same equations.
+std::string reference_model_json(const ib::Scenario& scenario, const ib::RunSettings& settings) {
+  if (settings.time_step_s != 0)
+    throw std::invalid_argument("--dt " + std::to_string(settings.time_step_s) + ": the reference is adaptive; allowed: no --dt");
+  if (!(settings.output_rate_hz > 0))
+    throw std::invalid_argument("--rate " + std::to_string(settings.output_rate_hz) + ": allowed: > 0 Hz");
+  const ib::ReferenceSettings reference = ib::reference_settings_from_options(settings.options);
+  const ib::ModalModel model = ib::build_modal_model(scenario, settings.law, reference.modes);
+  ib::ModelRunInfo run;
+  run.scenario_name = scenario.name;
+  run.scenario_file = scenario.source_path;
+  run.duration_s = scenario.duration_s;
+  run.scoring_window_start_s = run.series_start_s = scenario.scoring_start_s();  // as `run` samples it
+  run.scoring_window_end_s = scenario.duration_s;
+  run.output_rate_hz = settings.output_rate_hz;
+  return ib::modal_model_json(model, ib::initial_state(scenario, model), run, reference);
+}
+
 // The model an engine builds for a run, in the engine's own format, for a person to open in the
-// engine's tools (MuJoCo: MJCF for its viewer).
+// engine's tools (MuJoCo: MJCF for its viewer; the reference: its modal model as JSON).
 int command_export(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
-                   double time_step_s, const std::vector<std::string>& option_pairs) {
+                   double time_step_s, double rate_hz, const std::vector<std::string>& option_pairs) {
   const ib::Scenario scenario = ib::load_scenario(path);
   ib::RunSettings settings;
   settings.law = parse_law(law_name);
   settings.time_step_s = time_step_s;
+  settings.output_rate_hz = rate_hz;
   settings.options = parse_options(option_pairs);
   std::string text;
+  if (engine == "reference") text = reference_model_json(scenario, settings);
 #if IMPACTBENCH_WITH_MUJOCO
   if (engine == "mujoco") text = ib::mujoco_model_xml(scenario, settings);
 #endif
-  if (text.empty()) throw std::invalid_argument("--engine " + engine + ": no exportable model; allowed: mujoco (when built)");
+  if (text.empty())
+    throw std::invalid_argument("--engine " + engine + ": no exportable model; allowed: reference, mujoco (when built)");
   if (out.empty() || out == "-") {
     std::cout << text;
   } else {
@@ -348,6 +371,38 @@ int command_export(const std::string& path, const std::string& engine, const std
     file.close();
     if (!file) throw ib::OutputError(ib::output_error_text(out, "write", errno));
     std::fprintf(stderr, "model written to %s\n", out.c_str());
+  }
+  return kExitOk;
+}
+
+// A run made elsewhere (series.csv and events.csv in the harness's format, run_files.h), measured with the
+// harness's own metric code exactly as every simulator's run is; with a reference folder, its errors
+// against it too (the vs_reference_* figures of runs.csv).
+int command_score(const std::string& folder, const std::string& scenario_path, const std::string& reference_folder,
+                  bool json, const MeasurementOptions& measurement_options) {
+  const ib::Scenario scenario = ib::load_scenario(scenario_path);
+  const ib::Measurement measurement = measurement_options.build();
+  const ib::MetricSettings metric_settings = ib::metric_settings(scenario, measurement);
+  const ib::ReferenceData run = ib::load_reference(folder, scenario, measurement);
+  std::vector<std::pair<std::string, double>> figures = ib::flatten(run.metrics);
+  if (!reference_folder.empty()) {
+    const ib::ReferenceData reference = ib::load_reference(reference_folder, scenario, measurement);
+    const ib::MetricErrors errors =
+        ib::compare_metrics(run.metrics, run.trajectory, reference.metrics, reference.trajectory, metric_settings);
+    for (const auto& figure : ib::flatten(errors, "vs_reference_")) figures.push_back(figure);
+  }
+  if (json) {
+    nlohmann::ordered_json out;
+    out["run_folder"] = folder;
+    out["scenario_file"] = scenario_path;
+    if (!reference_folder.empty()) out["reference_folder"] = reference_folder;
+    out["window_start_s"] = metric_settings.window_start_s;
+    out["window_end_s"] = metric_settings.window_end_s;
+    for (const auto& [name, value] : figures) out[name] = std::isfinite(value) ? nlohmann::ordered_json(value) : nullptr;
+    std::cout << out.dump(2) << '\n';
+  } else {
+    std::printf("%s scored over [%.17g, %.17g] s\n", folder.c_str(), metric_settings.window_start_s, metric_settings.window_end_s);
+    for (const auto& [name, value] : figures) std::printf("  %-45s %.17g\n", name.c_str(), value);
   }
   return kExitOk;
 }
@@ -478,13 +533,26 @@ int main(int argc, char** argv) {
   merge->add_flag("--no-report", merge_no_report, "join only; make the report later with 'report OUT'");
 
   std::string export_engine = "mujoco", export_out;
-  CLI::App* export_model = app.add_subcommand("export", "write the model an engine builds for a scenario (MuJoCo: MJCF for its viewer)");
+  CLI::App* export_model = app.add_subcommand("export", "write the model an engine builds for a scenario (MuJoCo: MJCF for its viewer; reference: its modal model as JSON)");
   export_model->add_option("scenario", scenario_path, "scenario file (.toml)")->required();
   export_model->add_option("--engine", export_engine, "engine")->capture_default_str();
   export_model->add_option("--law", law, "contact law: hertz, viscoelastic or newton")->capture_default_str();
   export_model->add_option("--dt", time_step_s, "time step [s] (0: the engine's default)");
   export_model->add_option("--option", options, "engine option name=value, repeatable");
   export_model->add_option("--out", export_out, "output file; default: standard output");
+  double export_rate_hz = 4096;
+  export_model->add_option("--rate", export_rate_hz, "reference: output sample rate of the run the model is for [Hz]")
+      ->capture_default_str();
+
+  std::string score_folder, score_scenario, score_reference;
+  MeasurementOptions score_measurement;
+  CLI::App* score = app.add_subcommand("score", "measure a run folder's series.csv and events.csv (from any solver) with "
+                                                "the harness's metrics; print them with the names of runs.csv");
+  score->add_option("run", score_folder, "folder with series.csv and events.csv in the harness's format")->required();
+  score->add_option("--scenario", score_scenario, "the scenario file (.toml) the run was made for")->required();
+  score->add_option("--reference", score_reference, "a run folder to compare with (adds the vs_reference_* figures)");
+  score->add_flag("--json", json, "print JSON (NaN as null)");
+  score_measurement.add_to(score);
 
   std::string report_folder, report_out;
   CLI::App* report = app.add_subcommand("report", "make the report (index.html, summary.md, figures) from a suite's saved results");
@@ -507,7 +575,9 @@ int main(int argc, char** argv) {
     if (suite->parsed()) return command_suite(suite_options, suite_measurement);
     if (report->parsed()) return command_report(report_folder, report_out);
     if (merge->parsed()) return command_merge(merge_out, merge_inputs, merge_no_report);
-    if (export_model->parsed()) return command_export(scenario_path, export_engine, law, export_out, time_step_s, options);
+    if (export_model->parsed())
+      return command_export(scenario_path, export_engine, law, export_out, time_step_s, export_rate_hz, options);
+    if (score->parsed()) return command_score(score_folder, score_scenario, score_reference, json, score_measurement);
     return command_list(list_folder);
   } catch (const ib::OutputError& error) {
     std::fprintf(stderr, "impactbench: %s\n", error.what());

@@ -3,7 +3,8 @@
 - reference_benchmark.json, engine_step_benchmark.json, harness_overhead_benchmark.json: Google
   Benchmark's JSON (bench/run-benchmarks.sh), machine and versions in its context;
 - scaling.json: the suite on 1, 2, ... workers (bench/suite_scaling.sh);
-- reference_vs_scipy.json: the reference against SciPy's solve_ivp (bench/reference_vs_scipy.py).
+- reference_vs_scipy/comparison.json: the reference against SciPy's solve_ivp
+  (bench/reference_vs_scipy.py --out SUITE/performance/reference_vs_scipy).
 
 Every table says what machine and software it was measured with. Nothing here is computed from the
 suite's runs: these are separate, repeated timings."""
@@ -92,18 +93,35 @@ def scaling_table(document):
 
 
 def scipy_table(document):
-    header = ["case / law", "reference [s]", "SciPy solve_ivp [s]", "speed ratio", "largest metric difference"]
+    header = ["case / law", "simulated [s]", "reference [s]", "SciPy solve_ivp [s]", "speed ratio (wall)",
+              "speed ratio (CPU)", "largest difference", "error: reference", "error: SciPy"]
     rows = []
     for c in document.get("cases", []):
-        rows.append([f"{c.get('case', '?')} / {c.get('law', '?')}", tables.fmt(c.get("reference_wall_time_s"), 3),
-                     tables.fmt(c.get("scipy_wall_time_s"), 3), tables.fmt(c.get("speed_ratio"), 3),
-                     tables.percent(c["largest_relative_difference"]) if "largest_relative_difference" in c else "–"])
-    return "The reference against SciPy's solve_ivp on the same modal equations (same tolerance)", header, rows
+        r = c.get("summary", {})
+        rows.append([f"{r.get('case', '?')} / {r.get('law', '?')}", tables.fmt(r.get("duration_s")),
+                     tables.fmt(r.get("reference_wall_time_s"), 3), tables.fmt(r.get("scipy_integration_time_s"), 3),
+                     tables.fmt(r.get("speed_ratio"), 3), tables.fmt(r.get("speed_ratio_cpu"), 3),
+                     tables.fmt(r.get("largest_relative_difference"), 2), tables.fmt(r.get("largest_reference_error"), 2),
+                     tables.fmt(r.get("largest_scipy_error"), 2)])
+    settings = document.get("settings", {})
+    title = (f"The reference against SciPy's solve_ivp ({settings.get('method', '?')}) on the same modal equations at "
+             f"the same tolerance (rtol {settings.get('rtol', '?')}); errors against the reference at rtol "
+             f"{settings.get('tight_rtol', '?')}")
+    return title, header, rows
 
 
-READERS = [("reference_benchmark.json", reference_table), ("engine_step_benchmark.json", engine_step_table),
-           ("harness_overhead_benchmark.json", overhead_table), ("scaling.json", scaling_table),
-           ("reference_vs_scipy.json", scipy_table)]
+def scipy_machine(document):
+    machine, versions = document.get("machine", {}), document.get("versions", {})
+    return {"cpu_model": machine.get("cpu", "?"), "cpu_cores": machine.get("cores", "?"),
+            "memory_gib": machine.get("memory_gib", "?"),
+            "python3-scipy": versions.get("scipy", "?"), "impactbench_commit": str(versions.get("impactbench_commit", "?"))[:7]}
+
+
+READERS = [("reference_benchmark.json", reference_table, lambda d: d.get("context")),
+           ("engine_step_benchmark.json", engine_step_table, lambda d: d.get("context")),
+           ("harness_overhead_benchmark.json", overhead_table, lambda d: d.get("context")),
+           ("scaling.json", scaling_table, lambda d: d.get("machine")),
+           ("reference_vs_scipy/comparison.json", scipy_table, scipy_machine)]
 
 
 def section(suite_folder):
@@ -112,13 +130,12 @@ def section(suite_folder):
     if not os.path.isdir(folder):
         return None
     markdown_parts, html_parts = [], []
-    for name, reader in READERS:
+    for name, reader, machine in READERS:
         document = read_json(folder, name)
         if document is None:
             continue
         title, header, rows = reader(document)
-        machine = document.get("machine") or document.get("context")
-        line = machine_line(machine) + f" (performance/{name})"
+        line = machine_line(machine(document)) + f" (performance/{name})"
         markdown_parts.append(f"**{title}**\n\n{tables.markdown(header, rows)}\n\n{line}")
         html_parts.append(f"<h3>{html.escape(title)}</h3>{tables.html_table(header, rows)}"
                           f"<p><small>{html.escape(line)}</small></p>")

@@ -64,6 +64,19 @@ class PerformanceSection(unittest.TestCase):
         self.assertIn("| 2 | 960 | 240 | 93.8 % |", markdown)
         self.assertIn("--duration 50", markdown)
 
+    def test_the_scipy_comparison_is_shown_from_its_own_record(self):
+        os.makedirs(os.path.join(self.folder, "reference_vs_scipy"))
+        summary = {"case": "resonance", "law": "hertz", "duration_s": 20.0, "reference_wall_time_s": 0.5,
+                   "scipy_integration_time_s": 80.0, "speed_ratio": 160.0, "speed_ratio_cpu": 150.0,
+                   "largest_relative_difference": 1e-3, "largest_reference_error": 8e-5, "largest_scipy_error": 9e-4}
+        self.write("reference_vs_scipy/comparison.json", {
+            "machine": {"cpu": "Test CPU 9000", "cores": 2}, "versions": {"scipy": "1.10.1", "impactbench_commit": "abc1234ff"},
+            "settings": {"method": "DOP853", "rtol": 1e-9, "tight_rtol": 1e-12}, "cases": [{"summary": summary}]})
+        markdown, _ = performance.section(self.suite)
+        self.assertIn("| resonance / hertz | 20 | 0.5 | 80 | 160 | 150 | 0.001 | 8e-05 | 0.0009 |", markdown)
+        self.assertIn("Test CPU 9000 x 2 cores", markdown)
+        self.assertIn("python3-scipy 1.10.1", markdown)
+
     def test_unreadable_json_names_its_file(self):
         with open(os.path.join(self.folder, "scaling.json"), "w") as f:
             f.write("{not json")
