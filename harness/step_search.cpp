@@ -378,18 +378,25 @@ std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
   return key_text(group.group_id, s.min_step_s, s.max_step_s, s.points_per_octave, tolerances);
 }
 
+std::string step_row_key_of_line(const std::string& json_line) {
+  const Json j = Json::parse(json_line, nullptr, false);
+  if (!j.is_object() || !j.contains("notes")) return "";  // cut short by a kill
+  std::vector<double> tolerances;
+  for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(number_or_nan(j, std::string(error_name(m)) + "_tolerance"));
+  return key_text(text_or_empty(j, "group_id"), number_or_nan(j, "step_range_min_s"), number_or_nan(j, "step_range_max_s"),
+                  number_or_nan(j, "grid_points_per_octave"), tolerances);
+}
+
 std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
   std::set<std::string> keys;
   std::ifstream in(folder + "/steps.jsonl");
   if (!in) return keys;
   std::string jsonl, csv = steps_csv_header();
   for (std::string line; std::getline(in, line);) {
-    const Json j = Json::parse(line, nullptr, false);
-    if (!j.is_object() || !j.contains("notes")) continue;  // cut short by a kill
-    std::vector<double> tolerances;
-    for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(number_or_nan(j, std::string(error_name(m)) + "_tolerance"));
-    keys.insert(key_text(text_or_empty(j, "group_id"), number_or_nan(j, "step_range_min_s"),
-                         number_or_nan(j, "step_range_max_s"), number_or_nan(j, "grid_points_per_octave"), tolerances));
+    const std::string key = step_row_key_of_line(line);
+    if (key.empty()) continue;  // cut short by a kill
+    const Json j = Json::parse(line);
+    keys.insert(key);
     jsonl += line + "\n";
     std::string row;
     for (const auto& [name, value] : j.items()) {

@@ -137,6 +137,8 @@ std::string steps_json_line(const StepRow& row);
 void append_step_row(const std::string& folder, const StepRow& row);
 // The key a group's row is found by on --resume: its id, range, grid and tolerances.
 std::string step_row_key(const StepGroup& group, const StepSearchSettings& settings);
+// The same key read from a steps.jsonl line; empty when the line is not a row (cut short by a kill).
+std::string step_row_key_of_line(const std::string& json_line);
 // For --resume: drops a steps.jsonl line a kill cut short, rewrites steps.csv from steps.jsonl, and
 // returns the keys of the rows recorded.
 std::set<std::string> repair_and_list_step_rows(const std::string& folder);

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -199,10 +200,16 @@ class SuiteRunner {
     if (error) throw OutputError(output_error_text(settings_.out, "create the output folder", error.value()));
     if (access(settings_.out.c_str(), W_OK) != 0)
       throw OutputError(output_error_text(settings_.out, "write into the output folder", errno));
+    check_same_shard();
     if (settings_.resume) recorded_ = repair_and_list_runs(settings_.out);
     else if (fs::exists(settings_.out + "/runs.jsonl"))
       throw std::runtime_error(settings_.out + " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
     plan();
+    if (settings_.shard) {
+      const std::string suite = plan_digest(planned_keys());
+      keep_only_this_shard();
+      record_plan(suite);
+    }
     int to_run = static_cast<int>(unrunnable_.size());
     for (const auto& job : jobs_) to_run += recorded_.count(job.id) ? 0 : 1;
     outcome_.jobs_skipped = static_cast<int>(jobs_.size()) - (to_run - static_cast<int>(unrunnable_.size()));
@@ -263,6 +270,103 @@ class SuiteRunner {
   }
 
   std::string folder_of(const PlannedJob& job) const { return settings_.out + "/runs/" + job.id; }
+
+  // A shard's folder holds that shard alone: another shard's plan (or a whole suite) in the same folder
+  // would leave it holding neither.
+  void check_same_shard() const {
+    const std::vector<ShardPlan> plans = read_shard_plans(settings_.out);
+    const auto text = [](const Shard& s) { return std::to_string(s.index) + "/" + std::to_string(s.count); };
+    if (!settings_.shard) {
+      if (!plans.empty())
+        throw std::invalid_argument(settings_.out + " holds shard " + text(plans.front().shard) +
+                                    " of a suite (shard.jsonl): resume it with --shard " + text(plans.front().shard));
+      return;
+    }
+    if (plans.empty()) {
+      if (!recorded_run_lines(settings_.out).empty())
+        throw std::invalid_argument(settings_.out + " holds a whole suite's results, not a shard's: resume it without --shard " +
+                                    text(*settings_.shard) + ", or choose another --out for the shard");
+      return;
+    }
+    for (const ShardPlan& p : plans)
+      if (p.shard.index != settings_.shard->index || p.shard.count != settings_.shard->count)
+        throw std::invalid_argument(settings_.out + " holds shard " + text(p.shard) + " of a suite (shard.jsonl), not --shard " +
+                                    text(*settings_.shard) + ": resume it with --shard " + text(p.shard) +
+                                    ", or choose another --out for this shard");
+  }
+
+  // What the suite records: its job ids and the keys of its step searches' rows, in planned order.
+  std::vector<std::string> planned_keys() const {
+    std::vector<std::string> keys;
+    for (const RunRecord& r : unrunnable_) keys.push_back(r.job_id);
+    for (const PlannedJob& job : jobs_) keys.push_back(job.id);
+    for (const PlannedJob& group : step_groups_) keys.push_back(step_row_key(step_group(group), *settings_.step_search));
+    return keys;
+  }
+
+  // --shard K/N: keeps every N-th unit of work in planned order (the unrunnable jobs, then the engine
+  // jobs or step-search groups; the references when there is nothing else) and the references those
+  // units are compared with.
+  void keep_only_this_shard() {
+    const Shard& shard = *settings_.shard;
+    const bool references_alone = step_groups_.empty() && std::none_of(jobs_.begin(), jobs_.end(), [](const PlannedJob& j) {
+                                    return j.kind == JobKind::engine;
+                                  });
+    std::size_t unit = 0;
+    std::vector<RunRecord> unrunnable;
+    for (RunRecord& r : unrunnable_)
+      if (in_shard(unit++, shard)) unrunnable.push_back(std::move(r));
+    unrunnable_ = std::move(unrunnable);
+    std::vector<PlannedJob> groups;
+    std::set<std::string> references;  // those the kept units are compared with
+    const auto keep_references_of = [&](const PlannedJob& job) {
+      for (const std::string& id : {job.beam_reference, job.chain_reference})
+        if (!id.empty()) references.insert(id);
+    };
+    for (const PlannedJob& group : step_groups_)
+      if (in_shard(unit++, shard)) {
+        groups.push_back(group);
+        keep_references_of(group);
+      }
+    step_groups_ = std::move(groups);
+    std::set<std::string> kept;
+    for (const PlannedJob& job : jobs_)
+      if ((job.kind == JobKind::engine || references_alone) && in_shard(unit++, shard)) {
+        kept.insert(job.id);
+        keep_references_of(job);
+      }
+    for (const PlannedJob& job : jobs_)  // a chain reference is compared with its beam reference
+      if (references.count(job.id) && !job.beam_reference.empty()) references.insert(job.beam_reference);
+    std::vector<PlannedJob> jobs;
+    for (const PlannedJob& job : jobs_)
+      if (kept.count(job.id) || references.count(job.id)) jobs.push_back(job);
+    jobs_ = std::move(jobs);
+  }
+
+  // The shard's plan, for `impactbench merge` to tell a finished shard from one that stopped early.
+  // suite: the digest of the whole suite's plan.
+  void record_plan(const std::string& suite) const {
+    ShardPlan plan{*settings_.shard, suite, {}, {}, settings_.resume_command};
+    for (const RunRecord& r : unrunnable_) plan.jobs.push_back(r.job_id);
+    for (const PlannedJob& job : jobs_) plan.jobs.push_back(job.id);
+    for (const PlannedJob& group : step_groups_)
+      plan.step_searches.push_back(step_row_key(step_group(group), *settings_.step_search));
+    record_shard_plan(settings_.out, plan);
+    // A shard is a suite's folder even when it gets no job (more shards than units): the report reads it.
+    if (!fs::exists(settings_.out + "/runs.jsonl")) {
+      write_text_file(settings_.out + "/runs.jsonl", "");
+      write_text_file(settings_.out + "/runs.csv", csv_header(RunRecord{}));
+    }
+  }
+
+  // The row a step-search group writes to steps.csv (its probes' job ids are the group's id with /dt=...).
+  StepGroup step_group(const PlannedJob& job) const {
+    const bool with_chain = !job.chain_reference.empty();
+    return StepGroup{job.id, scenarios_[job.scenario].name, to_string(job.spec.settings.law), job.spec.engine,
+                     options_text(job.spec.settings.options),
+                     with_chain ? "reference on the " + std::to_string(job.chain_links) + "-link chain" : "beam reference",
+                     job.chain_links};
+  }
 
   void plan() {
     std::vector<std::string> files;
@@ -511,11 +615,7 @@ class SuiteRunner {
       Group g;
       g.job = &job;
       g.with_chain = !job.chain_reference.empty();
-      const Scenario& s = scenarios_[job.scenario];
-      g.info = StepGroup{job.id, s.name, to_string(job.spec.settings.law), job.spec.engine,
-                         options_text(job.spec.settings.options),
-                         g.with_chain ? "reference on the " + std::to_string(job.chain_links) + "-link chain" : "beam reference",
-                         job.chain_links};
+      g.info = step_group(job);
       if (rows_done.count(step_row_key(g.info, search_settings))) continue;
       const std::string& reference_id = g.with_chain ? job.chain_reference : job.beam_reference;
       const ReferenceFacts facts = recorded.count(reference_id) ? reference_from_json(recorded[reference_id]) : ReferenceFacts{};

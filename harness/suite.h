@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "run_job.h"
+#include "shard_plan.h"
 #include "simulator.h"
 #include "step_search.h"
 
@@ -35,6 +36,10 @@ struct SuiteSettings {
   // stable and accurate steps by bisection (step_search.h) and appends a row to DIR/steps.csv and
   // DIR/steps.jsonl when its search ends. time_steps_s is then ignored for the engines.
   std::optional<StepSearchSettings> step_search;
+  // Set: runs only this shard of the suite (shard_plan.h) and records its plan in DIR/shard.jsonl.
+  // --resume then continues the same shard: a folder holding another shard, or a whole suite, is refused.
+  std::optional<Shard> shard;
+  std::string resume_command;  // the command that continues this suite, kept in a shard's plan for merge's messages
 };
 
 struct SuiteOutcome {
@@ -46,10 +51,11 @@ struct SuiteOutcome {
   int interrupted_by = 0;   // the signal (SIGINT, SIGTERM) that stopped the suite early; 0: it ran to the end
 };
 
-// Runs the suite; progress goes to stderr (a bar on a terminal, lines otherwise). SIGINT or SIGTERM
+// Runs the suite (or its shard); progress goes to stderr (a bar on a terminal, lines otherwise). SIGINT or SIGTERM
 // stops the worker processes, keeps every finished result and returns with interrupted_by set (a
 // later --resume runs the rest). Throws OutputError (run_files.h) when a result cannot be written:
 // the output folder, a run's folder or files, runs.csv or runs.jsonl; the workers are stopped first.
+// Throws std::invalid_argument for a --resume in a folder that holds another shard or a whole suite.
 SuiteOutcome run_suite(const SuiteSettings& settings);
 
 }  // namespace ib

@@ -33,11 +33,7 @@ scripts/build.sh
 out=${1:-results/$(date +%Y%m%d-%H%M%S)}
 impactbench=build/harness/cli/impactbench
 status=0
-$impactbench suite "${paper_suite_args[@]}" "${duration[@]}" --out "$out" || status=$?
-if (( search )) && (( status != 2 && status < 3 )); then
-  # --resume: the same results folder, adding the searches' probes and steps.csv
-  $impactbench suite "${search_suite_args[@]}" --out "$out" --resume || { search_status=$?; (( search_status > status )) && status=$search_status; }
-fi
+run_default_suite "$out" || status=$?
 # The bench/ timings (reference, engine steps, harness overhead; about 2 minutes), for the report's
 # performance section; bench/suite_scaling.sh and bench/reference_vs_scipy.py add theirs to the same folder.
 (( status == 2 || status >= 3 )) || bench/run-benchmarks.sh "$out/performance" || status=3

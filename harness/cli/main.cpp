@@ -4,6 +4,8 @@
 //   2    bad usage or input (the message names the file, line, key or option, the value and what is allowed)
 //   3    a result could not be written (full disk, unwritable folder): the message names the file, the
 //        OS's reason and what to do; everything recorded before it is kept, and `suite --resume` goes on
+//   4    `merge` joined what exists, but a shard lacks results (a failed array task): the message names the
+//        shard, what it lacks and the command that finishes it
 //   130  `suite` stopped by SIGINT (143: SIGTERM), every finished result kept; the message says how to resume
 #include <unistd.h>
 
@@ -25,6 +27,7 @@
 #include "modal_model_json.h"
 #include "reference_simulator.h"
 #include "run_files.h"
+#include "merge.h"
 #include "run_job.h"
 #include "scenario_toml.h"
 #include "simulator.h"
@@ -35,7 +38,7 @@
 
 namespace {
 
-constexpr int kExitOk = 0, kExitRunNotOk = 1, kExitBadInput = 2, kExitOutputError = 3;
+constexpr int kExitOk = 0, kExitRunNotOk = 1, kExitBadInput = 2, kExitOutputError = 3, kExitIncompleteMerge = 4;
 constexpr int kExitInterrupted = 128;  // + the signal's number, as a shell reports a process it stopped
 
 // The command line as typed, with --resume added when missing: what continues an interrupted suite.
@@ -214,6 +217,7 @@ struct SuiteOptions {
   std::vector<std::string> options;
   bool find_steps = false;
   std::string step_range = "1e-6,1e-3", tolerances;
+  std::string shard;  // K/N, empty: the whole suite
 };
 
 double parse_positive(const std::string& text, const std::string& option) {
@@ -297,6 +301,8 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   s.out = o.out;
   s.resume = o.resume;
   s.measurement = measurement_options.build();
+  if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
+  s.resume_command = resume_command(g_argc, g_argv);
   if (o.find_steps) {
     if (!s.time_steps_s.empty()) throw std::invalid_argument("--dt cannot be combined with --find-steps (the search chooses the steps)");
     s.step_search = parse_step_search(o);
@@ -315,6 +321,8 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
               outcome.jobs_run, o.out.c_str(), outcome.jobs_skipped, outcome.not_ok);
   if (o.find_steps)
     std::printf("suite: %d step searches recorded in %s/steps.csv\n", outcome.step_searches, o.out.c_str());
+  if (s.shard)
+    std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", o.shard.c_str());
   return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
 }
 
@@ -420,6 +428,21 @@ int command_report(const std::string& suite_folder, const std::string& out) {
   return kExitOk;
 }
 
+// The shards' folders joined into one suite folder (harness/merge.h), then its report, made as `report` makes it.
+int command_merge(const std::string& out, const std::vector<std::string>& shards, bool no_report) {
+  const ib::MergeOutcome outcome = ib::merge_suites(ib::MergeSettings{shards, out});
+  std::printf("merge: %d runs in %s/runs.csv from %zu folders (%d recorded in several, such as the references, kept once)\n",
+              outcome.runs, out.c_str(), shards.size(), outcome.runs_in_several);
+  if (outcome.step_rows > 0) std::printf("merge: %d step searches in %s/steps.csv\n", outcome.step_rows, out.c_str());
+  std::fflush(stdout);
+  for (const std::string& line : ib::merge_messages(outcome)) std::fprintf(stderr, "impactbench: %s\n", line.c_str());
+  if (!no_report) command_report(out, "");
+  if (outcome.complete()) return kExitOk;
+  std::fprintf(stderr, "impactbench: merged what exists, but shards are incomplete or absent (see above; exit code %d)\n",
+               kExitIncompleteMerge);
+  return kExitIncompleteMerge;
+}
+
 int command_list(const std::string& folder) {
   std::printf("scenarios in %s:\n", folder.c_str());
   for (const std::string& file : ib::find_scenario_files(folder)) {
@@ -496,6 +519,18 @@ int main(int argc, char** argv) {
   suite->add_option("--tolerance", suite_options.tolerances,
                     "with --find-steps: metric=value,... for frame1_sensor_peak (relative, default 0.05), "
                     "contact_duration (relative, 0.10), impacts_per_cycle (absolute, 0.05)");
+  suite->add_option("--shard", suite_options.shard,
+                    "K/N: run shard K of N (1 <= K <= N): every N-th engine job (with --find-steps: step search) "
+                    "in planned order, and the references they need; join the shards with 'merge'");
+
+  std::string merge_out;
+  std::vector<std::string> merge_inputs;
+  bool merge_no_report = false;
+  CLI::App* merge = app.add_subcommand("merge", "join the folders of a suite's shards (suite --shard K/N) into one "
+                                                "suite folder, then make its report");
+  merge->add_option("out", merge_out, "a new or empty folder for the joined suite")->required();
+  merge->add_option("shards", merge_inputs, "the shards' folders")->required();
+  merge->add_flag("--no-report", merge_no_report, "join only; make the report later with 'report OUT'");
 
   std::string export_engine = "mujoco", export_out;
   CLI::App* export_model = app.add_subcommand("export", "write the model an engine builds for a scenario (MuJoCo: MJCF for its viewer; reference: its modal model as JSON)");
@@ -539,6 +574,7 @@ int main(int argc, char** argv) {
       return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options, run_measurement);
     if (suite->parsed()) return command_suite(suite_options, suite_measurement);
     if (report->parsed()) return command_report(report_folder, report_out);
+    if (merge->parsed()) return command_merge(merge_out, merge_inputs, merge_no_report);
     if (export_model->parsed())
       return command_export(scenario_path, export_engine, law, export_out, time_step_s, export_rate_hz, options);
     if (score->parsed()) return command_score(score_folder, score_scenario, score_reference, json, score_measurement);

@@ -1,0 +1,281 @@
+#include "merge.h"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "reporters.h"
+#include "run_files.h"
+#include "run_record.h"
+#include "step_search.h"
+
+namespace ib {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+// What differs between two runs of the same job on two machines, or at two moments: the measured cost.
+std::set<std::string> run_timing_fields() {
+  const std::vector<std::string>& names = timing_field_names();
+  return {names.begin(), names.end()};
+}
+const std::set<std::string> kStepTimingFields = {"probes_wall_time_s"};
+
+// A record kept for OUT, with the folder it came from.
+struct Kept {
+  std::string line;
+  Json record;
+  std::string folder;
+  int folders = 1;  // how many folders recorded it
+};
+
+std::string read_whole_file(const std::string& path) {
+  errno = 0;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot read: " + std::strerror(errno ? errno : ENOENT));
+  std::stringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw std::runtime_error(path + ": read error");
+  return text.str();
+}
+
+std::vector<std::string> columns_of(const std::string& header_line) {
+  std::vector<std::string> names;
+  std::stringstream in(header_line);
+  for (std::string name; std::getline(in, name, ',');) names.push_back(name);
+  return names;
+}
+
+// A results file's header must be the one this build writes: merge rebuilds runs.csv and steps.csv in
+// this build's layout from the records, and the report reads them by these names.
+void check_header(const std::string& path, std::string expected) {
+  std::ifstream in(path);
+  std::string found;
+  if (!in || !std::getline(in, found)) return;  // none yet: the records (.jsonl) are what counts
+  if (!expected.empty() && expected.back() == '\n') expected.pop_back();
+  if (found == expected) return;
+  const auto a = columns_of(found), b = columns_of(expected);
+  std::string what;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()) && what.empty(); ++i)
+    if (a[i] != b[i]) what = "column " + std::to_string(i + 1) + " is '" + a[i] + "', expected '" + b[i] + "'";
+  if (what.empty())
+    what = std::to_string(a.size()) + " columns, expected " + std::to_string(b.size()) + " (" +
+           (a.size() > b.size() ? "extra: '" + a[b.size()] + "'" : "missing: '" + b[a.size()] + "'") + ")";
+  throw std::runtime_error(path + ": header differs from this build's: " + what +
+                           "; merge shards made by the same version of impactbench");
+}
+
+// The first field in which two records differ, `ignored` aside, as a dotted path into nested objects
+// (diagnostics.x); "" when they agree.
+std::string first_difference(const Json& a, const Json& b, const std::set<std::string>& ignored,
+                             const std::string& prefix = "") {
+  for (const auto& [name, value] : a.items()) {
+    if (ignored.count(name)) continue;
+    if (!b.contains(name)) return prefix + name;
+    if (value.is_object() && b[name].is_object()) {
+      const std::string inner = first_difference(value, b[name], {}, prefix + name + ".");
+      if (!inner.empty()) return inner;
+    } else if (value != b[name]) {
+      return prefix + name;
+    }
+  }
+  for (const auto& [name, value] : b.items())
+    if (!ignored.count(name) && !a.contains(name)) return prefix + name;
+  return "";
+}
+
+// The value at a dotted path, as JSON text ("absent" when missing).
+std::string value_text(const Json& record, const std::string& path) {
+  const Json* at = &record;
+  std::stringstream parts(path);
+  for (std::string part; std::getline(parts, part, '.');) {
+    if (!at->is_object() || !at->contains(part)) return "absent";
+    at = &(*at)[part];
+  }
+  return at->dump();
+}
+
+// Adds a folder's records to `kept`, keyed by `key`; the same key from two folders must agree.
+void join(std::map<std::string, Kept>& kept, const std::string& key, const std::string& line, const std::string& folder,
+          const std::string& file, const std::string& what, const std::set<std::string>& timing) {
+  Json record = Json::parse(line);
+  const auto found = kept.find(key);
+  if (found == kept.end()) {
+    kept.emplace(key, Kept{line, std::move(record), folder, 1});
+    return;
+  }
+  const std::string field = first_difference(found->second.record, record, timing);
+  if (!field.empty())
+    throw std::runtime_error(found->second.folder + " and " + folder + " disagree on " + what + ": field " + field +
+                             " is " + value_text(found->second.record, field) + " in " + found->second.folder + "/" + file +
+                             " and " + value_text(record, field) + " in " + folder + "/" + file +
+                             "; every shard must give a job the same result (made by other builds, options or machines?)");
+  ++found->second.folders;
+}
+
+// runs/<job id>/: the run's own files (the folder also holds the folders of other jobs whose ids extend
+// this one, which are joined on their own). Hard links cost no space; a file system that refuses them
+// (another device, no permission to link another's file) gets a copy through the checked writer.
+void join_run_folder(const std::string& from, const std::string& to) {
+  std::error_code error;
+  if (!fs::is_directory(from, error)) return;  // a job that could not run has no folder
+  fs::create_directories(to, error);
+  if (error) throw OutputError(output_error_text(to, "create the run folder", error.value()));
+  for (const fs::directory_entry& entry : fs::directory_iterator(from)) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path target = fs::path(to) / entry.path().filename();
+    fs::create_hard_link(entry.path(), target, error);
+    if (error) write_text_file(target.string(), read_whole_file(entry.path().string()));
+  }
+}
+
+std::string shard_text(const Shard& s) { return std::to_string(s.index) + "/" + std::to_string(s.count); }
+
+void check_inputs(const MergeSettings& settings) {
+  if (settings.inputs.empty()) throw std::runtime_error("merge: no shard folder given; expected: merge OUT SHARD_FOLDER ...");
+  std::map<std::string, std::string> seen;  // canonical path -> as given
+  for (const std::string& folder : settings.inputs) {
+    std::error_code error;
+    if (!fs::is_directory(folder, error))
+      throw std::runtime_error(folder + ": " + (fs::exists(folder, error) ? "not a folder" : "no such folder") +
+                               "; expected a shard's folder (suite --shard K/N --out FOLDER)");
+    if (!fs::exists(folder + "/runs.jsonl") && !fs::exists(folder + "/shard.jsonl"))
+      throw std::runtime_error(folder + ": holds no suite's results (no runs.jsonl); expected a shard's folder "
+                               "(suite --shard K/N --out FOLDER)");
+    const std::string canonical = fs::canonical(folder).string();
+    if (seen.count(canonical)) throw std::runtime_error(folder + ": given twice (also as " + seen[canonical] + ")");
+    seen[canonical] = folder;
+  }
+  std::error_code error;
+  if (fs::exists(settings.out, error)) {
+    if (!fs::is_directory(settings.out, error))
+      throw std::runtime_error(settings.out + ": exists and is not a folder; merge writes a new suite folder: choose another OUT");
+    if (!fs::is_empty(settings.out, error))
+      throw std::runtime_error(settings.out + ": not empty (" +
+                               (fs::exists(settings.out + "/runs.jsonl") ? "it holds a suite's results" : "it holds files") +
+                               "); merge writes a new suite folder: choose another OUT, or empty this one first");
+  }
+}
+
+// What one folder recorded: its job ids and the keys of its step searches' rows.
+struct Recorded {
+  std::set<std::string> jobs, step_searches;
+};
+
+// Which shards lack planned results in their own folder (what their resume command would run), and
+// which shards of a suite none of the folders holds.
+void check_completeness(const MergeSettings& settings, const std::map<std::string, Recorded>& recorded,
+                        MergeOutcome& outcome) {
+  std::map<std::pair<std::string, int>, std::set<int>> shards_of_suite;  // (digest, N) -> the K present
+  std::map<std::pair<std::string, int>, std::string> command_of_suite;
+  for (const std::string& folder : settings.inputs) {
+    const std::vector<ShardPlan> plans = read_shard_plans(folder);
+    if (plans.empty()) outcome.without_plan.push_back(folder);
+    for (const ShardPlan& plan : plans) {
+      IncompleteShard gap{folder, plan.shard, static_cast<int>(plan.jobs.size()), 0,
+                          static_cast<int>(plan.step_searches.size()), 0, plan.resume_command};
+      const Recorded& in_folder = recorded.at(folder);
+      for (const std::string& id : plan.jobs) gap.jobs_missing += in_folder.jobs.count(id) ? 0 : 1;
+      for (const std::string& key : plan.step_searches) gap.step_searches_missing += in_folder.step_searches.count(key) ? 0 : 1;
+      if (gap.jobs_missing > 0 || gap.step_searches_missing > 0) outcome.incomplete.push_back(gap);
+      shards_of_suite[{plan.suite, plan.shard.count}].insert(plan.shard.index);
+      command_of_suite.emplace(std::pair{plan.suite, plan.shard.count}, plan.resume_command);
+    }
+  }
+  for (const auto& [suite, present] : shards_of_suite) {
+    int next = 1;  // the first shard not yet accounted for
+    for (int k : present) {
+      if (k > next) outcome.absent.push_back(AbsentShards{next, k - 1, suite.second, command_of_suite[suite]});
+      next = k + 1;
+    }
+    if (next <= suite.second) outcome.absent.push_back(AbsentShards{next, suite.second, suite.second, command_of_suite[suite]});
+  }
+}
+
+}  // namespace
+
+MergeOutcome merge_suites(const MergeSettings& settings) {
+  check_inputs(settings);
+  // Read and check everything before writing anything.
+  MergeOutcome outcome;
+  std::map<std::string, Kept> runs, steps;  // by job id; by step_row_key
+  std::map<std::string, Recorded> recorded;  // by folder
+  bool any_steps = false;
+  const std::set<std::string> run_timing = run_timing_fields();
+  for (const std::string& folder : settings.inputs) {
+    Recorded& in_folder = recorded[folder];
+    check_header(folder + "/runs.csv", csv_header(RunRecord{}));
+    check_header(folder + "/steps.csv", steps_csv_header());
+    for (const auto& [id, line] : recorded_run_lines(folder)) {
+      join(runs, id, line, folder, "runs.jsonl", "job " + id, run_timing);
+      in_folder.jobs.insert(id);
+    }
+    std::ifstream step_lines(folder + "/steps.jsonl");
+    any_steps = any_steps || step_lines.is_open();
+    for (std::string line; std::getline(step_lines, line);) {
+      const std::string key = step_row_key_of_line(line);
+      if (key.empty()) continue;  // cut short by a kill
+      in_folder.step_searches.insert(key);
+      join(steps, key, line, folder, "steps.jsonl", "step search " + Json::parse(line).value("group_id", key),
+           kStepTimingFields);
+    }
+  }
+  check_completeness(settings, recorded, outcome);
+
+  std::error_code error;
+  fs::create_directories(settings.out, error);
+  if (error) throw OutputError(output_error_text(settings.out, "create the output folder", error.value()));
+  // The run folders first, the records last: an OUT with a runs.jsonl has everything it lists.
+  for (const auto& [id, kept] : runs) join_run_folder(kept.folder + "/runs/" + id, settings.out + "/runs/" + id);
+  std::string jsonl;
+  for (const auto& [id, kept] : runs) {
+    jsonl += kept.line + "\n";
+    outcome.runs_in_several += kept.folders > 1 ? 1 : 0;
+  }
+  write_text_file(settings.out + "/runs.jsonl", jsonl);
+  outcome.runs = static_cast<int>(repair_and_list_runs(settings.out).size());  // runs.csv from runs.jsonl, as --resume makes it
+  if (any_steps) {
+    std::string step_jsonl;
+    for (const auto& [key, kept] : steps) step_jsonl += kept.line + "\n";
+    write_text_file(settings.out + "/steps.jsonl", step_jsonl);
+    outcome.step_rows = static_cast<int>(repair_and_list_step_rows(settings.out).size());
+  }
+  return outcome;
+}
+
+std::vector<std::string> merge_messages(const MergeOutcome& outcome) {
+  std::vector<std::string> lines;
+  for (const IncompleteShard& gap : outcome.incomplete) {
+    std::string what;
+    if (gap.jobs_missing > 0)
+      what = std::to_string(gap.jobs_missing) + " of its " + std::to_string(gap.jobs_planned) + " jobs";
+    if (gap.step_searches_missing > 0)
+      what += (what.empty() ? "" : " and ") + std::to_string(gap.step_searches_missing) + " of its " +
+              std::to_string(gap.step_searches_planned) + " step searches";
+    lines.push_back("shard " + shard_text(gap.shard) + " in " + gap.folder + " is missing " + what +
+                    " (its task failed or was stopped); finish it, then merge again into an empty folder: " +
+                    gap.resume_command);
+  }
+  for (const AbsentShards& absent : outcome.absent) {
+    const std::string n = std::to_string(absent.count), first = std::to_string(absent.first);
+    const std::string which = absent.first == absent.last
+                                  ? "shard " + first + "/" + n + " is"
+                                  : "shards " + first + " to " + std::to_string(absent.last) + " of " + n + " are";
+    const std::string shard = absent.first == absent.last ? first + "/" + n : "K/" + n;
+    lines.push_back(which + " in none of the folders given (a task failed before it began?); run " +
+                    (absent.first == absent.last ? "it" : "each") + " as the other shards ran, with --shard " + shard + " and its own --out, then merge again into an empty folder; " +
+                    "another shard ran as: " + absent.sibling_command);
+  }
+  for (const std::string& folder : outcome.without_plan)
+    lines.push_back("note: " + folder + " was not made with --shard (no shard.jsonl): joined as it is, its completeness not checked");
+  return lines;
+}
+
+}  // namespace ib
