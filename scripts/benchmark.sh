@@ -36,7 +36,9 @@ status=0
 run_default_suite "$out" || status=$?
 # The bench/ timings (reference, engine steps, harness overhead; about 2 minutes), for the report's
 # performance section; bench/suite_scaling.sh and bench/reference_vs_scipy.py add theirs to the same folder.
-(( status == 2 || status >= 3 )) || bench/run-benchmarks.sh "$out/performance" || status=3
+if (( status != 2 && status < 3 )) && ! bench/run-benchmarks.sh "$out/performance"; then
+  echo "benchmark: the bench/ timings failed (above); the report is made without them" >&2
+fi
 (( status == 2 || status >= 3 )) || $impactbench report "$out"
 echo "results: $out/runs.csv, runs.jsonl and steps.csv; report: $out/report/index.html"
 # 1: some runs were unstable or failed, a finding recorded in the report; 2 bad input, 3 a write error,

@@ -89,9 +89,11 @@ TEST(TimedRuns, WithoutTimedRunsTheCostIsTheLoggedRunsAndNoSpreadIsClaimed) {
   const RunRecord r = run_job(f.scenario, f.job, measurement, nullptr, nullptr, "", nullptr, factory);
   EXPECT_EQ(r.timed_runs, 0);
   EXPECT_DOUBLE_EQ(r.cost.wall_time_s, 100.0);
-  for (const Field& field : fields(r))
-    if (field.name == "wall_time_min_s" || field.name == "wall_time_max_s")
+  for (const Field& field : fields(r)) {
+    if (field.name == "wall_time_min_s" || field.name == "wall_time_max_s") {
       EXPECT_TRUE(std::isnan(std::get<double>(field.value))) << field.name;
+    }
+  }
 }
 
 TEST(TimedRuns, TimedRunsDoNotChangeWhatIsMeasured) {
@@ -107,7 +109,9 @@ TEST(TimedRuns, TimedRunsDoNotChangeWhatIsMeasured) {
   const auto fa = flatten(*a.metrics), fb = flatten(*b.metrics);
   ASSERT_EQ(fa.size(), fb.size());
   for (std::size_t i = 0; i < fa.size(); ++i)
-    if (!std::isnan(fa[i].second)) EXPECT_EQ(fa[i].second, fb[i].second) << fa[i].first;
+    if (!std::isnan(fa[i].second)) {
+      EXPECT_EQ(fa[i].second, fb[i].second) << fa[i].first;
+    }
   EXPECT_EQ(b.timed_runs, 2);
   EXPECT_LE(b.wall_time_min_s, b.cost.wall_time_s);
   EXPECT_LE(b.cost.wall_time_s, b.wall_time_max_s);
