@@ -7,18 +7,14 @@
 
 #include <string>
 
-#include "scenario_toml.h"
+#include "rig_case.h"
 #include "simulator.h"
 
 namespace {
 
 void run_engine(benchmark::State& state, const std::string& engine, ib::ContactLaw law) {
-  ib::Scenario s = ib::load_scenario(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/resonance.toml");
-  s.duration_s = 2;  // impacts start within the first second at resonance
-  s.scoring_window_s = 1;
-  ib::RunSettings settings;
-  settings.law = law;
-  settings.options["contact"] = "matched";
+  const ib::Scenario s = ib::bench::resonance_for_2_s();
+  const ib::RunSettings settings = ib::bench::matched_path(law);
   const auto simulator = ib::make_simulator(engine);
   long long steps = 0;
   double stepping_s = 0;  // the simulators' own clock around their stepping loops

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -27,6 +28,27 @@ inline CommandOutput run_impactbench(const std::string& arguments, const std::fi
   buffer << in.rdbuf();
   out.text = buffer.str();
   return out;
+}
+
+// `impactbench ARGUMENTS` with its output in a log file of this process named after prefix (removed after).
+inline CommandOutput run_impactbench_logged_as(const std::string& arguments, const std::string& log_prefix) {
+  const std::filesystem::path log =
+      std::filesystem::temp_directory_path() / (log_prefix + std::to_string(::getpid()) + ".log");
+  CommandOutput out = run_impactbench(arguments, log);
+  std::filesystem::remove(log);
+  return out;
+}
+
+// A published scenario's file: scenarios/paper/NAME.toml.
+inline std::string paper_scenario(const std::string& name) {
+  return std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/" + name + ".toml";
+}
+
+// A folder of this process in the temporary directory, PREFIX + NAME, removed if it was there (not created).
+inline std::filesystem::path fresh_command_folder(const std::string& prefix, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / (prefix + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  return dir;
 }
 
 }  // namespace ib::test

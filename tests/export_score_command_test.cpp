@@ -16,20 +16,9 @@ namespace {
 namespace fs = std::filesystem;
 using Output = ib::test::CommandOutput;
 
-Output impactbench(const std::string& arguments) {
-  const fs::path log = fs::temp_directory_path() / ("impactbench_export_score_" + std::to_string(::getpid()) + ".log");
-  Output out = ib::test::run_impactbench(arguments, log);
-  fs::remove(log);
-  return out;
-}
-
-std::string paper(const std::string& name) { return std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/" + name + ".toml"; }
-
-fs::path fresh_folder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("impactbench_export_score_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
+Output impactbench(const std::string& arguments) { return ib::test::run_impactbench_logged_as(arguments, "impactbench_export_score_"); }
+std::string paper(const std::string& name) { return ib::test::paper_scenario(name); }
+fs::path fresh_folder(const std::string& name) { return ib::test::fresh_command_folder("impactbench_export_score_", name); }
 
 TEST(ExportCommand, WritesTheReferencesModalModel) {
   const fs::path dir = fresh_folder("export");
