@@ -5,8 +5,8 @@
 // with the same forces (motor; the contact law's force where the adapter applies it) and no recording.
 // Both are timed whole (model building included) in the thread's CPU time, one after the other in every
 // iteration (in alternating order, after an untimed pair), so that a drift of the machine's speed hits
-// both alike. Counters: the medians of each (harness_ms, bare_ms) and overhead_percent = 100 (median
-// over the pairs of harness / bare - 1).
+// both alike. Counters: each side's fastest run (harness_ms, bare_ms), overhead_percent = 100 (harness_ms
+// / bare_ms - 1), and the median over the pairs of 100 (harness / bare - 1) as a check.
 // The rig case of rig_case.h (resonance, 2 s, matched contact path, each engine's default step), every
 // law. Target: < 5 %.
 //   build/bench/harness_overhead_benchmark [--benchmark_filter=mujoco] [--benchmark_repetitions=3]
@@ -200,9 +200,14 @@ void compare(benchmark::State& state, const std::string& engine, ib::ContactLaw 
     ratios.push_back(harness / bare_loop);
   }
   benchmark::DoNotOptimize(sink);
-  state.counters["harness_ms"] = 1e3 * median(harness_s);
-  state.counters["bare_ms"] = 1e3 * median(bare_s);
-  state.counters["overhead_percent"] = 100 * (median(ratios) - 1);  // the median of the pairs' ratios
+  // Other work on the machine only ever adds time, so each side's fastest run is the best estimate of its
+  // own cost; the median of the pairs' ratios is kept beside it as a check.
+  const double fastest_harness = *std::min_element(harness_s.begin(), harness_s.end());
+  const double fastest_bare = *std::min_element(bare_s.begin(), bare_s.end());
+  state.counters["harness_ms"] = 1e3 * fastest_harness;
+  state.counters["bare_ms"] = 1e3 * fastest_bare;
+  state.counters["overhead_percent"] = 100 * (fastest_harness / fastest_bare - 1);
+  state.counters["median_pair_overhead_percent"] = 100 * (median(ratios) - 1);
   state.counters["pairs"] = static_cast<double>(ratios.size());
 }
 
