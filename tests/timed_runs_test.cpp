@@ -19,10 +19,11 @@ namespace ib {
 namespace {
 
 // The reference under another name whose reported run times are scripted: the logged run takes 100 s,
-// the timed ones take the times given, in order. Counts its runs.
+// the timed ones take the times given, in order. Counts its runs in `runs` (which outlives it: run_job
+// owns the simulator and drops it when it returns).
 class ScriptedClock final : public Simulator {
  public:
-  explicit ScriptedClock(std::vector<double> timed_wall_s) : timed_wall_s_(std::move(timed_wall_s)) {}
+  ScriptedClock(std::vector<double> timed_wall_s, int& runs) : timed_wall_s_(std::move(timed_wall_s)), runs_(runs) {}
   std::string name() const override { return "scripted"; }
   std::string version() const override { return "test"; }
   std::vector<std::pair<std::string, std::string>> option_help() const override { return {}; }
@@ -34,11 +35,10 @@ class ScriptedClock final : public Simulator {
     ++runs_;
     return r;
   }
-  int runs() const { return runs_; }
 
  private:
   std::vector<double> timed_wall_s_;
-  int runs_ = 0;
+  int& runs_;
 };
 
 struct Fixture {
@@ -55,17 +55,14 @@ struct Fixture {
 TEST(TimedRuns, TheCostIsTheMedianOfTheTimedRunsWithTheirSpreadAndTheLoggedRunBeside) {
   const auto folder = test::fresh_test_folder("timed_runs_");
   Fixture f(folder);
-  ScriptedClock* clock = nullptr;
+  int runs = 0;
   const SimulatorFactory factory = [&](const std::string&) {
-    auto s = std::make_unique<ScriptedClock>(std::vector<double>{5.0, 1.0, 3.0});
-    clock = s.get();
-    return s;
+    return std::make_unique<ScriptedClock>(std::vector<double>{5.0, 1.0, 3.0}, runs);
   };
   Measurement measurement;
   measurement.timed_repeats = 3;
   const RunRecord r = run_job(f.scenario, f.job, measurement, nullptr, nullptr, (folder / "run").string(), nullptr, factory);
-  ASSERT_NE(clock, nullptr);
-  EXPECT_EQ(clock->runs(), 4);  // one logged, three timed
+  EXPECT_EQ(runs, 4);  // one logged, three timed
   EXPECT_EQ(r.timed_runs, 3);
   EXPECT_DOUBLE_EQ(r.cost.wall_time_s, 3.0);
   EXPECT_DOUBLE_EQ(r.cost.cpu_time_s, 1.5);
@@ -83,10 +80,14 @@ TEST(TimedRuns, TheCostIsTheMedianOfTheTimedRunsWithTheirSpreadAndTheLoggedRunBe
 TEST(TimedRuns, WithoutTimedRunsTheCostIsTheLoggedRunsAndNoSpreadIsClaimed) {
   const auto folder = test::fresh_test_folder("timed_runs_");
   Fixture f(folder);
-  const SimulatorFactory factory = [](const std::string&) { return std::make_unique<ScriptedClock>(std::vector<double>{}); };
+  int runs = 0;
+  const SimulatorFactory factory = [&](const std::string&) {
+    return std::make_unique<ScriptedClock>(std::vector<double>{}, runs);
+  };
   Measurement measurement;
   measurement.timed_repeats = 0;
   const RunRecord r = run_job(f.scenario, f.job, measurement, nullptr, nullptr, "", nullptr, factory);
+  EXPECT_EQ(runs, 1);
   EXPECT_EQ(r.timed_runs, 0);
   EXPECT_DOUBLE_EQ(r.cost.wall_time_s, 100.0);
   for (const Field& field : fields(r)) {
