@@ -134,8 +134,9 @@ double bare_bullet(const ib::Scenario& s, const ib::RunSettings& settings, doubl
     if (injected_path) {
       std::array<double, 2> u{}, v{};
       for (int f = 0; f < 2; ++f) {
-        u[f] = bullet.chain(f).tip_x_m() - rig.frames[f].base_x_m;
-        v[f] = bullet.chain(f).tip_velocity_x_m_s();
+        const ib::bullet::BulletChain::TipMotion tip = bullet.chain(f).tip_motion();
+        u[f] = tip.x_m - rig.frames[f].base_x_m;
+        v[f] = tip.velocity_x_m_s;
       }
       const double force = injected.force(u[0], v[0], u[1], v[1], h);
       bullet.chain(0).add_tip_force_x(-force);

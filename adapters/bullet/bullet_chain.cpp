@@ -110,12 +110,14 @@ class MultiBodyChain final : public BulletChain {
 
   double tip_x_m() const override { return body_->localPosToWorld(body_->getNumLinks() - 1, tip_in_last_).x(); }
 
+  double tip_velocity_x_m_s() const override { return tip_motion().velocity_x_m_s; }
+
   // The tip moves with every hinge rate about its hinge: v = sum_j theta'_j y x (p - h_j), whose
   // x component is sum_j theta'_j (p_z - h_jz) (exact for the planar chain). The hinge points come from
   // one pass from the base out (each link's frame from its parent's, as localPosToWorld composes them),
   // not from localPosToWorld per hinge, which walks back to the base every time: O(K) instead of O(K^2)
-  // per step, a fifth of a step's cost at K = 8.
-  double tip_velocity_x_m_s() const override {
+  // per step; the tip point falls out of the same pass.
+  TipMotion tip_motion() const override {
     const int links = body_->getNumLinks();
     btQuaternion to_world = body_->getWorldToBaseRot().inverse();  // link frame -> world rotation
     btVector3 origin = body_->getBasePos();                         // link frame origin in the world
@@ -127,8 +129,8 @@ class MultiBodyChain final : public BulletChain {
       sum_rate += rate;
       sum_rate_hinge_z += rate * (origin + quatRotate(to_world, hinge_in_link_[j])).z();
     }
-    const double tip_z = (origin + quatRotate(to_world, tip_in_last_)).z();
-    return sum_rate * tip_z - sum_rate_hinge_z;
+    const btVector3 tip = origin + quatRotate(to_world, tip_in_last_);
+    return {tip.x(), sum_rate * tip.z() - sum_rate_hinge_z};
   }
 
   void joint_state(Eigen::VectorXd& angles, Eigen::VectorXd& rates) const override {

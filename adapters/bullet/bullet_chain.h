@@ -41,6 +41,12 @@ class BulletChain {
   virtual void add_tip_force_x(double force_n) = 0;
   virtual double tip_x_m() const = 0;
   virtual double tip_velocity_x_m_s() const = 0;
+  // Both at once (what the stepping loops read every step): one pass through the chain where the
+  // articulation allows it.
+  struct TipMotion {
+    double x_m = 0, velocity_x_m_s = 0;
+  };
+  virtual TipMotion tip_motion() const { return {tip_x_m(), tip_velocity_x_m_s()}; }
   // Relative hinge angles [rad] and their rates [rad/s], in hinge order from the clamp.
   virtual void joint_state(Eigen::VectorXd& angles_rad, Eigen::VectorXd& rates_rad_s) const = 0;
   // The tip sphere's collision object; nullptr when the chain was built without tip contact.

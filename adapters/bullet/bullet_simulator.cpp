@@ -148,8 +148,9 @@ class BulletSimulator final : public Simulator {
     auto observe = [&](double t, double contact_force, StepState& s) {
       for (int f = 0; f < 2; ++f) {
         BulletChain& chain = bullet.chain(f);
-        s.displacement_m[f] = chain.tip_x_m() - rig.frames[f].base_x_m;
-        s.velocity_m_s[f] = chain.tip_velocity_x_m_s();
+        const BulletChain::TipMotion tip = chain.tip_motion();
+        s.displacement_m[f] = tip.x_m - rig.frames[f].base_x_m;
+        s.velocity_m_s[f] = tip.velocity_x_m_s;
         chain.joint_state(angles[f], rates[f]);
       }
       s.t = t;
