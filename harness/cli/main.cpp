@@ -23,11 +23,11 @@
 #include <string>
 #include <vector>
 
+#include "merge.h"
 #include "modal_model.h"
 #include "modal_model_json.h"
 #include "reference_simulator.h"
 #include "run_files.h"
-#include "merge.h"
 #include "run_job.h"
 #include "scenario_toml.h"
 #include "simulator.h"
@@ -96,13 +96,15 @@ void require_engine(const std::string& engine) {
 struct MeasurementOptions {
   double window_s = -1, sensor_rate_hz = 2048, merge_window_s = 0.002;
   int timed_repeats = 2;  // timed runs of every run: separate from the logged one, and repeated
-  void add_to(CLI::App* app) {
+  // with_timing: the command runs simulators (run, suite), so --repeat applies; score measures files only
+  void add_to(CLI::App* app, bool with_timing) {
     app->add_option("--window", window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's");
     app->add_option("--sensor-rate", sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]")->capture_default_str();
     app->add_option("--merge-window", merge_window_s, "onsets closer than this are one impact [s]")->capture_default_str();
-    app->add_option("--repeat", timed_repeats,
-                    "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's)")
-        ->capture_default_str();
+    if (with_timing)
+      app->add_option("--repeat", timed_repeats,
+                      "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's)")
+          ->capture_default_str();
   }
   ib::Measurement build() const {
     if (!(sensor_rate_hz > 0)) throw std::invalid_argument("--sensor-rate " + std::to_string(sensor_rate_hz) + ": allowed: > 0 Hz");
@@ -492,7 +494,7 @@ int main(int argc, char** argv) {
   run->add_option("--series-start", series_start_s, "first output sample [s]; default: start of the scoring window");
   run->add_option("--dt", time_step_s, "time step of fixed-step engines [s]");
   run->add_option("--option", options, "simulator option name=value, repeatable (see 'impactbench list')");
-  run_measurement.add_to(run);
+  run_measurement.add_to(run, /*with_timing=*/true);
 
   CLI::App* suite = app.add_subcommand("suite", "run scenarios x laws x engines x time steps in worker processes; "
                                                 "append DIR/runs.csv, DIR/runs.jsonl and DIR/runs/<job>/");
@@ -509,7 +511,7 @@ int main(int argc, char** argv) {
   suite->add_option("--duration", suite_options.max_duration_s,
                     "run scenarios longer than this for this long only, keeping their scoring window [s]");
   suite->add_option("--option", suite_options.options, "engine.name=value, repeatable (e.g. reference.n=5)");
-  suite_measurement.add_to(suite);
+  suite_measurement.add_to(suite, /*with_timing=*/true);
   suite->add_flag("--find-steps", suite_options.find_steps,
                   "per scenario, law, engine and options: search the largest stable step and the largest step at "
                   "which each headline metric is within tolerance, by bisection on a grid of 4 steps per octave; "
@@ -552,7 +554,7 @@ int main(int argc, char** argv) {
   score->add_option("--scenario", score_scenario, "the scenario file (.toml) the run was made for")->required();
   score->add_option("--reference", score_reference, "a run folder to compare with (adds the vs_reference_* figures)");
   score->add_flag("--json", json, "print JSON (NaN as null)");
-  score_measurement.add_to(score);
+  score_measurement.add_to(score, /*with_timing=*/false);
 
   std::string report_folder, report_out;
   CLI::App* report = app.add_subcommand("report", "make the report (index.html, summary.md, figures) from a suite's saved results");
