@@ -136,8 +136,6 @@ void join_run_folder(const std::string& from, const std::string& to) {
   }
 }
 
-std::string shard_text(const Shard& s) { return std::to_string(s.index) + "/" + std::to_string(s.count); }
-
 void check_inputs(const MergeSettings& settings) {
   if (settings.inputs.empty()) throw std::runtime_error("merge: no shard folder given; expected: merge OUT SHARD_FOLDER ...");
   std::map<std::string, std::string> seen;  // canonical path -> as given
@@ -259,7 +257,7 @@ std::vector<std::string> merge_messages(const MergeOutcome& outcome) {
     if (gap.step_searches_missing > 0)
       what += (what.empty() ? "" : " and ") + std::to_string(gap.step_searches_missing) + " of its " +
               std::to_string(gap.step_searches_planned) + " step searches";
-    lines.push_back("shard " + shard_text(gap.shard) + " in " + gap.folder + " is missing " + what +
+    lines.push_back("shard " + to_string(gap.shard) + " in " + gap.folder + " is missing " + what +
                     " (its task failed or was stopped); finish it, then merge again into an empty folder: " +
                     gap.resume_command);
   }

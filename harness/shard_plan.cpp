@@ -42,6 +42,8 @@ Shard parse_shard(const std::string& text) {
   return Shard{index, count};
 }
 
+std::string to_string(const Shard& shard) { return std::to_string(shard.index) + "/" + std::to_string(shard.count); }
+
 bool in_shard(std::size_t unit, const Shard& shard) {
   return unit % static_cast<std::size_t>(shard.count) == static_cast<std::size_t>(shard.index - 1);
 }
@@ -61,7 +63,7 @@ std::string plan_digest(const std::vector<std::string>& planned) {
 
 void record_shard_plan(const std::string& folder, const ShardPlan& plan) {
   for (const ShardPlan& recorded : read_shard_plans(folder))
-    if (recorded.suite == plan.suite && recorded.shard.index == plan.shard.index && recorded.shard.count == plan.shard.count)
+    if (recorded.suite == plan.suite && recorded.shard == plan.shard)
       return;
   Json j;
   j["shard"] = plan.shard.index;

@@ -17,7 +17,12 @@ namespace ib {
 struct Shard {
   int index = 1;  // this shard's number, 1 .. count (1-based, as Slurm's --array=1-N numbers tasks)
   int count = 1;  // the number of shards the suite is divided into
+  bool operator==(const Shard& other) const { return index == other.index && count == other.count; }
+  bool operator!=(const Shard& other) const { return !(*this == other); }
 };
+
+// "K/N", as --shard takes it.
+std::string to_string(const Shard& shard);
 
 // "K/N" as the command line takes it; throws std::invalid_argument naming --shard, the value and what is allowed.
 Shard parse_shard(const std::string& text);

@@ -206,7 +206,9 @@ class SuiteRunner {
       throw std::runtime_error(settings_.out + " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
     plan();
     if (settings_.shard) {
-      const std::string suite = plan_digest(planned_keys());
+      std::vector<std::string> whole = planned_job_ids();
+      for (std::string& key : planned_step_keys()) whole.push_back(std::move(key));
+      const std::string suite = plan_digest(whole);
       keep_only_this_shard();
       record_plan(suite);
     }
@@ -275,31 +277,34 @@ class SuiteRunner {
   // would leave it holding neither.
   void check_same_shard() const {
     const std::vector<ShardPlan> plans = read_shard_plans(settings_.out);
-    const auto text = [](const Shard& s) { return std::to_string(s.index) + "/" + std::to_string(s.count); };
     if (!settings_.shard) {
       if (!plans.empty())
-        throw std::invalid_argument(settings_.out + " holds shard " + text(plans.front().shard) +
-                                    " of a suite (shard.jsonl): resume it with --shard " + text(plans.front().shard));
+        throw std::invalid_argument(settings_.out + " holds shard " + to_string(plans.front().shard) +
+                                    " of a suite (shard.jsonl): resume it with --shard " + to_string(plans.front().shard));
       return;
     }
     if (plans.empty()) {
       if (!recorded_run_lines(settings_.out).empty())
         throw std::invalid_argument(settings_.out + " holds a whole suite's results, not a shard's: resume it without --shard " +
-                                    text(*settings_.shard) + ", or choose another --out for the shard");
+                                    to_string(*settings_.shard) + ", or choose another --out for the shard");
       return;
     }
     for (const ShardPlan& p : plans)
-      if (p.shard.index != settings_.shard->index || p.shard.count != settings_.shard->count)
-        throw std::invalid_argument(settings_.out + " holds shard " + text(p.shard) + " of a suite (shard.jsonl), not --shard " +
-                                    text(*settings_.shard) + ": resume it with --shard " + text(p.shard) +
+      if (p.shard != *settings_.shard)
+        throw std::invalid_argument(settings_.out + " holds shard " + to_string(p.shard) + " of a suite (shard.jsonl), not --shard " +
+                                    to_string(*settings_.shard) + ": resume it with --shard " + to_string(p.shard) +
                                     ", or choose another --out for this shard");
   }
 
-  // What the suite records: its job ids and the keys of its step searches' rows, in planned order.
-  std::vector<std::string> planned_keys() const {
+  // What the suite records, in planned order: its job ids, and the keys of its step searches' rows.
+  std::vector<std::string> planned_job_ids() const {
+    std::vector<std::string> ids;
+    for (const RunRecord& r : unrunnable_) ids.push_back(r.job_id);
+    for (const PlannedJob& job : jobs_) ids.push_back(job.id);
+    return ids;
+  }
+  std::vector<std::string> planned_step_keys() const {
     std::vector<std::string> keys;
-    for (const RunRecord& r : unrunnable_) keys.push_back(r.job_id);
-    for (const PlannedJob& job : jobs_) keys.push_back(job.id);
     for (const PlannedJob& group : step_groups_) keys.push_back(step_row_key(step_group(group), *settings_.step_search));
     return keys;
   }
@@ -346,12 +351,8 @@ class SuiteRunner {
   // The shard's plan, for `impactbench merge` to tell a finished shard from one that stopped early.
   // suite: the digest of the whole suite's plan.
   void record_plan(const std::string& suite) const {
-    ShardPlan plan{*settings_.shard, suite, {}, {}, settings_.resume_command};
-    for (const RunRecord& r : unrunnable_) plan.jobs.push_back(r.job_id);
-    for (const PlannedJob& job : jobs_) plan.jobs.push_back(job.id);
-    for (const PlannedJob& group : step_groups_)
-      plan.step_searches.push_back(step_row_key(step_group(group), *settings_.step_search));
-    record_shard_plan(settings_.out, plan);
+    record_shard_plan(settings_.out, ShardPlan{*settings_.shard, suite, planned_job_ids(), planned_step_keys(),
+                                               settings_.resume_command});
     // A shard is a suite's folder even when it gets no job (more shards than units): the report reads it.
     if (!fs::exists(settings_.out + "/runs.jsonl")) {
       write_text_file(settings_.out + "/runs.jsonl", "");
