@@ -378,13 +378,19 @@ std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
   return key_text(group.group_id, s.min_step_s, s.max_step_s, s.points_per_octave, tolerances);
 }
 
-std::string step_row_key_of_line(const std::string& json_line) {
-  const Json j = Json::parse(json_line, nullptr, false);
-  if (!j.is_object() || !j.contains("notes")) return "";  // cut short by a kill
+namespace {
+// The key of a parsed steps.jsonl line; "" when it is not a row (cut short by a kill).
+std::string step_row_key_of(const Json& j) {
+  if (!j.is_object() || !j.contains("notes")) return "";
   std::vector<double> tolerances;
   for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(number_or_nan(j, std::string(error_name(m)) + "_tolerance"));
   return key_text(text_or_empty(j, "group_id"), number_or_nan(j, "step_range_min_s"), number_or_nan(j, "step_range_max_s"),
                   number_or_nan(j, "grid_points_per_octave"), tolerances);
+}
+}  // namespace
+
+std::string step_row_key_of_line(const std::string& json_line) {
+  return step_row_key_of(Json::parse(json_line, nullptr, false));
 }
 
 std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
@@ -393,9 +399,9 @@ std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
   if (!in) return keys;
   std::string jsonl, csv = steps_csv_header();
   for (std::string line; std::getline(in, line);) {
-    const std::string key = step_row_key_of_line(line);
+    const Json j = Json::parse(line, nullptr, false);
+    const std::string key = step_row_key_of(j);
     if (key.empty()) continue;  // cut short by a kill
-    const Json j = Json::parse(line);
     keys.insert(key);
     jsonl += line + "\n";
     std::string row;
