@@ -25,6 +25,7 @@
 #include "injected_contact.h"
 #include "rig.h"
 #include "rig_case.h"
+#include "run_job.h"
 #include "simulator.h"
 
 #if IMPACTBENCH_WITH_MUJOCO
@@ -162,11 +163,6 @@ double thread_cpu_s() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 void compare(benchmark::State& state, const std::string& engine, ib::ContactLaw law, const BareLoop& bare) {
   const ib::Scenario s = ib::bench::resonance_for_2_s();
   const ib::RunSettings settings = ib::bench::matched_path(law);
@@ -208,7 +204,7 @@ void compare(benchmark::State& state, const std::string& engine, ib::ContactLaw 
   state.counters["harness_ms"] = 1e3 * fastest_harness;
   state.counters["bare_ms"] = 1e3 * fastest_bare;
   state.counters["overhead_percent"] = 100 * (fastest_harness / fastest_bare - 1);
-  state.counters["median_pair_overhead_percent"] = 100 * (median(ratios) - 1);
+  state.counters["median_pair_overhead_percent"] = 100 * (ib::median(ratios) - 1);
   state.counters["pairs"] = static_cast<double>(ratios.size());
 }
 

@@ -39,13 +39,14 @@ MetricSettings metric_settings(const Scenario& scenario, const Measurement& meas
   return m;
 }
 
-namespace {
-
 double median(std::vector<double> values) {
+  if (values.empty()) return 0;
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
+
+namespace {
 
 // The timed runs: the run again, `repeats` times, its results dropped; the record's cost becomes their
 // median. The same simulator object and settings as the logged run, so the same model is built.

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "metrics.h"
 #include "run_record.h"
@@ -37,6 +38,9 @@ struct ReferenceData {
   Metrics metrics;
   Trajectory trajectory;
 };
+
+// The median of values (0 when there are none): what a run's timed runs give as its cost.
+double median(std::vector<double> values);
 
 // "scenario/engine/law/dt=.../options": unique within a suite, and the run's folder below runs/.
 std::string job_id(const std::string& scenario_name, const JobSpec& job);
