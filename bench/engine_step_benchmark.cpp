@@ -42,12 +42,9 @@ void register_all() {
   }
 }
 
+// Registered before main runs, as Google Benchmark's own BENCHMARK() macros do.
+const bool registered = (register_all(), true);
+
 }  // namespace
 
-int main(int argc, char** argv) {
-  register_all();
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+BENCHMARK_MAIN();

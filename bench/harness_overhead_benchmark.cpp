@@ -226,12 +226,9 @@ void register_all() {
           ->Unit(benchmark::kMillisecond);
 }
 
+// Registered before main runs, as Google Benchmark's own BENCHMARK() macros do.
+const bool registered = (register_all(), true);
+
 }  // namespace
 
-int main(int argc, char** argv) {
-  register_all();
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+BENCHMARK_MAIN();
