@@ -92,7 +92,7 @@ def markdown(record):
     lines = [
         "# The reference against SciPy's solve_ivp",
         "",
-        f"Machine: {m['cpu']}, {m['cores']} cores (load average {m['load_average_1_5_15_min_at_start'][0]:.2f} at "
+        f"Machine: {m['cpu_model']}, {m['cpu_cores']} cores (load average {m['load_average_1_5_15_min_at_start'][0]:.2f} at "
         f"the start, {m['load_average_1_5_15_min_at_end'][0]:.2f} at the end: timings are approximate when the "
         "machine is shared). "
         f"Python {v['python']}, NumPy {v['numpy']}, SciPy {v['scipy']}, impactbench {v['impactbench_commit']}. "

@@ -179,16 +179,12 @@ def compare_case(args, case, law, out):
 
 
 def machine():
-    model = "unknown"
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    model = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return {"cpu": model, "cores": os.cpu_count(), "load_average_1_5_15_min_at_start": list(os.getloadavg())}
+    """bench/machine.sh's record (CPU, cores, memory, OS, compiler, Debian versions, commit), as every
+    bench/ measurement keeps it, and the load average at the start."""
+    lines = run([os.path.join(ROOT, "bench", "machine.sh")], "bench/machine.sh").splitlines()
+    record = dict(line.split("=", 1) for line in lines if "=" in line)
+    record["load_average_1_5_15_min_at_start"] = list(os.getloadavg())
+    return record
 
 
 def versions(impactbench):

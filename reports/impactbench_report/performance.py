@@ -110,18 +110,11 @@ def scipy_table(document):
     return title, header, rows
 
 
-def scipy_machine(document):
-    machine, versions = document.get("machine", {}), document.get("versions", {})
-    return {"cpu_model": machine.get("cpu", "?"), "cpu_cores": machine.get("cores", "?"),
-            "memory_gib": machine.get("memory_gib", "?"),
-            "python3-scipy": versions.get("scipy", "?"), "impactbench_commit": str(versions.get("impactbench_commit", "?"))[:7]}
-
-
 READERS = [("reference_benchmark.json", reference_table, lambda d: d.get("context")),
            ("engine_step_benchmark.json", engine_step_table, lambda d: d.get("context")),
            ("harness_overhead_benchmark.json", overhead_table, lambda d: d.get("context")),
            ("scaling.json", scaling_table, lambda d: d.get("machine")),
-           ("reference_vs_scipy/comparison.json", scipy_table, scipy_machine)]
+           ("reference_vs_scipy/comparison.json", scipy_table, lambda d: d.get("machine"))]
 
 
 def section(suite_folder):

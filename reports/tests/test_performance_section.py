@@ -70,7 +70,7 @@ class PerformanceSection(unittest.TestCase):
                    "scipy_integration_time_s": 80.0, "speed_ratio": 160.0, "speed_ratio_cpu": 150.0,
                    "largest_relative_difference": 1e-3, "largest_reference_error": 8e-5, "largest_scipy_error": 9e-4}
         self.write("reference_vs_scipy/comparison.json", {
-            "machine": {"cpu": "Test CPU 9000", "cores": 2}, "versions": {"scipy": "1.10.1", "impactbench_commit": "abc1234ff"},
+            "machine": dict(MACHINE, **{"python3-scipy": "1.10.1-2"}), "versions": {"scipy": "1.10.1"},
             "settings": {"method": "DOP853", "rtol": 1e-9, "tight_rtol": 1e-12}, "cases": [{"summary": summary}]})
         markdown, _ = performance.section(self.suite)
         self.assertIn("| resonance / hertz | 20 | 0.5 | 80 | 160 | 150 | 0.001 | 8e-05 | 0.0009 |", markdown)
