@@ -12,6 +12,7 @@ FreeFlight::FreeFlight(const ModalModel& model) : model_(model) {
   const int n = model.mode_count();
   const Eigen::ArrayXd omega = model.omega_rad_s.array(), zeta = model.zeta.array();
   decay_ = -zeta * omega;
+  two_zeta_omega_ = 2 * zeta * omega;
   oscillation_ = omega * (1 - zeta.square()).abs().sqrt();
   regime_.resize(n);
   for (int m = 0; m < n; ++m) regime_[m] = zeta[m] < 1 ? -1 : (zeta[m] > 1 ? 1 : 0);
@@ -104,10 +105,14 @@ void FreeFlight::advance(const Transition& tr, const MotorPhase& from, const Mot
     if (!forms) continue;
     const EnergyForms& f = *forms;
     const double hom_sq = f.vv_qq[m] * q_free * q_free + 2 * f.vv_qv[m] * q_free * v_free + f.vv_vv[m] * v_free * v_free;
+    if (w == 0) {  // no motor: the steady state and its cross terms are zero
+      dissipation += two_zeta_omega_[m] * hom_sq;
+      continue;
+    }
     const double cos_hom = f.cos_q[m] * q_free + f.cos_v[m] * v_free;
     const double sin_hom = f.sin_q[m] * q_free + f.sin_v[m] * v_free;
     const double part_sq = p * p * f.cos_cos + 2 * p * q * f.cos_sin + q * q * f.sin_sin;
-    dissipation += 2 * model_.zeta[m] * model_.omega_rad_s[m] * (hom_sq + 2 * (p * cos_hom + q * sin_hom) + part_sq);
+    dissipation += two_zeta_omega_[m] * (hom_sq + 2 * (p * cos_hom + q * sin_hom) + part_sq);
     if (motor_force != 0 && model_.motor_lever[m] != 0) {
       // F_m(t0 + s) = F (c0 cos(Omega s) - s0 sin(Omega s))
       const double cos_v = p * f.cos_cos + q * f.cos_sin + cos_hom;

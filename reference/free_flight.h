@@ -64,6 +64,7 @@ class FreeFlight {
  private:
   const ModalModel& model_;
   Eigen::ArrayXd decay_;         // -zeta omega [1/s]
+  Eigen::ArrayXd two_zeta_omega_;  // 2 zeta omega [1/s], the structural damping per unit velocity
   Eigen::ArrayXd oscillation_;   // omega sqrt(|1 - zeta^2|) [rad/s]
   Eigen::ArrayXi regime_;        // -1 under-, 0 critically, +1 over-damped
   Eigen::ArrayXd forced_cos_, forced_sin_;  // q_p = forced_cos cos(Omega t) - forced_sin sin(Omega t)

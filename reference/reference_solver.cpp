@@ -72,6 +72,7 @@ class SeriesRecorder {
     total_ = window.end_s >= window.start_s ? static_cast<long long>(count) : 0;
     out_.reserve(static_cast<std::size_t>(total_));
   }
+  double sample_interval_s() const { return 1 / window_.rate_hz; }
   double next_sample_time() const {
     return index_ < total_ ? window_.start_s + static_cast<double>(index_) / window_.rate_hz : kInf;
   }
@@ -127,6 +128,7 @@ class Solver {
     grid_step_ = std::min(kTwoPi / fastest / settings.grid_points_per_period, settings.max_grid_step_s);
     solution.grid_step_s = grid_step_;
     grid_transition_ = flight_.transition(grid_step_);
+    if (output.rate_hz > 0) sample_transition_ = flight_.transition(recorder_.sample_interval_s());
     if (settings.track_energy) grid_energy_ = flight_.energy_forms(grid_step_);
     // The coarse step resolves the slow modes only; the rest is bounded (see free_flight).
     const int n2 = m_ - n1_, slow = settings.slow_modes_per_frame;
@@ -246,15 +248,16 @@ class Solver {
     else if (phase == Phase::sticking) s.force = lever_driven / lever_norm2_;
     // delta'' = b . (driven - b F) and the jerk without the force rate, b . (p F_m' - c a - w^2 v)
     const double indentation_acc = lever_driven - lever_norm2_ * s.force;
-    double lever_jerk_free = 0;
-    for (int m = 0; m < m_; ++m) {
-      const double acc = p[m] * motor - c[m] * v[m] - w2[m] * q[m] - b[m] * s.force;
-      lever_jerk_free += b[m] * (p[m] * motor_rate - c[m] * acc - w2[m] * v[m]);
-    }
-    if (phase == Phase::compliant)
+    if (phase == Phase::compliant) {
       s.force_rate = contact_force_rate(model_.contact, delta, rate, indentation_acc);
-    else if (phase == Phase::sticking)
+    } else if (phase == Phase::sticking) {  // a pass of its own, needed only while sticking
+      double lever_jerk_free = 0;
+      for (int m = 0; m < m_; ++m) {
+        const double acc = p[m] * motor - c[m] * v[m] - w2[m] * q[m] - b[m] * s.force;
+        lever_jerk_free += b[m] * (p[m] * motor_rate - c[m] * acc - w2[m] * v[m]);
+      }
       s.force_rate = lever_jerk_free / lever_norm2_;
+    }
     for (int f = 0; f < 2; ++f) {
       const int first = f == 0 ? 0 : n1_, last = f == 0 ? n1_ : m_;
       const Eigen::VectorXd& tip_of_mode = model_.frames[f].tip;
@@ -295,8 +298,14 @@ class Solver {
   // ---- series and peaks ---------------------------------------------------------------------
   // Feeds the recorder everything of [a, b] in time order: interior extrema of both tip
   // accelerations and of the force, the samples that fall in (a, b], and the value at b.
+  // eval(t) gives the state at any t in [a, b]; sample_at(t) the same at sample times, where the
+  // caller may have a cheaper way.
   template <class Eval>
   void record_interval(const TipState& sa, const TipState& sb, Eval&& eval) {
+    record_interval(sa, sb, eval, eval);
+  }
+  template <class Eval, class SampleAt>
+  void record_interval(const TipState& sa, const TipState& sb, Eval&& eval, SampleAt&& sample_at) {
     if (!recorder_.wants(sb.t)) return;
     std::array<TipState, 3> points;  // at most one extremum each of a1, a2 and F_c
     int count = 0;
@@ -317,7 +326,7 @@ class Solver {
     int next = 0;
     for (double ts = recorder_.next_sample_time(); ts <= sb.t; ts = recorder_.next_sample_time()) {
       while (next < count && points[next].t <= ts) recorder_.feed(points[next++]);
-      recorder_.sample(ts == sb.t ? sb : eval(ts));
+      recorder_.sample(ts == sb.t ? sb : sample_at(ts));
     }
     while (next < count) recorder_.feed(points[next++]);
     recorder_.feed(sb);
@@ -344,6 +353,23 @@ class Solver {
     double fine_until = after_contact ? t + coarse_step_ : t;  // no coarse step right after a contact
     TipState tips_a;
     bool tips_a_valid = false;
+    // Consecutive samples within one flight follow from the previous one by the precomputed
+    // transition over the sample interval, instead of a fresh transition (exp, sin and cos of every
+    // mode) from the grid point. Sample times are one interval apart up to rounding (~1e-16 s).
+    double last_sample_t = -kInf;
+    FreeFlight::MotorPhase last_sample_phase;
+    auto sample_at = [&](double ts, const ModalState& x_grid, double t_grid) {
+      const FreeFlight::MotorPhase phase = flight_.motor_phase(ts);
+      if (std::abs(ts - last_sample_t - sample_transition_.tau_s) <= 1e-9 * sample_transition_.tau_s) {
+        flight_.advance(sample_transition_, last_sample_phase, phase, x_sample_, xs_);
+        std::swap(x_sample_, xs_);
+      } else {
+        flight_.advance(x_grid, t_grid, ts - t_grid, x_sample_);
+      }
+      last_sample_t = ts;
+      last_sample_phase = phase;
+      return tip_state(x_sample_.q.data(), x_sample_.v.data(), ts, Phase::free);
+    };
     while (t < end_time_) {
       if (coarse_step_ > 0 && t >= fine_until && t + coarse_step_ < end_time_ && !recorder_.wants(t + coarse_step_)) {
         if (coarse_step_without_contact(t, x, phase_a, work, dissipation)) {
@@ -383,7 +409,7 @@ class Solver {
         // the start's kinematics carry over from the previous step when it was recorded too
         if (!(tips_a_valid && tips_a.t == t0)) tips_a = tip_state(x.q.data(), x.v.data(), t0, Phase::free);
         const TipState tips_b = tip_state(x_end.q.data(), x_end.v.data(), t_end, Phase::free);
-        record_interval(tips_a, tips_b, eval);
+        record_interval(tips_a, tips_b, eval, [&](double ts) { return sample_at(ts, x, t0); });
         tips_a = tips_b;
         tips_a_valid = true;
       }
@@ -671,11 +697,11 @@ class Solver {
   double lever_norm2_ = 0;
   double grid_step_ = 0;
   double end_time_ = 0;
-  FreeFlight::Transition grid_transition_, coarse_transition_;
+  FreeFlight::Transition grid_transition_, coarse_transition_, sample_transition_;
   FreeFlight::EnergyForms grid_energy_, coarse_energy_;
   double coarse_step_ = 0;                   // 0: no coarse steps
   Eigen::VectorXd slow_lever_, fast_lever_;  // the contact lever split into slow and fast modes
-  ModalState xb_, xs_, x_onset_;  // free-flight scratch states, kept to avoid allocation
+  ModalState xb_, xs_, x_onset_, x_sample_;  // free-flight scratch states, kept to avoid allocation
   double stick_impulse_ = 0;
   std::optional<std::pair<double, double>> force_end_;  // (time, opening speed) where a clipped force ended
   long long guard_impacts_ = 0;
