@@ -117,20 +117,35 @@ class MultiBodyChain final : public BulletChain {
   // one pass from the base out (each link's frame from its parent's, as localPosToWorld composes them),
   // not from localPosToWorld per hinge, which walks back to the base every time: O(K) instead of O(K^2)
   // per step; the tip point falls out of the same pass.
+  // Every rotation in the chain is about y (identity base and zero rotations, hinges about kHingeAxis),
+  // a quaternion (0, s, 0, c) of the half angle: composing two is a product of complex numbers, and
+  // turning a vector in the x-z plane takes cos = c^2 - s^2 and sin = 2 s c. This runs every step, so
+  // it is a few products per link instead of Bullet's general quaternion algebra.
   TipMotion tip_motion() const override {
     const int links = body_->getNumLinks();
-    btQuaternion to_world = body_->getWorldToBaseRot().inverse();  // link frame -> world rotation
-    btVector3 origin = body_->getBasePos();                         // link frame origin in the world
-    double sum_rate = 0, sum_rate_hinge_z = 0;                      // sum theta'_j, sum theta'_j h_jz
+    double s = 0, c = 1;                        // link frame -> world, about y (the base: identity)
+    double x = body_->getBasePos().x(), z = body_->getBasePos().z();  // link frame origin in the world
+    double cos_turn = 1, sin_turn = 0;
+    double sum_rate = 0, sum_rate_hinge_z = 0;  // sum theta'_j, sum theta'_j h_jz
     for (int j = 0; j < links; ++j) {  // a serial chain: link j's parent is link j - 1 (the base for j = 0)
-      to_world = to_world * body_->getParentToLocalRot(j).inverse();
-      origin += quatRotate(to_world, body_->getRVector(j));
+      // to_world * parent_to_local^-1, with parent_to_local = (0, ps, 0, pc)
+      const btQuaternion& parent_to_local = body_->getParentToLocalRot(j);
+      const double ps = parent_to_local.y(), pc = parent_to_local.w();
+      const double s_next = s * pc - c * ps, c_next = c * pc + s * ps;
+      s = s_next;
+      c = c_next;
+      cos_turn = c * c - s * s;
+      sin_turn = 2 * s * c;
+      const btVector3& r = body_->getRVector(j);  // parent's origin -> this origin, in this frame
+      x += cos_turn * r.x() + sin_turn * r.z();
+      z += cos_turn * r.z() - sin_turn * r.x();
       const double rate = body_->getJointVel(j);
       sum_rate += rate;
-      sum_rate_hinge_z += rate * (origin + quatRotate(to_world, hinge_in_link_[j])).z();
+      sum_rate_hinge_z += rate * (z + cos_turn * hinge_in_link_[j].z() - sin_turn * hinge_in_link_[j].x());
     }
-    const btVector3 tip = origin + quatRotate(to_world, tip_in_last_);
-    return {tip.x(), sum_rate * tip.z() - sum_rate_hinge_z};
+    const double tip_x = x + cos_turn * tip_in_last_.x() + sin_turn * tip_in_last_.z();
+    const double tip_z = z + cos_turn * tip_in_last_.z() - sin_turn * tip_in_last_.x();
+    return {tip_x, sum_rate * tip_z - sum_rate_hinge_z};
   }
 
   void joint_state(Eigen::VectorXd& angles, Eigen::VectorXd& rates) const override {
