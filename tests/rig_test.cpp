@@ -71,6 +71,13 @@ TEST(Rig, EnergyAndEffectiveMassesAreThoseOfTheChain) {
   EXPECT_NEAR(energy(angles, rates, -1e-3) / (0.5 * force * u), 1.0, 1e-12);
   // the viscoelastic spring's energy joins when the tips overlap
   EXPECT_NEAR(energy(angles, rates, 1e-6) - energy(angles, rates, -1e-3), 0.5 * 6.99e6 * 1e-12, 1e-15);
+  // the kinetic energy 1/2 w^T M w of any hinge rates, M full (every link moves with the hinges below it)
+  const std::array<Eigen::VectorXd, 2> moving = {Eigen::VectorXd::LinSpaced(16, -0.3, 0.5),
+                                                 Eigen::VectorXd::LinSpaced(16, 0.2, -0.1)};
+  const std::array<Eigen::VectorXd, 2> straight = {Eigen::VectorXd::Zero(16), Eigen::VectorXd::Zero(16)};
+  double kinetic = 0;
+  for (int f = 0; f < 2; ++f) kinetic += 0.5 * moving[f].dot(linearise(rig.frames[f].chain).mass * moving[f]);
+  EXPECT_NEAR(energy(straight, moving, -1e-3) / kinetic, 1.0, 1e-14);
   for (int f = 0; f < 2; ++f) {
     EXPECT_GT(rig.frames[f].tip_effective_mass_kg, s.frames[f].tip_mass_kg);
     EXPECT_LT(rig.frames[f].tip_effective_mass_kg, s.frames[f].tip_mass_kg + s.frames[f].beam_mass_kg());

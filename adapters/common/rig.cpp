@@ -84,11 +84,16 @@ RigEnergy::RigEnergy(const RigSpec& rig) : law_(rig.law) {
 }
 
 namespace {
-// x^T A x without a temporary vector: the engines call RigEnergy every step, and Eigen's A * x would
-// allocate one per call.
-double quadratic_form(const Eigen::MatrixXd& a, const Eigen::VectorXd& x) {
+// x^T A x for a symmetric A (the chain's mass and stiffness matrices) from its lower triangle,
+// sum_j x_j (A_jj x_j + 2 sum_{i>j} A_ij x_i): half the products of the full form, and no temporary
+// vector (Eigen's A * x would allocate one per call). The engines call RigEnergy every step.
+double symmetric_quadratic_form(const Eigen::MatrixXd& a, const Eigen::VectorXd& x) {
+  const Eigen::Index n = a.cols();
   double sum = 0;
-  for (Eigen::Index j = 0; j < a.cols(); ++j) sum += x[j] * a.col(j).dot(x);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::Index below = n - j - 1;
+    sum += x[j] * (a(j, j) * x[j] + 2 * a.col(j).tail(below).dot(x.tail(below)));
+  }
   return sum;
 }
 }  // namespace
@@ -97,7 +102,8 @@ double RigEnergy::operator()(const std::array<Eigen::VectorXd, 2>& angles, const
                              double indentation_m) const {
   double energy = elastic_contact_energy(law_, indentation_m);
   for (int f = 0; f < 2; ++f)
-    energy += 0.5 * quadratic_form(matrices_[f].mass, rates[f]) + 0.5 * quadratic_form(matrices_[f].stiffness, angles[f]);
+    energy += 0.5 * symmetric_quadratic_form(matrices_[f].mass, rates[f]) +
+              0.5 * symmetric_quadratic_form(matrices_[f].stiffness, angles[f]);
   return energy;
 }
 
