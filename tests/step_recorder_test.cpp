@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace ib {
 namespace {
@@ -84,6 +85,41 @@ TEST(StepRecorder, AContactStillOpenAtTheEndIsClosedThere) {
   ASSERT_EQ(t.events.size(), 1u);
   EXPECT_NEAR(t.events[0].onset_time_s, 0.02, 1e-12);
   EXPECT_NEAR(t.events[0].end_time_s, 0.05, 1e-12);
+}
+
+// An engine computes the energy only where StepRecorder::needs_energy says so and leaves it NaN
+// elsewhere: the series (from 0.3 s, with a step of 0.7 ms that does not land on it) and the impact
+// zoom (an onset 0.4 ms after the series start, its 1 ms margin reaching back before it) must hold
+// only computed energies, and the initial energy must be there.
+TEST(StepRecorder, EnergyIsNeededOnlyWhereTheSeriesAndTheZoomReachIt) {
+  const double h = 7e-4, start = 0.3, end = 0.5;
+  StepRecorder recorder(start, end, 1000);
+  StepState s;
+  int computed = 0, steps = 0;
+  for (int k = 0; k * h <= end + 1e-12; ++k) {
+    s.t = k * h;
+    s.displacement_m = {1e-3 * std::sin(10 * s.t), 0};
+    s.velocity_m_s = {1e-2 * std::cos(10 * s.t), 0};
+    s.contact_force_n = (s.t > start + 4e-4 && s.t < start + 3e-3) ? 50.0 : 0.0;  // one impact in the window
+    const bool needed = recorder.needs_energy(s.t, h);
+    s.energy_j = needed ? 1.0 + s.t : std::numeric_limits<double>::quiet_NaN();
+    computed += needed;
+    ++steps;
+    recorder.record(s);
+  }
+  const Trajectory series = recorder.finish();
+  const Trajectory impact = recorder.impact_zoom();
+  EXPECT_EQ(series.initial_mechanical_energy_j, 1.0);
+  ASSERT_FALSE(series.mechanical_energy_j.empty());
+  for (double e : series.mechanical_energy_j) EXPECT_TRUE(std::isfinite(e));
+  ASSERT_GT(impact.size(), 2u);
+  // the zoom starts 1 ms before the onset (the step before the first with a force), not earlier
+  ASSERT_EQ(series.events.size(), 1u);
+  EXPECT_LT(impact.time_s.front(), start);  // the margin reaches back before the series start
+  EXPECT_GE(impact.time_s.front(), series.events[0].onset_time_s - 1e-3 - 1e-12);
+  EXPECT_LT(impact.time_s.front(), series.events[0].onset_time_s - 1e-3 + h);
+  for (double e : impact.mechanical_energy_j) EXPECT_TRUE(std::isfinite(e));
+  EXPECT_LT(computed, steps / 2);  // most of the run before the window went without it
 }
 
 }  // namespace

@@ -31,6 +31,8 @@ static_assert(sizeof(btScalar) == 8, "impactbench needs Bullet's double-precisio
 namespace ib {
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();  // an energy nothing reads (StepRecorder::needs_energy)
+
 using namespace bullet;  // the adapter's own names: chains and contact mapping
 
 // The largest step at which the explicit hinge springs and dampers stay stable [s]. Stiffness-
@@ -156,17 +158,17 @@ class BulletSimulator final : public Simulator {
       s.t = t;
       s.contact_force_n = contact_force;
       s.indentation_m = s.displacement_m[0] - s.displacement_m[1] - rig.gap_m;
-      s.energy_j = energy(angles, rates, instantaneous ? 0.0 : s.indentation_m);
+      s.energy_j = recorder.needs_energy(t, h) ? energy(angles, rates, instantaneous ? 0.0 : s.indentation_m) : kNaN;
+      auto frame_name = [](int f) { return "frame " + std::to_string(f + 1); };  // spelt out only on failure
       for (int f = 0; f < 2; ++f) {
-        const std::string frame = "frame " + std::to_string(f + 1);
         const double limit = 0.1 * rig.frames[f].tip_z_m;
         if (!std::isfinite(s.displacement_m[f]) || !std::isfinite(s.velocity_m_s[f]) || !angles[f].allFinite() ||
             !rates[f].allFinite()) {
-          result.reason = "Bullet's state became non-finite (" + frame + " tip) at t = " + format(t) + " s";
+          result.reason = "Bullet's state became non-finite (" + frame_name(f) + " tip) at t = " + format(t) + " s";
           return false;
         }
         if (std::abs(s.displacement_m[f]) > limit) {
-          result.reason = frame + " tip displacement " + format(s.displacement_m[f]) + " m beyond 0.1 L = " +
+          result.reason = frame_name(f) + " tip displacement " + format(s.displacement_m[f]) + " m beyond 0.1 L = " +
                           format(limit) + " m at t = " + format(t) + " s";
           return false;
         }

@@ -14,6 +14,17 @@ StepRecorder::StepRecorder(double series_start_s, double end_s, double rate_hz)
   out_.reserve(static_cast<std::size_t>(total_samples_));
 }
 
+namespace {
+constexpr double kZoomMargin_s = 1e-3;       // before the onset and after the end of the zoomed impact
+constexpr std::size_t kZoomMaxSteps = 200000;  // a sticking contact must not fill the memory
+}  // namespace
+
+bool StepRecorder::needs_energy(double t, double step_s) const {
+  // the state before the first sample is at most one step earlier; the zoom's steps start at most one
+  // margin before an onset in the window
+  return steps_ < 0 || t + step_s >= start_s_ - kZoomMargin_s;
+}
+
 void StepRecorder::record(const StepState& s) {
   ++steps_;
   if (steps_ == 0) {  // the initial state
@@ -49,15 +60,11 @@ void StepRecorder::record(const StepState& s) {
   previous_ = s;
 }
 
-namespace {
-constexpr double kZoomMargin_s = 1e-3;       // before the onset and after the end of the zoomed impact
-constexpr std::size_t kZoomMaxSteps = 200000;  // a sticking contact must not fill the memory
-}  // namespace
-
 void StepRecorder::keep_for_zoom(const StepSample& sample, bool episode_started, bool episode_ended) {
   if (episode_started && !capturing_ && episode_.onset_time_s >= start_s_) {
     capturing_ = true;
-    capture_ = recent_;
+    // the steps from the margin before the onset on (recent_ may still hold older ones, dropped in batches)
+    capture_.assign(recent_.begin() + static_cast<std::ptrdiff_t>(recent_stale_), recent_.end());
     capture_peak_ = 0;
     capture_until_ = std::numeric_limits<double>::infinity();
   }

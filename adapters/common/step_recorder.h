@@ -32,6 +32,12 @@ class StepRecorder {
   // to the interval since the previous state.
   void record(const StepState& state);
 
+  // Whether the next state recorded, at time t after a step of step_s, needs its energy_j: the initial
+  // state does (the initial energy), and so does every state from the impact zoom's margin before the
+  // series start on (samples interpolate it, the zoom keeps it). Before that an engine may skip
+  // computing it (quadratic forms of the chain, every step) and leave energy_j NaN, which nothing reads.
+  bool needs_energy(double t, double step_s) const;
+
   long long steps() const { return steps_; }
   Trajectory finish();
   // The strongest impact (largest contact force) whose onset lies in the series window: every step from

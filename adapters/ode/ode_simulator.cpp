@@ -92,7 +92,8 @@ class Observer {
     }
   }
 
-  StepState observe(const OdeRig& ode_rig, double t, double contact_force_n) {
+  // with_energy false: energy_j NaN, for a state whose energy nothing reads (StepRecorder::needs_energy)
+  StepState observe(const OdeRig& ode_rig, double t, double contact_force_n, bool with_energy) {
     StepState s;
     s.t = t;
     for (int f = 0; f < 2; ++f) {
@@ -104,7 +105,8 @@ class Observer {
     s.contact_force_n = contact_force_n;
     s.indentation_m = s.displacement_m[0] - s.displacement_m[1] - gap_m_;
     // Newton's contact stores no energy (RigEnergy takes 0 indentation for it)
-    s.energy_j = energy_(angles_, rates_, newton_ ? 0.0 : s.indentation_m);
+    s.energy_j = with_energy ? energy_(angles_, rates_, newton_ ? 0.0 : s.indentation_m)
+                             : std::numeric_limits<double>::quiet_NaN();
     return s;
   }
 
@@ -118,26 +120,24 @@ class Observer {
 };
 
 // Why the state after a step ends the run (before ODE would be handed a state it aborts on), or nothing.
+// Runs every step: the message's stream is made only when there is something to say.
 std::optional<std::string> divergence(const StepState& s, const Observer& observer, const RigSpec& rig) {
-  std::ostringstream why;
-  why.precision(6);
-  for (int f = 0; f < 2; ++f) {
-    if (!std::isfinite(s.displacement_m[f]) || !std::isfinite(s.velocity_m_s[f])) {
-      why << "non-finite state of frame " << f + 1 << " at t = " << s.t << " s (tip u = " << s.displacement_m[f]
-          << " m, v = " << s.velocity_m_s[f] << " m/s)";
-      return why.str();
-    }
-    const double bound = 0.1 * rig.frames[f].tip_z_m;
-    if (std::abs(s.displacement_m[f]) > bound) {
-      why << "frame " << f + 1 << " tip displacement |u| = " << std::abs(s.displacement_m[f]) << " m at t = " << s.t
-          << " s, beyond 0.1 L = " << bound << " m";
-      return why.str();
-    }
-  }
-  if (!observer.hinges_finite()) {
-    why << "non-finite hinge angle or rate at t = " << s.t << " s";
+  auto say = [](auto&&... parts) {
+    std::ostringstream why;
+    why.precision(6);
+    (why << ... << parts);
     return why.str();
+  };
+  for (int f = 0; f < 2; ++f) {
+    if (!std::isfinite(s.displacement_m[f]) || !std::isfinite(s.velocity_m_s[f]))
+      return say("non-finite state of frame ", f + 1, " at t = ", s.t, " s (tip u = ", s.displacement_m[f],
+                 " m, v = ", s.velocity_m_s[f], " m/s)");
+    const double bound = 0.1 * rig.frames[f].tip_z_m;
+    if (std::abs(s.displacement_m[f]) > bound)
+      return say("frame ", f + 1, " tip displacement |u| = ", std::abs(s.displacement_m[f]), " m at t = ", s.t,
+                 " s, beyond 0.1 L = ", bound, " m");
   }
+  if (!observer.hinges_finite()) return say("non-finite hinge angle or rate at t = ", s.t, " s");
   return std::nullopt;
 }
 
@@ -161,7 +161,7 @@ class RigRun {
     RunResult result;
     const auto wall_start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
-    StepState state = observer_.observe(ode_rig_, 0, 0);
+    StepState state = observer_.observe(ode_rig_, 0, 0, true);
     recorder_.record(state);
     for (long long n = 0; n < steps_; ++n) {
       const double h = model_.time_step_s;
@@ -169,7 +169,8 @@ class RigRun {
       ode_rig_.step();
       // a tensile law force (the unclipped spring-dashpot near separation) is applied and recorded as it is
       const double contact_force = contact_.ode_collision ? ode_rig_.tip_contact_force() : law_force;
-      state = observer_.observe(ode_rig_, static_cast<double>(n + 1) * h, contact_force);
+      const double t = static_cast<double>(n + 1) * h;
+      state = observer_.observe(ode_rig_, t, contact_force, recorder_.needs_energy(t, h));
       if (const auto why = divergence(state, observer_, rig_)) {
         result.status = RunStatus::unstable;
         result.reason = *why + explain(messages);
