@@ -12,19 +12,35 @@ namespace {
 
 using testing::paper_scenario;
 
+// The free vibration's frame 1 with one mode and no contact (gap 1 m), released from its static shape.
+struct OneModeDecay {
+  Scenario scenario = no_contact(paper_scenario("free_vibration"));
+  ReferenceSettings settings = one_mode();
+  ModalModel model = build_modal_model(scenario, ContactLaw::hertz, settings.modes);
+
+  // sampled at rate_hz from t = 0 to duration_s
+  ReferenceSolution solve(double duration_s, double rate_hz) const {
+    return solve_reference(model, initial_state(scenario, model), duration_s, {0, duration_s, rate_hz}, settings);
+  }
+  static Scenario no_contact(Scenario s) {
+    s.gap_m = 1.0;
+    return s;
+  }
+  static ReferenceSettings one_mode() {
+    ReferenceSettings settings;
+    settings.modes.modes_per_frame = 1;
+    return settings;
+  }
+};
+
 // One mode released from its static shape: u(k T_d) = u(0) exp(-zeta omega k T_d) exactly, so the
 // logarithmic decrement gives zeta back to the closed form's precision.
 TEST(FreeResponse, LogarithmicDecrementOfOneModeGivesZeta) {
-  Scenario s = paper_scenario("free_vibration");
-  s.gap_m = 1.0;  // no contact
-  ReferenceSettings settings;
-  settings.modes.modes_per_frame = 1;
-  const ModalModel model = build_modal_model(s, ContactLaw::hertz, settings.modes);
-  const double omega = model.omega_rad_s[0], zeta = model.zeta[0];
+  const OneModeDecay decay;
+  const double omega = decay.model.omega_rad_s[0], zeta = decay.model.zeta[0];
   const double period = 2 * M_PI / (omega * std::sqrt(1 - zeta * zeta));
   const int cycles = 40;
-  const ReferenceSolution r =
-      solve_reference(model, initial_state(s, model), cycles * period, {0, cycles * period, 1 / period}, settings);
+  const ReferenceSolution r = decay.solve(cycles * period, 1 / period);
   const auto& u = r.trajectory.displacement_m[0];
   ASSERT_EQ(u.size(), static_cast<std::size_t>(cycles + 1));
   EXPECT_NEAR(u[0], -2e-3, 1e-15);
@@ -37,15 +53,10 @@ TEST(FreeResponse, LogarithmicDecrementOfOneModeGivesZeta) {
 // transition over the sample interval, so this checks that chain against the closed form
 // q(t) = q0 e^{-zeta omega t} (cos omega_d t + zeta omega / omega_d sin omega_d t) from rest.
 TEST(FreeResponse, EverySampleOfOneModeFollowsTheClosedForm) {
-  Scenario s = paper_scenario("free_vibration");
-  s.gap_m = 1.0;  // no contact
-  ReferenceSettings settings;
-  settings.modes.modes_per_frame = 1;
-  const ModalModel model = build_modal_model(s, ContactLaw::hertz, settings.modes);
-  const double omega = model.omega_rad_s[0], zeta = model.zeta[0];
+  const OneModeDecay decay;
+  const double omega = decay.model.omega_rad_s[0], zeta = decay.model.zeta[0];
   const double omega_d = omega * std::sqrt(1 - zeta * zeta), rate_hz = 4096, duration_s = 10;
-  const ReferenceSolution r =
-      solve_reference(model, initial_state(s, model), duration_s, {0, duration_s, rate_hz}, settings);
+  const ReferenceSolution r = decay.solve(duration_s, rate_hz);
   const auto& u = r.trajectory.displacement_m[0];
   const auto& time = r.trajectory.time_s;
   ASSERT_EQ(u.size(), static_cast<std::size_t>(duration_s * rate_hz + 1));
