@@ -63,8 +63,14 @@ def error_against_cost(suite, scenario, law, folder, provenance):
         ax.set_ylabel("|" + ("relative error" if kind == "relative" else "difference") + "|")
         ax.set_title(title, fontsize=9)
         ax.grid(True, which="both", linewidth=0.3)
-    if configs:
-        axes[0].legend(fontsize=7, loc="best")
+    # one legend for all panels, from whichever panels have the configurations (a metric may be undefined
+    # in a case, e.g. impacts per cycle without a motor, and leave its panel empty)
+    legend = {}
+    for ax in axes:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            legend.setdefault(label, handle)
+    if legend:
+        axes[0].legend(legend.values(), legend.keys(), fontsize=7, loc="best")
     return save(figure, folder, f"error_vs_cost_{scenario}_{law}",
                 f"{scenario}, {law}: error against run time (filled: vs beam reference, hollow: vs the engine's own "
                 f"chain; zero errors drawn at {FLOOR:g}); {provenance}")
