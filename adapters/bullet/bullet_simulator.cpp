@@ -31,8 +31,6 @@ static_assert(sizeof(btScalar) == 8, "impactbench needs Bullet's double-precisio
 namespace ib {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();  // an energy nothing reads (StepRecorder::needs_energy)
-
 using namespace bullet;  // the adapter's own names: chains and contact mapping
 
 // The largest step at which the explicit hinge springs and dampers stay stable [s]. Stiffness-
@@ -158,7 +156,8 @@ class BulletSimulator final : public Simulator {
       s.t = t;
       s.contact_force_n = contact_force;
       s.indentation_m = s.displacement_m[0] - s.displacement_m[1] - rig.gap_m;
-      s.energy_j = recorder.needs_energy(t, h) ? energy(angles, rates, instantaneous ? 0.0 : s.indentation_m) : kNaN;
+      s.energy_j = recorder.energy_where_needed(
+          t, h, [&] { return energy(angles, rates, instantaneous ? 0.0 : s.indentation_m); });
       auto frame_name = [](int f) { return "frame " + std::to_string(f + 1); };  // spelt out only on failure
       for (int f = 0; f < 2; ++f) {
         const double limit = 0.1 * rig.frames[f].tip_z_m;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 
 #include "trajectory.h"
 
@@ -34,9 +35,14 @@ class StepRecorder {
 
   // Whether the next state recorded, at time t after a step of step_s, needs its energy_j: the initial
   // state does (the initial energy), and so does every state from the impact zoom's margin before the
-  // series start on (samples interpolate it, the zoom keeps it). Before that an engine may skip
-  // computing it (quadratic forms of the chain, every step) and leave energy_j NaN, which nothing reads.
+  // series start on (samples interpolate it, the zoom keeps it). Before that nothing reads it.
   bool needs_energy(double t, double step_s) const;
+  // energy_j for that state: energy() where it is needed, NaN elsewhere, so that the engines skip the
+  // chain's quadratic forms (every step) where nothing reads them.
+  template <class Energy>
+  double energy_where_needed(double t, double step_s, Energy&& energy) const {
+    return needs_energy(t, step_s) ? energy() : std::numeric_limits<double>::quiet_NaN();
+  }
 
   long long steps() const { return steps_; }
   Trajectory finish();

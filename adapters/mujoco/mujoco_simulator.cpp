@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -237,9 +236,8 @@ class MujocoSimulator final : public Simulator {
         state.velocity_m_s = v;
         state.contact_force_n = step_contact_force;
         state.indentation_m = indentation;
-        // nothing reads the energy before the series window (StepRecorder::needs_energy)
-        state.energy_j = recorder.needs_energy(t, h) ? energy(rig.angles(), rig.rates(), law_energy ? indentation : 0.0)
-                                                     : std::numeric_limits<double>::quiet_NaN();
+        state.energy_j = recorder.energy_where_needed(
+            t, h, [&] { return energy(rig.angles(), rig.rates(), law_energy ? indentation : 0.0); });
         recorder.record(state);
         if (const std::string why = beyond_bound(plan, u, t); !why.empty()) {
           stop(why);

@@ -92,8 +92,9 @@ class Observer {
     }
   }
 
-  // with_energy false: energy_j NaN, for a state whose energy nothing reads (StepRecorder::needs_energy)
-  StepState observe(const OdeRig& ode_rig, double t, double contact_force_n, bool with_energy) {
+  // The state at t after a step of step_s; its energy where the recorder reads it.
+  StepState observe(const OdeRig& ode_rig, double t, double step_s, double contact_force_n,
+                    const StepRecorder& recorder) {
     StepState s;
     s.t = t;
     for (int f = 0; f < 2; ++f) {
@@ -105,8 +106,8 @@ class Observer {
     s.contact_force_n = contact_force_n;
     s.indentation_m = s.displacement_m[0] - s.displacement_m[1] - gap_m_;
     // Newton's contact stores no energy (RigEnergy takes 0 indentation for it)
-    s.energy_j = with_energy ? energy_(angles_, rates_, newton_ ? 0.0 : s.indentation_m)
-                             : std::numeric_limits<double>::quiet_NaN();
+    s.energy_j = recorder.energy_where_needed(
+        t, step_s, [&] { return energy_(angles_, rates_, newton_ ? 0.0 : s.indentation_m); });
     return s;
   }
 
@@ -161,7 +162,7 @@ class RigRun {
     RunResult result;
     const auto wall_start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
-    StepState state = observer_.observe(ode_rig_, 0, 0, true);
+    StepState state = observer_.observe(ode_rig_, 0, model_.time_step_s, 0, recorder_);
     recorder_.record(state);
     for (long long n = 0; n < steps_; ++n) {
       const double h = model_.time_step_s;
@@ -169,8 +170,7 @@ class RigRun {
       ode_rig_.step();
       // a tensile law force (the unclipped spring-dashpot near separation) is applied and recorded as it is
       const double contact_force = contact_.ode_collision ? ode_rig_.tip_contact_force() : law_force;
-      const double t = static_cast<double>(n + 1) * h;
-      state = observer_.observe(ode_rig_, t, contact_force, recorder_.needs_energy(t, h));
+      state = observer_.observe(ode_rig_, static_cast<double>(n + 1) * h, h, contact_force, recorder_);
       if (const auto why = divergence(state, observer_, rig_)) {
         result.status = RunStatus::unstable;
         result.reason = *why + explain(messages);
