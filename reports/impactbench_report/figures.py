@@ -63,8 +63,8 @@ def error_against_cost(suite, scenario, law, folder, provenance):
         ax.set_ylabel("|" + ("relative error" if kind == "relative" else "difference") + "|")
         ax.set_title(title, fontsize=9)
         ax.grid(True, which="both", linewidth=0.3)
-    # one legend for all panels, from whichever panels have the configurations (a metric may be undefined
-    # in a case, e.g. impacts per cycle without a motor, and leave its panel empty)
+    # one legend for all panels, from whichever panels drew the configurations: a panel can be empty (no
+    # stable run, or a metric undefined in the case), and a legend without lines makes matplotlib warn
     legend = {}
     for ax in axes:
         for handle, label in zip(*ax.get_legend_handles_labels()):
