@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
-# Suite scaling: the default suite's part 1 (scripts/default-suite.sh; the published cases, every engine,
-# law, contact path and step) run whole on 1, 2, ... worker processes, each into its own fresh folder,
-# with no timed repeats (--repeat 0: the suite's wall time is what is measured here). Parallel
+# Suite scaling: the full study's published cases (scripts/default-suite.sh; every engine, law, contact
+# path and step) run whole on 1, 2, ... worker processes, each into its own fresh folder. Parallel
 # efficiency E(n) = T(1) / (n T(n)). Writes OUT/scaling.csv and OUT/scaling.json (with the machine and
 # versions, bench/machine.sh); the report shows them when OUT is RESULTS/performance.
 #   bench/suite_scaling.sh [--workers 1,2] [--duration S] [OUT]     (default OUT: results/performance)
-# --duration S cuts every run to S seconds (default: the default suite's 50 s): the same jobs, shorter;
+# --duration S cuts every run to S seconds (default: the full study's 50 s): the same jobs, shorter;
 # the per-job costs that do not scale with the duration (process start, reading the references, writing
 # files) then weigh more, so a cut run understates the efficiency of the full one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/default-suite.sh
 workers=1,2
-duration=("${paper_suite_duration[@]}")
+read -r -a paper_cases <<<"${full_study_parts[0]}"  # scenarios/paper --duration 50
+duration=("${paper_cases[@]:1}")
 while [[ ${1:-} == --* ]]; do
   case $1 in
     --workers) workers=$2; shift ;;
@@ -32,7 +32,7 @@ for n in "${counts[@]}"; do
   echo "suite_scaling: $n worker(s) -> $folder"
   start=$(date +%s.%N)
   status=0
-  $impactbench suite "${paper_suite_args[@]}" "${duration[@]}" --repeat 0 --jobs "$n" --out "$folder" 2>/dev/null || status=$?
+  $impactbench suite "${paper_cases[0]}" "${full_study_engines[@]}" "${duration[@]}" --jobs "$n" --out "$folder" 2>/dev/null || status=$?
   end=$(date +%s.%N)
   if (( status == 2 || status >= 3 )); then echo "suite_scaling: the suite on $n workers ended with $status" >&2; exit "$status"; fi
   /usr/bin/python3 - "$folder/runs.csv" "$n" "$start" "$end" >>"$csv" <<'PY'
@@ -51,7 +51,7 @@ for r in rows:
     r["parallel_efficiency"] = one["wall_time_s"] / (r["workers"] * r["wall_time_s"]) if one else None
 machine = dict(line.split("=", 1) for line in subprocess.run(["bench/machine.sh"], capture_output=True, text=True,
                                                               check=True).stdout.splitlines())
-json.dump({"suite": "default suite part 1 (scripts/default-suite.sh), --repeat 0",
+json.dump({"suite": "the full study's published cases (scripts/default-suite.sh)",
            "duration_option": sys.argv[3], "rows": rows, "machine": machine}, open(sys.argv[2], "w"), indent=2)
 for r in rows:
     eff = f'{100 * r["parallel_efficiency"]:.1f} %' if r["parallel_efficiency"] is not None else "n/a"

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "number_text.h"
 #include "run_files.h"
 
 namespace ib {
@@ -23,24 +24,16 @@ std::string csv_escape(const std::string& text) {
   return quoted + "\"";
 }
 
-std::string number_text(double value) {
-  if (!std::isfinite(value)) return "";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
-
 Json to_json(const RunRecord& record) {
   Json j;
   for (const Field& f : fields(record)) {
     if (const auto* text = std::get_if<std::string>(&f.value)) j[f.name] = *text;
     else {
-      const double v = std::get<double>(f.value);
-      j[f.name] = std::isfinite(v) ? Json(v) : Json(nullptr);
+      j[f.name] = json_number(std::get<double>(f.value), f.exact);
     }
   }
   Json diagnostics = Json::object();
-  for (const auto& [name, value] : record.diagnostics) diagnostics[name] = std::isfinite(value) ? Json(value) : Json(nullptr);
+  for (const auto& [name, value] : record.diagnostics) diagnostics[name] = json_number(value);
   j["diagnostics"] = diagnostics;
   return j;
 }
@@ -60,7 +53,7 @@ std::string csv_row(const RunRecord& record) {
     if (!first) line += ",";
     first = false;
     if (const auto* text = std::get_if<std::string>(&f.value)) line += csv_escape(*text);
-    else line += number_text(std::get<double>(f.value));
+    else line += f.exact ? exact_number_text(std::get<double>(f.value)) : number_text(std::get<double>(f.value));
   }
   return line + "\n";
 }
@@ -112,7 +105,8 @@ std::set<std::string> repair_and_list_runs(const std::string& folder) {
       const auto value = j.find(columns[c].name);
       if (value == j.end()) continue;
       if (value->is_string()) row += csv_escape(value->get<std::string>());
-      else if (value->is_number()) row += number_text(value->get<double>());
+      // The record's numbers already hold the digits they should: each as the shortest exact text.
+      else if (value->is_number()) row += exact_number_text(value->get<double>());
     }
     csv += row + "\n";
   }

@@ -1,39 +1,22 @@
 #include "run_files.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
-#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+#include <zlib.h>
+
+#include "number_text.h"
 
 namespace ib {
 namespace {
-
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using File = std::unique_ptr<std::FILE, FileCloser>;
-
-File open_for_writing(const std::string& path) {
-  File f(std::fopen(path.c_str(), "w"));
-  if (!f) throw OutputError(output_error_text(path, "create", errno));
-  return f;
-}
-
-// Flushes and closes: a full disk shows at the flush or the close, never silently.
-void finish(File& f, const std::string& path) {
-  errno = 0;
-  const bool flushed = std::fflush(f.get()) == 0 && !std::ferror(f.get());
-  int error = errno;
-  const bool closed = std::fclose(f.release()) == 0;
-  if (!closed && error == 0) error = errno;
-  if (!flushed || !closed) throw OutputError(output_error_text(path, "write", error));
-}
 
 constexpr const char* kSeriesHeader =
     "time_s,frame1_displacement_m,frame1_velocity_m_s,frame1_acceleration_m_s2,"
@@ -73,17 +56,6 @@ std::vector<std::vector<double>> read_table(std::istream& in, const std::string&
   return rows;
 }
 
-std::ifstream open_for_reading(const std::string& path) {
-  errno = 0;
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot read: " + std::strerror(errno ? errno : ENOENT));
-  return in;
-}
-
-void print(std::FILE* f, double value, const char* format) {
-  if (std::isfinite(value)) std::fprintf(f, format, value);
-}
-
 }  // namespace
 
 std::string output_error_text(const std::string& path, const std::string& action, int error) {
@@ -110,8 +82,10 @@ std::string output_error_text(const std::string& path, const std::string& action
 namespace {
 
 // Writes `text` to a file opened with `mode`; the errno of what failed, 0 when all went well.
-int put_text(const std::string& path, const char* mode, const std::string& text) {
+// opened (when given) says whether the file could be opened at all.
+int put_text(const std::string& path, const char* mode, const std::string& text, bool* opened = nullptr) {
   std::FILE* f = std::fopen(path.c_str(), mode);
+  if (opened) *opened = f != nullptr;
   if (!f) return errno ? errno : EIO;
   errno = 0;
   const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
@@ -140,51 +114,102 @@ void replace_text_file(const std::string& path, const std::string& text) {
   }
 }
 
+namespace {
+
+bool gzipped(const std::string& path) { return path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0; }
+
+// A table's text, written whole: gzipped when the path ends in .gz (zlib's gzip format, which zcat and
+// pandas read), plain otherwise. Checked after writing and closing, like every result file.
+void write_table(const std::string& path, const std::string& text) {
+  if (!gzipped(path)) {
+    bool opened = false;
+    if (const int error = put_text(path, "w", text, &opened))
+      throw OutputError(output_error_text(path, opened ? "write" : "create", error));
+    return;
+  }
+  errno = 0;
+  gzFile f = gzopen(path.c_str(), "wb6");
+  if (!f) throw OutputError(output_error_text(path, "create", errno ? errno : ENOMEM));
+  bool written = true;
+  for (std::size_t at = 0; written && at < text.size();) {
+    const unsigned chunk = static_cast<unsigned>(std::min<std::size_t>(text.size() - at, 1u << 20));
+    written = gzwrite(f, text.data() + at, chunk) == static_cast<int>(chunk);
+    at += chunk;
+  }
+  int error = written ? 0 : (errno ? errno : EIO);
+  if (gzclose(f) != Z_OK && error == 0) error = errno ? errno : EIO;
+  if (error) throw OutputError(output_error_text(path, "write", error));
+}
+
+// A table's text, gzipped or plain (zlib reads a plain file as it is).
+std::string read_table_text(const std::string& path) {
+  errno = 0;
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (!f) throw std::runtime_error(path + ": cannot read: " + std::strerror(errno ? errno : ENOENT));
+  std::string text;
+  char buffer[1 << 16];
+  int n = 0;
+  while ((n = gzread(f, buffer, sizeof buffer)) > 0) text.append(buffer, static_cast<std::size_t>(n));
+  int code = Z_OK;
+  const std::string reason = n < 0 ? gzerror(f, &code) : "";
+  gzclose(f);
+  if (n < 0) throw std::runtime_error(path + ": cannot read: " + (reason.empty() ? "not a valid gzip file" : reason));
+  return text;
+}
+
+void add_cell(std::string& line, const std::string& cell, bool first) {
+  if (!first) line += ',';
+  line += cell;
+}
+
+}  // namespace
+
+std::string series_file(const std::string& run_folder) {
+  const std::string plain = run_folder + "/series.csv";
+  std::error_code error;
+  return std::filesystem::exists(plain + ".gz", error) ? plain + ".gz" : plain;
+}
+
 void write_series_csv(const std::string& path, const Trajectory& t) {
-  File f = open_for_writing(path);
-  std::fprintf(f.get(), "%s\n", kSeriesHeader);
+  std::string text = std::string(kSeriesHeader) + "\n";
+  text.reserve(t.size() * 130);
   const bool energy = t.mechanical_energy_j.size() == t.size();
   for (std::size_t k = 0; k < t.size(); ++k) {
-    // 17 significant digits for time and displacement (errors against a saved reference read them back)
     const double values[] = {t.displacement_m[0][k], t.velocity_m_s[0][k], t.acceleration_m_s2[0][k],
                              t.displacement_m[1][k], t.velocity_m_s[1][k], t.acceleration_m_s2[1][k],
                              t.contact_force_n[k], t.peak_abs_acceleration_m_s2[0][k],
                              t.peak_abs_acceleration_m_s2[1][k], t.peak_contact_force_n[k]};
-    print(f.get(), t.time_s[k], "%.17g");
-    for (double v : values) {
-      std::fputc(',', f.get());
-      print(f.get(), v, "%.17g");
-    }
-    std::fputc(',', f.get());
-    if (energy) print(f.get(), t.mechanical_energy_j[k], "%.17g");
-    std::fputc('\n', f.get());
+    // The time exactly, so that a series read back lies on its sample grid (the sensor reading takes
+    // samples as exact, metrics.cpp); the values with 9 digits.
+    text += exact_number_text(t.time_s[k]);
+    for (double v : values) add_cell(text, number_text(v), false);
+    add_cell(text, energy ? number_text(t.mechanical_energy_j[k]) : "", false);
+    text += '\n';
   }
-  finish(f, path);
+  write_table(path, text);
 }
 
 void write_events_csv(const std::string& path, const Trajectory& t) {
-  File f = open_for_writing(path);
-  std::fprintf(f.get(), "%s\n", kEventsHeader);
+  std::string text = std::string(kEventsHeader) + "\n";
   for (const ContactEvent& e : t.events) {
-    const double values[] = {e.onset_time_s,        e.end_time_s,  e.end_time_s - e.onset_time_s,
-                             e.approach_velocity_m_s, e.rebound_velocity_m_s, e.restitution,
-                             e.peak_force_n,          e.impulse_n_s, e.max_indentation_m};
-    for (std::size_t i = 0; i < std::size(values); ++i) {
-      if (i) std::fputc(',', f.get());
-      print(f.get(), values[i], "%.17g");
-    }
-    std::fputc('\n', f.get());
+    // Onsets and ends exactly (they decide which impacts lie in a window); the rest with 9 digits.
+    text += exact_number_text(e.onset_time_s);
+    add_cell(text, exact_number_text(e.end_time_s), false);
+    const double values[] = {e.end_time_s - e.onset_time_s, e.approach_velocity_m_s, e.rebound_velocity_m_s,
+                             e.restitution, e.peak_force_n, e.impulse_n_s, e.max_indentation_m};
+    for (double v : values) add_cell(text, number_text(v), false);
+    text += '\n';
   }
-  finish(f, path);
+  write_table(path, text);
 }
 
 void read_series_csv(const std::string& path, Trajectory& t) {
-  std::ifstream in = open_for_reading(path);
+  std::istringstream in(read_table_text(path));
   read_series_csv(in, path, t);
 }
 
 void read_events_csv(const std::string& path, Trajectory& t) {
-  std::ifstream in = open_for_reading(path);
+  std::istringstream in(read_table_text(path));
   read_events_csv(in, path, t);
 }
 

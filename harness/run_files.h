@@ -1,6 +1,6 @@
-// A run's own files: series.csv (the sampled trajectory) and events.csv (one row per contact episode),
-// written and read back (reports and errors against a saved reference read them). Units are named in
-// every column.
+// A run's own files: series.csv.gz (the sampled trajectory, gzipped) and events.csv (one row per contact
+// episode), written and read back (reports and errors against a saved reference read them). Units are
+// named in every column.
 #pragma once
 
 #include <istream>
@@ -28,12 +28,15 @@ void write_text_file(const std::string& path, const std::string& text);
 void append_text_file(const std::string& path, const std::string& text);
 void replace_text_file(const std::string& path, const std::string& text);
 
-// Write errors throw OutputError; read errors std::runtime_error, both naming the file.
+// Write errors throw OutputError; read errors std::runtime_error, both naming the file. A path ending in
+// .gz is written gzipped; the readers take either form (a plain series.csv from another solver, `score`).
 void write_series_csv(const std::string& path, const Trajectory& trajectory);
 void write_events_csv(const std::string& path, const Trajectory& trajectory);
 // Fills the series (and output rate, start time) or the events of `trajectory` from a file written above.
 void read_series_csv(const std::string& path, Trajectory& trajectory);
 void read_events_csv(const std::string& path, Trajectory& trajectory);
+// The series file of a run folder: series.csv.gz when it is there, else series.csv.
+std::string series_file(const std::string& run_folder);
 // The same from a stream; `name` is the file named in messages (the fuzz targets read from memory).
 void read_series_csv(std::istream& in, const std::string& name, Trajectory& trajectory);
 void read_events_csv(std::istream& in, const std::string& name, Trajectory& trajectory);

@@ -1,7 +1,11 @@
 #include "run_job.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -39,6 +43,17 @@ MetricSettings metric_settings(const Scenario& scenario, const Measurement& meas
   return m;
 }
 
+void warn_if_window_in_transient(const Scenario& scenario, const Measurement& measurement) {
+  const double window_start_s = metric_settings(scenario, measurement).window_start_s;
+  const double transient_s = start_up_transient_s(scenario);
+  if (window_start_s >= transient_s) return;
+  std::fprintf(stderr,
+               "impactbench: warning: %s: the scoring window starts at %g s, before the start-up transient's end "
+               "(%.3g s, in which a first mode's free response decays to 5 %%: ln(20) / (zeta omega_1)); impacts may "
+               "settle it sooner, but the metrics may include start-up motion\n",
+               scenario.name.c_str(), window_start_s, transient_s);
+}
+
 double median(std::vector<double> values) {
   if (values.empty()) return 0;
   std::sort(values.begin(), values.end());
@@ -64,6 +79,46 @@ void time_runs(Simulator& simulator, const Scenario& scenario, const RunSettings
   record.cost.cpu_time_s = median(cpu_s);
   record.wall_time_min_s = *std::min_element(wall_s.begin(), wall_s.end());
   record.wall_time_max_s = *std::max_element(wall_s.begin(), wall_s.end());
+  record.cpu_time_min_s = *std::min_element(cpu_s.begin(), cpu_s.end());
+  record.cpu_time_max_s = *std::max_element(cpu_s.begin(), cpu_s.end());
+}
+
+// The machine's 1-minute load average now (NaN where the system cannot tell): beside a run's time, it
+// says how much the other processes of a shared machine were competing for the cores.
+double load_average_now() {
+  double load[1];
+  return getloadavg(load, 1) == 1 ? load[0] : std::numeric_limits<double>::quiet_NaN();
+}
+
+// A diagnostic by name, NaN when the simulator does not report it.
+double diagnostic(const RunResult& result, const std::string& name) {
+  for (const auto& [key, value] : result.diagnostics)
+    if (key == name) return value;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// Accuracy is judged against the reference on the engine's own chain when there is one: that
+// isolates the engine's contact handling and time stepping. Only a stable run (verdict ok) is judged.
+void judge_accuracy_of(RunRecord& record, const Measurement& measurement) {
+  const auto& accuracy_errors = record.errors_vs_chain_reference ? record.errors_vs_chain_reference : record.errors_vs_reference;
+  if (record.verdict == Verdict::ok && accuracy_errors) {
+    const Judgement accuracy = judge_accuracy(*accuracy_errors, measurement.verdicts);
+    record.verdict = accuracy.verdict;
+    record.reason = accuracy.reason;
+  }
+}
+
+// The errors of a run's metrics against the references (none where a reference is missing).
+void compare_with_references(RunRecord& record, const Metrics& metrics, const Trajectory& trajectory,
+                             const ReferenceData* beam_reference, const ReferenceData* chain_reference,
+                             const MetricSettings& settings) {
+  record.errors_vs_reference.reset();
+  record.errors_vs_chain_reference.reset();
+  if (beam_reference)
+    record.errors_vs_reference = compare_metrics(metrics, trajectory, beam_reference->metrics, beam_reference->trajectory, settings);
+  if (chain_reference)
+    record.errors_vs_chain_reference =
+        compare_metrics(metrics, trajectory, chain_reference->metrics, chain_reference->trajectory, settings);
 }
 
 }  // namespace
@@ -75,7 +130,8 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   if (!simulator) throw std::invalid_argument("engine '" + job.engine + "' is not in this build");
   const MetricSettings metrics_settings = metric_settings(scenario, measurement);
   RunSettings settings = job.settings;
-  if (settings.series_start_s < 0) settings.series_start_s = metrics_settings.window_start_s;
+  if (settings.series_start_s < 0)
+    settings.series_start_s = measurement.series == SeriesOutput::all ? 0.0 : metrics_settings.window_start_s;
 
   RunRecord record;
   record.job_id = job_id(scenario.name, job);
@@ -91,34 +147,29 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   record.window_end_s = metrics_settings.window_end_s;
   record.output_rate_hz = settings.output_rate_hz;
 
+  const double load_at_start = load_average_now();
   RunResult result = simulator->run(scenario, settings);
+  record.load_average = 0.5 * (load_at_start + load_average_now());
   record.cost = result.cost;
   record.logged_wall_time_s = result.cost.wall_time_s;
+  record.logged_cpu_time_s = result.cost.cpu_time_s;
   record.diagnostics = result.diagnostics;
+  // The step and chain the simulator used, also when it chose them itself (its defaults).
+  if (record.time_step_s == 0 && std::isfinite(diagnostic(result, "time_step_s")))
+    record.time_step_s = diagnostic(result, "time_step_s");
+  if (const auto links = simulator->chain_links(scenario, settings)) record.chain_links = *links;
   const Judgement stability = judge_stability(scenario, result, measurement.verdicts);
   record.verdict = stability.verdict;
   record.reason = stability.reason;
   const Metrics metrics = compute_metrics(result.trajectory, metrics_settings);
   record.metrics = metrics;
-  if (beam_reference)
-    record.errors_vs_reference = compare_metrics(metrics, result.trajectory, beam_reference->metrics,
-                                                 beam_reference->trajectory, metrics_settings);
-  if (chain_reference)
-    record.errors_vs_chain_reference = compare_metrics(metrics, result.trajectory, chain_reference->metrics,
-                                                       chain_reference->trajectory, metrics_settings);
-  // Accuracy is judged against the reference on the engine's own chain when there is one: that
-  // isolates the engine's contact handling and time stepping.
-  const auto& accuracy_errors = record.errors_vs_chain_reference ? record.errors_vs_chain_reference : record.errors_vs_reference;
-  if (record.verdict == Verdict::ok && accuracy_errors) {
-    const Judgement accuracy = judge_accuracy(*accuracy_errors, measurement.verdicts);
-    record.verdict = accuracy.verdict;
-    record.reason = accuracy.reason;
-  }
+  compare_with_references(record, metrics, result.trajectory, beam_reference, chain_reference, metrics_settings);
+  judge_accuracy_of(record, measurement);
   if (!run_folder.empty()) {
     std::error_code error;
     std::filesystem::create_directories(run_folder, error);
     if (error) throw OutputError(output_error_text(run_folder, "create the run folder", error.value()));
-    write_series_csv(run_folder + "/series.csv", result.trajectory);
+    if (measurement.series != SeriesOutput::none) write_series_csv(run_folder + "/series.csv.gz", result.trajectory);
     write_events_csv(run_folder + "/events.csv", result.trajectory);
     if (result.impact_zoom.size() > 0) write_series_csv(run_folder + "/impact.csv", result.impact_zoom);
   }
@@ -128,9 +179,43 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   return record;
 }
 
+RunRecord score_for_law(const Scenario& scenario, const RunRecord& run, const ReferenceData& run_data,
+                        const std::string& job_id, ContactLaw law, const Measurement& measurement,
+                        const ReferenceData* beam_reference, const ReferenceData* chain_reference,
+                        const std::string& source_folder, const std::string& run_folder) {
+  RunRecord record = run;
+  record.job_id = job_id;
+  record.law = to_string(law);
+  record.same_run_as = run.job_id;
+  compare_with_references(record, run_data.metrics, run_data.trajectory, beam_reference, chain_reference,
+                          metric_settings(scenario, measurement));
+  // Stability is the run's own; accuracy is judged again, against this law's references.
+  if (record.verdict == Verdict::inaccurate || record.verdict == Verdict::ok) {
+    record.verdict = Verdict::ok;
+    record.reason.clear();
+    judge_accuracy_of(record, measurement);
+  }
+  if (!run_folder.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(run_folder, error);
+    if (error) throw OutputError(output_error_text(run_folder, "create the run folder", error.value()));
+    // The same files, linked (no second copy on disk; copied where links are not possible).
+    for (const char* name : {"series.csv.gz", "events.csv", "impact.csv"}) {
+      const std::string from = source_folder + "/" + name, to = run_folder + "/" + name;
+      if (!std::filesystem::exists(from, error)) continue;
+      std::filesystem::remove(to, error);
+      std::filesystem::create_hard_link(from, to, error);
+      if (error) std::filesystem::copy_file(from, to, error);
+      if (error) throw OutputError(output_error_text(to, "write", error.value()));
+    }
+    write_summary_json(run_folder + "/summary.json", record);
+  }
+  return record;
+}
+
 ReferenceData load_reference(const std::string& run_folder, const Scenario& scenario, const Measurement& measurement) {
   ReferenceData data;
-  read_series_csv(run_folder + "/series.csv", data.trajectory);
+  read_series_csv(series_file(run_folder), data.trajectory);
   read_events_csv(run_folder + "/events.csv", data.trajectory);
   data.metrics = compute_metrics(data.trajectory, metric_settings(scenario, measurement));
   return data;

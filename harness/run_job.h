@@ -21,6 +21,10 @@ struct JobSpec {
   RunSettings settings;                 // law, output rate, time step, options
 };
 
+// Which part of a run's series its folder keeps (series.csv.gz). The metrics need only the scoring window,
+// and so do the errors against a reference, whose series is always kept (SuiteSettings::series).
+enum class SeriesOutput { window, all, none };
+
 // How runs are measured and judged, the same for all of a suite's runs.
 struct Measurement {
   std::optional<double> window_s;       // scoring window (the last window_s of the run); default: the scenario's
@@ -28,9 +32,10 @@ struct Measurement {
   double merge_window_s = 0.002;
   VerdictSettings verdicts;
   // Timed runs: after the logged run, the same run this many times more with nothing written, whose
-  // median is the run's cost (RunRecord::cost). 0: the logged run's own time (the command line's
-  // default is 2: see harness/cli/main.cpp).
+  // median is the run's cost (RunRecord::cost). 0 (the default): the logged run's own time, which
+  // bench/timing_check.sh shows agrees with timed runs within their spread, at no extra cost.
   int timed_repeats = 0;
+  SeriesOutput series = SeriesOutput::window;  // what a run's folder keeps of its series
 };
 
 // A finished reference run that other runs are compared with.
@@ -48,6 +53,10 @@ std::string options_text(const std::map<std::string, std::string>& options);
 
 MetricSettings metric_settings(const Scenario& scenario, const Measurement& measurement);
 
+// Says on stderr when the scoring window starts before a start from rest has settled
+// (start_up_transient_s): a --duration or --window that lets start-up motion into the metrics.
+void warn_if_window_in_transient(const Scenario& scenario, const Measurement& measurement);
+
 // Runs one job and returns its record; with run_folder, writes summary.json, series.csv and events.csv
 // there. Throws ScenarioError / std::invalid_argument for bad input (nothing was run).
 // keep_trajectory receives the trajectory when given (a reference kept for later comparisons).
@@ -55,6 +64,16 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
                   const ReferenceData* beam_reference, const ReferenceData* chain_reference,
                   const std::string& run_folder, ReferenceData* keep = nullptr,
                   const SimulatorFactory& factory = make_simulator);
+
+// A finished run (its record and what keep received) scored as the run of another law: the same
+// simulation compared with that law's references and judged again for accuracy (stability does not
+// depend on the references). For the native contact path, which ignores the scenario's law. With
+// run_folder, writes its summary.json there and links the run's series and events files into it from
+// source_folder.
+RunRecord score_for_law(const Scenario& scenario, const RunRecord& run, const ReferenceData& run_data,
+                        const std::string& job_id, ContactLaw law, const Measurement& measurement,
+                        const ReferenceData* beam_reference, const ReferenceData* chain_reference,
+                        const std::string& source_folder, const std::string& run_folder);
 
 // A finished run read back from its folder (series.csv, events.csv) with its metrics recomputed.
 ReferenceData load_reference(const std::string& run_folder, const Scenario& scenario, const Measurement& measurement);

@@ -11,14 +11,15 @@ std::vector<Field> fields(const RunRecord& r) {
       {"scenario", r.scenario},
       {"law", r.law},
       {"engine", r.engine},
-      {"time_step_s", r.time_step_s},
+      {"time_step_s", r.time_step_s, true},
       {"options", r.options},
+      {"same_run_as", r.same_run_as},
       {"chain_links", static_cast<double>(r.chain_links)},
       {"verdict", std::string(to_string(r.verdict))},
       {"reason", r.reason},
-      {"duration_s", r.duration_s},
-      {"window_start_s", r.window_start_s},
-      {"window_end_s", r.window_end_s},
+      {"duration_s", r.duration_s, true},
+      {"window_start_s", r.window_start_s, true},
+      {"window_end_s", r.window_end_s, true},
   };
   // Metric and error names come from one place (metrics.h); a run without metrics gets NaN in each.
   const auto metric_fields = flatten(r.metrics.value_or(Metrics{}));
@@ -28,24 +29,33 @@ std::vector<Field> fields(const RunRecord& r) {
     for (const auto& [name, value] : flatten(errors->value_or(MetricErrors{}), prefix))
       out.push_back({name, errors->has_value() ? value : nan});
   }
-  const double per_second = r.duration_s > 0 ? r.cost.wall_time_s / r.duration_s : nan;
+  // Cost per simulated second: what compares runs of different lengths (CPU time first: on a shared
+  // machine the wall time also holds the other processes' turns).
+  const auto per_simulated_second = [&](double time_s) { return r.duration_s > 0 ? time_s / r.duration_s : nan; };
   out.push_back({"wall_time_s", r.cost.wall_time_s});
   out.push_back({"cpu_time_s", r.cost.cpu_time_s});
   out.push_back({"steps", static_cast<double>(r.cost.steps)});
-  out.push_back({"wall_time_per_simulated_s", per_second});
+  out.push_back({"wall_time_per_simulated_s", per_simulated_second(r.cost.wall_time_s)});
+  out.push_back({"cpu_time_per_simulated_s", per_simulated_second(r.cost.cpu_time_s)});
+  out.push_back({"load_average", r.load_average});
   out.push_back({"timed_runs", static_cast<double>(r.timed_runs)});
   out.push_back({"wall_time_min_s", r.timed_runs > 0 ? r.wall_time_min_s : nan});
   out.push_back({"wall_time_max_s", r.timed_runs > 0 ? r.wall_time_max_s : nan});
+  out.push_back({"cpu_time_min_s", r.timed_runs > 0 ? r.cpu_time_min_s : nan});
+  out.push_back({"cpu_time_max_s", r.timed_runs > 0 ? r.cpu_time_max_s : nan});
   out.push_back({"logged_wall_time_s", r.logged_wall_time_s});
-  out.push_back({"output_rate_hz", r.output_rate_hz});
+  out.push_back({"logged_cpu_time_s", r.logged_cpu_time_s});
+  out.push_back({"output_rate_hz", r.output_rate_hz, true});
   out.push_back({"scenario_file", r.scenario_file});
   out.push_back({"engine_version", r.engine_version});
   return out;
 }
 
 const std::vector<std::string>& timing_field_names() {
-  static const std::vector<std::string> names = {"wall_time_s",     "cpu_time_s",      "wall_time_per_simulated_s",
-                                                 "wall_time_min_s", "wall_time_max_s", "logged_wall_time_s"};
+  static const std::vector<std::string> names = {"wall_time_s",        "cpu_time_s",      "wall_time_per_simulated_s",
+                                                 "cpu_time_per_simulated_s", "load_average",  "wall_time_min_s",
+                                                 "wall_time_max_s",    "cpu_time_min_s",  "cpu_time_max_s",
+                                                 "logged_wall_time_s", "logged_cpu_time_s"};
   return names;
 }
 

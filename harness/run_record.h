@@ -20,6 +20,9 @@ struct RunRecord {
   std::string scenario, scenario_file, engine, engine_version, law;
   double time_step_s = 0;              // fixed-step engines [s]; 0 for the adaptive reference
   std::string options;                 // simulator options as "name=value;name=value"
+  // The job whose simulation this row scores against its own law's references ("" when it ran itself):
+  // an engine's native contact ignores the scenario's law, so one native run answers for every law.
+  std::string same_run_as;
   Verdict verdict = Verdict::ok;
   std::string reason;                  // why the verdict is not ok
   double duration_s = 0;               // simulated time [s]
@@ -29,19 +32,23 @@ struct RunRecord {
   std::optional<MetricErrors> errors_vs_reference;        // against the continuous-beam reference
   std::optional<MetricErrors> errors_vs_chain_reference;  // against the reference on the engine's own chain
   int chain_links = 0;                 // K of the engine's chain (0: not a chain)
-  // What the run cost: the median of the timed runs (the same run repeated after the logged one, nothing
-  // recorded to disk, so that the logged run's writing and first-touch costs stay out) or, when there were
-  // none, the logged run's own. Wall and CPU time are each the median; steps are the same in every run.
+  // What the run cost: the logged run's own CPU and wall time (its recording costs 1.5 to 3.9 % in
+  // instructions, bench/overhead_instructions.sh, and bench/timing_check.sh shows it agrees with separate
+  // timed runs within their spread), or, with timed runs (--repeat N), their median (the same run
+  // repeated after the logged one, nothing recorded). Steps are the same in every run.
   RunCost cost;
+  double load_average = 0;             // the machine's 1-minute load average over the logged run (mean of start and end)
   int timed_runs = 0;                  // how many timed runs cost comes from (0: the logged run's)
   double wall_time_min_s = 0, wall_time_max_s = 0;  // the spread of the timed runs' wall times [s]
-  double logged_wall_time_s = 0;       // the logged run's own wall time [s]
+  double cpu_time_min_s = 0, cpu_time_max_s = 0;    // and of their CPU times [s]
+  double logged_wall_time_s = 0, logged_cpu_time_s = 0;  // the logged run's own times [s]
   std::vector<std::pair<std::string, double>> diagnostics;  // simulator-specific, named with units
 };
 
 struct Field {
   std::string name;                    // with its unit, e.g. "frame1_sensor_peak_acceleration_g"
   std::variant<std::string, double> value;  // NaN: not applicable or not measured
+  bool exact = false;                  // a setting (a time step, a window): written with every digit it has
 };
 
 // Every record yields the same names in the same order (missing values are NaN), so that rows of

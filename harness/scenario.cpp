@@ -31,6 +31,8 @@ const char* to_string(ContactLaw law) {
 }
 
 std::optional<ContactLaw> contact_law_from_string(const std::string& name) {
+  // One name per law in files, flags and job ids; the linear law is also known by its physics' name.
+  if (name == "spring-dashpot" || name == "spring_dashpot") return ContactLaw::viscoelastic;
   for (ContactLaw law : {ContactLaw::hertz, ContactLaw::viscoelastic, ContactLaw::newton}) {
     if (name == to_string(law)) return law;
   }

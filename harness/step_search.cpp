@@ -1,7 +1,5 @@
 #include "step_search.h"
 
-#include "run_files.h"
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -15,6 +13,7 @@
 #include <utility>
 #include <variant>
 
+#include "number_text.h"
 #include "run_files.h"
 
 namespace ib {
@@ -47,12 +46,8 @@ std::string step_text(double dt) {
   return text;
 }
 
-std::string exact_text(double value) {
-  if (!std::isfinite(value)) return "";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
+// The key's numbers exactly: a row is found again only under the same range and tolerances.
+std::string exact_text(double value) { return exact_number_text(value); }
 
 std::string csv_escape(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
@@ -61,7 +56,11 @@ std::string csv_escape(const std::string& text) {
   return quoted + "\"";
 }
 
-using StepField = std::pair<std::string, std::variant<std::string, double>>;
+struct StepField {
+  std::string name;
+  std::variant<std::string, double> value;
+  bool exact = false;  // a setting or a time step: written with every digit it has
+};
 
 std::vector<StepField> step_fields(const StepRow& row) {
   const StepGroup& g = row.group;
@@ -74,21 +73,21 @@ std::vector<StepField> step_fields(const StepRow& row) {
       {"options", g.options},
       {"chain_links", static_cast<double>(g.chain_links)},
       {"accuracy_reference", g.accuracy_reference},
-      {"step_range_min_s", s.min_step_s},
-      {"step_range_max_s", s.max_step_s},
+      {"step_range_min_s", s.min_step_s, true},
+      {"step_range_max_s", s.max_step_s, true},
       {"grid_points_per_octave", static_cast<double>(s.points_per_octave)},
   };
   const StepSearch* search = row.search;
   const auto stability = search ? search->stability() : StepSearch::Outcome{"", kNaN, kNaN, kNaN, kNaN};
-  out.push_back({"largest_stable_step_s", stability.largest_pass_step_s});
-  out.push_back({"smallest_unstable_step_s", stability.smallest_fail_step_s});
+  out.push_back({"largest_stable_step_s", stability.largest_pass_step_s, true});
+  out.push_back({"smallest_unstable_step_s", stability.smallest_fail_step_s, true});
   out.push_back({"stability_status", stability.status});
   for (HeadlineMetric m : kHeadlineMetrics) {
     const std::string name = to_string(m), error = error_name(m);
     const auto a = search ? search->accuracy(m) : StepSearch::Outcome{"", kNaN, kNaN, kNaN, kNaN};
-    out.push_back({error + "_tolerance", s.tolerance.at(m)});
-    out.push_back({name + "_largest_step_within_tolerance_s", a.largest_pass_step_s});
-    out.push_back({name + "_smallest_step_beyond_tolerance_s", a.smallest_fail_step_s});
+    out.push_back({error + "_tolerance", s.tolerance.at(m), true});
+    out.push_back({name + "_largest_step_within_tolerance_s", a.largest_pass_step_s, true});
+    out.push_back({name + "_smallest_step_beyond_tolerance_s", a.smallest_fail_step_s, true});
     out.push_back({error + "_at_largest_step", a.error_at_largest_pass});
     out.push_back({error + "_vs_beam_reference_at_largest_step", a.beam_error_at_largest_pass});
     out.push_back({name + "_status", a.status});
@@ -105,9 +104,9 @@ std::vector<StepField> step_fields(const StepRow& row) {
 
 Json step_json(const StepRow& row) {
   Json j;
-  for (const auto& [name, value] : step_fields(row)) {
+  for (const auto& [name, value, exact] : step_fields(row)) {
     if (const auto* text = std::get_if<std::string>(&value)) j[name] = *text;
-    else j[name] = std::isfinite(std::get<double>(value)) ? Json(std::get<double>(value)) : Json(nullptr);
+    else j[name] = json_number(std::get<double>(value), exact);
   }
   return j;
 }
@@ -345,19 +344,19 @@ std::string StepSearch::probe_list() const {
 
 std::string steps_csv_header() {
   std::string line;
-  for (const auto& [name, value] : step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}))
-    line += (line.empty() ? "" : ",") + name;
+  for (const StepField& field : step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}))
+    line += (line.empty() ? "" : ",") + field.name;
   return line + "\n";
 }
 
 std::string steps_csv_row(const StepRow& row) {
   std::string line;
   bool first = true;
-  for (const auto& [name, value] : step_fields(row)) {
+  for (const auto& [name, value, exact] : step_fields(row)) {
     line += first ? "" : ",";
     first = false;
     if (const auto* text = std::get_if<std::string>(&value)) line += csv_escape(*text);
-    else line += exact_text(std::get<double>(value));
+    else line += exact ? exact_number_text(std::get<double>(value)) : number_text(std::get<double>(value));
   }
   return line + "\n";
 }
@@ -408,7 +407,8 @@ std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
     for (const auto& [name, value] : j.items()) {
       row += row.empty() ? "" : ",";
       if (value.is_string()) row += csv_escape(value.get<std::string>());
-      else if (value.is_number()) row += exact_text(value.get<double>());
+      // The record's numbers already hold the digits they should: each as the shortest exact text.
+      else if (value.is_number()) row += exact_number_text(value.get<double>());
     }
     csv += row + "\n";
   }

@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "progress.h"
 #include "reference_simulator.h"
 #include "reporters.h"
 #include "run_files.h"
@@ -42,6 +43,10 @@ struct PlannedJob {
   std::string beam_reference;   // job ids of the references this job is compared with ("" if none)
   std::string chain_reference;
   int chain_links = 0;
+  bool step_probe = false;      // a probe of a step search (its series is kept only on request)
+  // The job whose run this one scores against its own law's references (native contact ignores the
+  // law): it is recorded by that job's process, never run itself. "" for a job that runs.
+  std::string same_run_as;
 };
 
 // A job that cannot run at all (a malformed scenario, a law the scenario has no parameters for): it
@@ -81,6 +86,12 @@ std::string last_line(const std::string& path) {
 std::string verdict_of(const std::string& json_line) {
   const auto j = nlohmann::json::parse(json_line, nullptr, false);
   return j.is_object() && j.contains("verdict") && j["verdict"].is_string() ? j["verdict"].get<std::string>() : "";
+}
+
+// The steps a recorded run took (fewer than planned when it stopped unstable); -1 when not recorded.
+double steps_of(const std::string& json_line) {
+  const auto j = nlohmann::json::parse(json_line, nullptr, false);
+  return j.is_object() && j.contains("steps") && j["steps"].is_number() ? j["steps"].get<double>() : -1;
 }
 
 std::string read_file(const std::string& path) {
@@ -152,38 +163,11 @@ std::string receive(int pipe_fd) {
   return message;
 }
 
-// Progress on stderr: a bar that redraws itself on a terminal, one plain line per job elsewhere.
-class Progress {
- public:
-  explicit Progress(int total) : total_(total), start_(Clock::now()), terminal_(isatty(STDERR_FILENO)) {}
-  void add_to_total(int jobs) { total_ += jobs; }  // jobs planned on the fly (step-search probes)
-  void job_done(const std::string& id, Verdict verdict) {
-    ++done_;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    const double left = done_ > 0 ? elapsed / done_ * (total_ - done_) : 0;
-    if (terminal_) {
-      const int width = 30, filled = total_ > 0 ? width * done_ / total_ : width;
-      std::fprintf(stderr, "\r\033[K[%s%s] %d/%d  elapsed %s  left %s  %s: %s", std::string(filled, '#').c_str(),
-                   std::string(width - filled, '.').c_str(), done_, total_, clock_text(elapsed).c_str(),
-                   clock_text(left).c_str(), id.c_str(), to_string(verdict));
-      if (done_ == total_) std::fputc('\n', stderr);
-    } else {
-      std::fprintf(stderr, "suite: %d/%d done, elapsed %s, left %s: %s %s\n", done_, total_, clock_text(elapsed).c_str(),
-                   clock_text(left).c_str(), id.c_str(), to_string(verdict));
-    }
-    std::fflush(stderr);
-  }
-
- private:
-  static std::string clock_text(double seconds) {
-    const long s = static_cast<long>(seconds + 0.5);
-    char text[32];
-    std::snprintf(text, sizeof text, "%ld:%02ld", s / 60, s % 60);
-    return text;
-  }
-  int total_, done_ = 0;
-  Clock::time_point start_;
-  bool terminal_;
+// A job scored from another's run, with the references of its own law (loaded before the fork).
+struct ScoredFrom {
+  const PlannedJob* job;
+  const ReferenceData* beam;
+  const ReferenceData* chain;
 };
 
 class SuiteRunner {
@@ -212,10 +196,15 @@ class SuiteRunner {
       keep_only_this_shard();
       record_plan(suite);
     }
+    for (const PlannedJob& job : jobs_)
+      if (!job.same_run_as.empty()) scored_from_.emplace(job.same_run_as, &job);
     int to_run = static_cast<int>(unrunnable_.size());
     for (const auto& job : jobs_) to_run += recorded_.count(job.id) ? 0 : 1;
     outcome_.jobs_skipped = static_cast<int>(jobs_.size()) - (to_run - static_cast<int>(unrunnable_.size()));
     progress_ = std::make_unique<Progress>(to_run);
+    for (const auto& job : jobs_)
+      if (!recorded_.count(job.id)) progress_->estimate().plan(job.id, work_of(job));
+    describe_plan(to_run);
     outcome_.jobs_total = static_cast<int>(jobs_.size() + unrunnable_.size());
     for (const RunRecord& r : unrunnable_) finish(r);
     // References first (beam, then chain): engine jobs are compared with them.
@@ -224,11 +213,18 @@ class SuiteRunner {
         run_step_searches();
         continue;
       }
-      for (const PlannedJob& job : jobs_) {
-        if (job.kind != phase || recorded_.count(job.id)) continue;
+      std::vector<const PlannedJob*> pending;
+      for (const PlannedJob& job : jobs_)
+        if (job.kind == phase && job.same_run_as.empty() && (!recorded_.count(job.id) || !unrecorded_scored_from(job).empty()))
+          pending.push_back(&job);
+      while (!pending.empty()) {
         while (!interrupted() && static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) reap(true);
         if (interrupted()) break;
-        start(job);
+        std::vector<JobWork> work;
+        for (const PlannedJob* job : pending) work.push_back(work_of(*job));
+        const auto next = pending.begin() + next_to_start(progress_->estimate(), work);
+        start(**next);
+        pending.erase(next);
       }
       while (!interrupted() && !running_.empty()) reap(true);
       if (interrupted()) break;
@@ -336,7 +332,12 @@ class SuiteRunner {
     step_groups_ = std::move(groups);
     std::set<std::string> kept;
     for (const PlannedJob& job : jobs_)
-      if ((job.kind == JobKind::engine || references_alone) && in_shard(unit++, shard)) {
+      if ((job.kind == JobKind::engine || references_alone) && job.same_run_as.empty() && in_shard(unit++, shard)) {
+        kept.insert(job.id);
+        keep_references_of(job);
+      }
+    for (const PlannedJob& job : jobs_)  // a job scored from another's run goes with that run
+      if (!job.same_run_as.empty() && kept.count(job.same_run_as)) {
         kept.insert(job.id);
         keep_references_of(job);
       }
@@ -389,10 +390,16 @@ class SuiteRunner {
       }
       const std::size_t index = scenarios_.size() - 1;
       Scenario& s = scenarios_.back();
-      if (settings_.max_duration_s > 0 && s.duration_s > settings_.max_duration_s) {
+      const bool cut = settings_.max_duration_s > 0 && s.duration_s > settings_.max_duration_s;
+      if (cut) {
         s.duration_s = settings_.max_duration_s;  // the scoring window, the last part of the run, is kept
         s.scoring_window_s = std::min(s.scoring_window_s, s.duration_s);
       }
+      if (cut || settings_.measurement.window_s) warn_if_window_in_transient(s, settings_.measurement);
+      // The native contact path ignores the scenario's law: its run for the first law answers for all.
+      std::optional<ContactLaw> first_law;
+      for (ContactLaw law : settings_.laws)
+        if (!first_law && s.contact.has(law)) first_law = law;
       for (ContactLaw law : settings_.laws) {
         if (!s.contact.has(law)) {
           unrunnable_.push_back(unrunnable(s.name + "/" + to_string(law) + "/unavailable", s.name, file, "", to_string(law),
@@ -430,8 +437,12 @@ class SuiteRunner {
             }
             if (settings_.step_search) {
               if (planned.insert(job.id).second) step_groups_.push_back(job);  // its probes are planned by the search
+              continue;
             }
-            else add(job, planned);
+            const auto contact = options.find("contact");
+            if (contact != options.end() && contact->second == "native" && law != *first_law)
+              job.same_run_as = make_job(index, JobKind::engine, engine, *first_law, dt, options).id;
+            add(job, planned);
           }
         }
       }
@@ -451,6 +462,64 @@ class SuiteRunner {
     job.spec.settings.options = options;
     job.id = job_id(scenarios_[scenario].name, job.spec);
     return job;
+  }
+
+  // A job's work for the remaining-time estimate: its steps (an engine at a given step), else its
+  // simulated seconds; jobs of one engine and options cost about the same per unit.
+  JobWork work_of(const PlannedJob& job) const {
+    const double duration_s = scenarios_[job.scenario].duration_s, dt = job.spec.settings.time_step_s;
+    JobWork work;
+    work.engine = job.spec.engine;
+    work.kind = job.spec.engine + "/" + options_text(job.spec.settings.options);
+    work.in_steps = dt > 0;
+    work.units = dt > 0 ? duration_s / dt : duration_s;
+    if (!job.same_run_as.empty()) work.units = 0;  // scored from another job's run: no work of its own
+    return work;
+  }
+
+  // What the suite runs, in one line each, before it starts.
+  void describe_plan(int to_run) const {
+    std::map<std::string, int> by_engine;
+    std::set<std::string> names, laws, steps;
+    std::vector<const PlannedJob*> shown;
+    for (const auto& job : jobs_)
+      if (!recorded_.count(job.id)) shown.push_back(&job);
+    for (const auto& group : step_groups_) shown.push_back(&group);
+    for (const PlannedJob* planned : shown) {
+      const PlannedJob& job = *planned;
+      ++by_engine[job.spec.engine];
+      const Scenario& s = scenarios_[job.scenario];
+      char text[96];
+      std::snprintf(text, sizeof text, "%s (%g s, window %g s)", s.name.c_str(), s.duration_s, s.scoring_window_s);
+      names.insert(text);
+      laws.insert(to_string(job.spec.settings.law));
+      if (job.spec.settings.time_step_s > 0) {
+        std::snprintf(text, sizeof text, "%g s", job.spec.settings.time_step_s);
+        steps.insert(text);
+      }
+    }
+    const auto joined = [](const auto& items) {
+      std::string text;
+      for (const auto& item : items) text += (text.empty() ? "" : ", ") + item;
+      return text.empty() ? std::string("-") : text;
+    };
+    std::vector<std::string> engines;
+    for (const auto& [engine, count] : by_engine) engines.push_back(engine + " " + std::to_string(count));
+    if (shown.empty()) return;  // all recorded (a resumed suite that had finished)
+    std::fprintf(stderr, "suite: %d jobs to run on %d workers into %s%s\n", to_run, std::max(1, settings_.jobs),
+                 settings_.out.c_str(),
+                 step_groups_.empty() ? ""
+                                      : (", then " + std::to_string(step_groups_.size()) +
+                                         " step searches (their probes planned as they go)").c_str());
+    std::fprintf(stderr, "  scenarios: %s\n  laws: %s; runs (or step searches) per simulator: %s; steps: %s\n",
+                 joined(names).c_str(),
+                 joined(laws).c_str(), joined(engines).c_str(), joined(steps).c_str());
+    const auto scored = std::count_if(jobs_.begin(), jobs_.end(), [&](const PlannedJob& job) {
+      return !job.same_run_as.empty() && !recorded_.count(job.id);
+    });
+    if (scored > 0)
+      std::fprintf(stderr, "  %ld of them scored from the native run of another law (native contact ignores the law)\n",
+                   static_cast<long>(scored));
   }
 
   void add(const PlannedJob& job, std::set<std::string>& planned) {
@@ -483,6 +552,14 @@ class SuiteRunner {
     // Load the references in this process, so that the job's process inherits them.
     const ReferenceData* beam = reference(job.beam_reference, scenario);
     const ReferenceData* chain = reference(job.chain_reference, scenario);
+    std::vector<ScoredFrom> scored;
+    for (const PlannedJob* other : unrecorded_scored_from(job)) {
+      const std::string other_folder = folder_of(*other);
+      fs::remove_all(other_folder, error);
+      fs::create_directories(other_folder, error);
+      if (error) throw OutputError(output_error_text(other_folder, "create the run folder", error.value()));
+      scored.push_back({other, reference(other->beam_reference, scenario), reference(other->chain_reference, scenario)});
+    }
     std::fflush(nullptr);
     int message_pipe[2] = {-1, -1};
     if (pipe2(message_pipe, O_CLOEXEC) != 0)
@@ -493,15 +570,27 @@ class SuiteRunner {
     if (pid == 0) {
       become_worker(parent);
       close(message_pipe[0]);
-      run_in_child(job, folder, scenario, beam, chain, message_pipe[1]);  // never returns
+      run_in_child(job, folder, scenario, beam, chain, scored, message_pipe[1]);  // never returns
     }
     close(message_pipe[1]);
     running_.emplace(pid, Running{&job, Clock::now(), false, message_pipe[0]});
+    progress_->estimate().start(job.id, progress_->now_s());
+  }
+
+  // What a job's folder keeps of its series: a reference always its window (engine runs are compared
+  // with it, also on --resume), a step-search probe none unless asked (its summary and events say
+  // whether the step is stable and accurate), any other run what --series says.
+  Measurement measurement_of(const PlannedJob& job) const {
+    Measurement m = settings_.measurement;
+    if (job.kind != JobKind::engine && m.series == SeriesOutput::none) m.series = SeriesOutput::window;
+    if (job.step_probe && !settings_.keep_probe_series) m.series = SeriesOutput::none;
+    return m;
   }
 
   // The job's process: its output goes to log.txt; its record to row.csv and row.jsonl for the parent.
   [[noreturn]] void run_in_child(const PlannedJob& job, const std::string& folder, const Scenario& scenario,
-                                 const ReferenceData* beam, const ReferenceData* chain, int message_pipe) {
+                                 const ReferenceData* beam, const ReferenceData* chain,
+                                 const std::vector<ScoredFrom>& scored, int message_pipe) {
     const int log = open((folder + "/log.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (log >= 0) {
       dup2(log, STDOUT_FILENO);
@@ -509,8 +598,12 @@ class SuiteRunner {
       close(log);
     }
     RunRecord record;
+    ReferenceData run_data;  // the run's metrics and trajectory, for the jobs scored from it
+    bool ran = false;
     try {
-      record = run_job(scenario, job.spec, settings_.measurement, beam, chain, folder, nullptr, settings_.factory);
+      record = run_job(scenario, job.spec, measurement_of(job), beam, chain, folder, scored.empty() ? nullptr : &run_data,
+                       settings_.factory);
+      ran = true;
     } catch (const OutputError& e) {
       send_and_exit(message_pipe, e.what());
     } catch (const std::exception& e) {
@@ -524,6 +617,21 @@ class SuiteRunner {
     try {
       write_text_file(folder + "/row.csv", csv_row(record));
       write_text_file(folder + "/row.jsonl", json_line(record));
+      for (const ScoredFrom& other : scored) {
+        const PlannedJob& o = *other.job;
+        RunRecord r = record;
+        if (ran) {
+          r = score_for_law(scenario, record, run_data, o.id, o.spec.settings.law, measurement_of(o), other.beam,
+                            other.chain, folder, folder_of(o));
+        } else {  // the run failed: so does every job scored from it, for the same reason
+          r.job_id = o.id;
+          r.law = to_string(o.spec.settings.law);
+          r.same_run_as = job.id;
+        }
+        r.chain_links = o.chain_links;
+        write_text_file(folder_of(o) + "/row.csv", csv_row(r));
+        write_text_file(folder_of(o) + "/row.jsonl", json_line(r));
+      }
     } catch (const std::exception& e) {
       send_and_exit(message_pipe, e.what());
     }
@@ -566,12 +674,15 @@ class SuiteRunner {
       throw OutputError(output_error.empty() ? output_error_text(folder, "write the run's files", 0) : output_error);
     const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
     if (clean) {
-      const std::string json = read_file(folder + "/row.jsonl"), csv = read_file(folder + "/row.csv");
-      append_rows(settings_.out, csv, json);
-      const auto verdict = verdict_from_string(verdict_of(json));
-      count_and_show(job.id, verdict.value_or(Verdict::failed));
-      fs::remove(folder + "/row.jsonl");
-      fs::remove(folder + "/row.csv");
+      const std::string json = read_file(folder + "/row.jsonl");
+      // The work done, for the cost per step: an engine run that stopped unstable took fewer steps.
+      const double steps = steps_of(json);
+      const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
+      if (!recorded_.count(job.id))  // (recorded before: run again only for the jobs scored from it)
+        append_row_of(job, job.spec.settings.time_step_s > 0 && steps > 0 ? steps : -1);
+      else
+        remove_row_files(folder);
+      for (const PlannedJob* other : scored) append_row_of(*other, 0);
       return json;
     }
     if (interrupted()) return "";  // stopped by the interruption, not by its own fault: --resume reruns it
@@ -582,8 +693,43 @@ class SuiteRunner {
     record.options = options_text(job.spec.settings.options);
     record.chain_links = job.chain_links;
     record.duration_s = s.duration_s;
-    finish(record);
+    const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
+    if (!recorded_.count(job.id)) finish(record);
+    for (const PlannedJob* other : scored) {  // scored from a run that did not end: failed alike
+      RunRecord r = record;
+      r.job_id = other->id;
+      r.law = to_string(other->spec.settings.law);
+      r.same_run_as = job.id;
+      r.chain_links = other->chain_links;
+      finish(r);
+    }
     return json_line(record);
+  }
+
+  // The jobs scored from this job's run that are not recorded yet.
+  std::vector<const PlannedJob*> unrecorded_scored_from(const PlannedJob& job) const {
+    std::vector<const PlannedJob*> jobs;
+    const auto [first, last] = scored_from_.equal_range(job.id);
+    for (auto it = first; it != last; ++it)
+      if (!recorded_.count(it->second->id)) jobs.push_back(it->second);
+    return jobs;
+  }
+
+  // Appends the record a job's process left in its folder (row.csv, row.jsonl) and shows it.
+  void append_row_of(const PlannedJob& job, double units_done) {
+    const std::string folder = folder_of(job);
+    const std::string json = read_file(folder + "/row.jsonl"), csv = read_file(folder + "/row.csv");
+    append_rows(settings_.out, csv, json);
+    recorded_.insert(job.id);
+    const auto verdict = verdict_from_string(verdict_of(json));
+    count_and_show(job.id, verdict.value_or(Verdict::failed), units_done);
+    remove_row_files(folder);
+  }
+
+  static void remove_row_files(const std::string& folder) {
+    std::error_code error;
+    fs::remove(folder + "/row.jsonl", error);
+    fs::remove(folder + "/row.csv", error);
   }
 
   void finish(const RunRecord& record) {
@@ -591,10 +737,11 @@ class SuiteRunner {
     count_and_show(record.job_id, record.verdict);
   }
 
-  void count_and_show(const std::string& id, Verdict verdict) {
+  void count_and_show(const std::string& id, Verdict verdict, double units_done = -1) {
     ++outcome_.jobs_run;
     if (verdict == Verdict::unstable || verdict == Verdict::failed) ++outcome_.not_ok;
-    progress_->job_done(id, verdict);
+    progress_->estimate().finish(id, progress_->now_s(), units_done);
+    progress_->job_done(id, verdict, std::max(1, settings_.jobs));
   }
 
   // --find-steps: each group's search picks its next probe when its previous one has ended; groups
@@ -636,6 +783,7 @@ class SuiteRunner {
           probe.beam_reference = g.job->beam_reference;
           probe.chain_reference = g.job->chain_reference;
           probe.chain_links = g.job->chain_links;
+          probe.step_probe = true;
           if (!recorded.count(probe.id)) break;
           g.search->add(*next, probe_from_json(recorded[probe.id], g.with_chain));  // run before (--resume)
           ++outcome_.jobs_skipped;
@@ -652,6 +800,7 @@ class SuiteRunner {
         g.probe_index = *next;
         g.running = true;
         progress_->add_to_total(1);
+        progress_->estimate().plan(probe.id, work_of(probe));
         start(probe_jobs_.back());
       }
       if (running_.empty()) break;  // every group has finished
@@ -673,6 +822,7 @@ class SuiteRunner {
   std::deque<PlannedJob> probe_jobs_;    // the searches' probes (a deque keeps their addresses)
   std::vector<RunRecord> unrunnable_;
   std::set<std::string> recorded_;
+  std::multimap<std::string, const PlannedJob*> scored_from_;  // a run's job id -> the jobs scored from its run
   std::map<std::string, std::unique_ptr<ReferenceData>> references_;
   std::map<pid_t, Running> running_;
   std::unique_ptr<Progress> progress_;

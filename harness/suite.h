@@ -36,6 +36,7 @@ struct SuiteSettings {
   // stable and accurate steps by bisection (step_search.h) and appends a row to DIR/steps.csv and
   // DIR/steps.jsonl when its search ends. time_steps_s is then ignored for the engines.
   std::optional<StepSearchSettings> step_search;
+  bool keep_probe_series = false;                  // the probes' series.csv.gz (default: summary and events only)
   // Set: runs only this shard of the suite (shard_plan.h) and records its plan in DIR/shard.jsonl.
   // --resume then continues the same shard: a folder holding another shard, or a whole suite, is refused.
   std::optional<Shard> shard;

@@ -1,6 +1,8 @@
 #include "modal_model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "beam_modes.h"
@@ -44,6 +46,18 @@ double motor_frequency_hz(const Scenario& scenario) {
   if (!scenario.motor) return 0;
   if (scenario.motor->frequency_hz) return *scenario.motor->frequency_hz;
   return *scenario.motor->speed_ratio_to_f1 * frame1_first_frequency_hz(scenario);
+}
+
+double start_up_transient_s(const Scenario& scenario) {
+  if (!scenario.motor) return 0;
+  double longest = 0;
+  for (const FrameSpec& frame : scenario.frames) {
+    const double omega_1 = CantileverModes(frame, 1).omega_rad_s(0);
+    // Undamped, a start-up transient never decays.
+    longest = frame.damping_ratio > 0 ? std::max(longest, std::log(20.0) / (frame.damping_ratio * omega_1))
+                                      : std::numeric_limits<double>::infinity();
+  }
+  return longest;
 }
 
 ModalBasis frame_modes(const FrameSpec& frame, const ModeSelection& selection) {

@@ -61,6 +61,11 @@ struct ModalModel {
 double frame1_first_frequency_hz(const Scenario& scenario);
 // The motor speed of a scenario [Hz]; 0 when it has no motor.
 double motor_frequency_hz(const Scenario& scenario);
+// How long a start from rest takes to settle without impacts [s]: the time in which each frame's first
+// mode's free response decays to 5 % of its start, ln(20) / (zeta omega_1), the longer of the two frames
+// (impacts dissipate too, so an impacting case may settle sooner). 0 without a motor (nothing to settle
+// to); infinite for an undamped frame.
+double start_up_transient_s(const Scenario& scenario);
 
 ModalBasis frame_modes(const FrameSpec& frame, const ModeSelection& selection);
 ModalModel build_modal_model(const Scenario& scenario, ContactLaw law, const ModeSelection& selection);

@@ -1,26 +1,63 @@
-# The default suite's two parts as impactbench suite arguments, in one place: sourced by
-# scripts/benchmark.sh (which runs them) and bench/suite_scaling.sh (which times part 1 on 1, 2, ... workers).
-# duration: the forced cases' cut (benchmark.sh --full empties it).
-paper_suite_args=(scenarios/paper --engines reference,mujoco,ode,bullet --laws hertz,viscoelastic,newton
-                  --paths matched,injected,native --dt 1e-4,5e-5)
-paper_suite_duration=(--duration 50)
-search_suite_args=(scenarios/stiff scenarios/extreme --engines reference,mujoco,ode,bullet
-                   --laws hertz,viscoelastic,newton --paths matched --find-steps --step-range 1e-5,1e-3 --duration 5
-                   --repeat 0)
+# The benchmark's two studies as impactbench suite arguments, in one place: sourced by
+# scripts/benchmark.sh (which runs them), scripts/slurm/suite-array.sbatch (one shard of them) and
+# bench/suite_scaling.sh (which times the full study's published cases on 1, 2, ... workers).
+#
+# The default study answers in minutes (about 4 on this 2-core machine after the build): every engine,
+# every law, the matched and native contact paths, at the two steps that separate the engines (1e-4 s,
+# where Bullet's explicit hinge springs diverge and MuJoCo's and ODE's Hertz contacts gain energy in the
+# free case, and 5e-5 s, where all are stable), on the published cases that have impacts:
+#   - resonance and pre-resonance cut to 20 s and scored over the last 10 s (the impacting steady state is
+#     reached within about 10 s; post-resonance has no impacts, docs/published-cases.md),
+#   - free vibration over its first 4 s, the whole run scored (every impact ends by 2.6 s),
+# then a coarse step search (a grid of one step per octave, 1e-3 down to 1.6e-5 s) on one stiff and one
+# extreme case: the viscoelastic contact at k = 1e8 N/m and restitution 0 (sticking).
+default_study_parts=(
+  "scenarios/paper/resonance.toml scenarios/paper/pre_resonance.toml --duration 20 --window 10"
+  "scenarios/paper/free_vibration.toml --duration 4"
+)
+default_study_engines=(--engines reference,mujoco,ode,bullet --laws hertz,viscoelastic,newton
+                       --paths matched,native --dt 1e-4,5e-5)
+default_search_args=(scenarios/stiff/spring_dashpot_k1e08.toml scenarios/extreme/restitution_0.toml
+                     --engines reference,mujoco,ode,bullet --laws hertz,viscoelastic,newton --paths matched
+                     --find-steps --steps-per-octave 1 --step-range 1e-5,1e-3)
 
-# Runs the two parts into OUT, as scripts/benchmark.sh and scripts/slurm/suite-array.sbatch do:
-#   run_default_suite OUT [SUITE_ARGUMENTS...]
-# part 1 with the forced cases cut by ${duration[@]} (empty: their whole 100 s), then part 2 (unless
-# search=0) with --resume into the same folder; SUITE_ARGUMENTS (e.g. --shard K/N, --jobs N, --resume) go
-# to both. Needs impactbench (the executable), duration and search set. Returns the suite's exit code:
-# 0; 1 some run unstable or failed (a finding); 2 bad input; 3 a write error; 130/143 interrupted.
-run_default_suite() {
-  local out=$1 status=0 search_status
+# The full study (benchmark.sh --full): every published case x the three laws x every engine x its three
+# contact paths x steps 1e-4 and 5e-5 s, the forced cases cut to 50 s (their transient is over within
+# about 20 s; the scoring window stays the last 14 s), then the full step search on every stiff and
+# extreme case (each cut to 5 s) on the matched paths, 4 grid steps per octave over 1e-5 to 1e-3 s.
+full_study_parts=("scenarios/paper --duration 50")
+full_study_engines=(--engines reference,mujoco,ode,bullet --laws hertz,viscoelastic,newton
+                    --paths matched,injected,native --dt 1e-4,5e-5)
+full_search_args=(scenarios/stiff scenarios/extreme --engines reference,mujoco,ode,bullet
+                  --laws hertz,viscoelastic,newton --paths matched --find-steps --step-range 1e-5,1e-3 --duration 5)
+
+# Runs a study into OUT:
+#   run_study OUT [SUITE_ARGUMENTS...]
+# each part of ${study} (default or full) as a suite into the same folder (the parts after the first
+# with --resume), then its step search unless search=0; SUITE_ARGUMENTS (e.g. --shard K/N, --jobs N,
+# --resume) go to every part. Needs impactbench (the executable), study and search set. Returns the worst
+# exit code: 0; 1 some run unstable or failed (a finding); 2 bad input; 3 a write error; 130/143
+# interrupted.
+run_study() {
+  local out=$1 status=0 part_status part resume=() parts engines search_args
   shift
-  "$impactbench" suite "${paper_suite_args[@]}" "${duration[@]}" "$@" --out "$out" || status=$?
-  if (( search )) && (( status != 2 && status < 3 )); then
-    "$impactbench" suite "${search_suite_args[@]}" "$@" --out "$out" --resume ||
-      { search_status=$?; (( search_status > status )) && status=$search_status; }
+  if [[ $study == full ]]; then
+    parts=("${full_study_parts[@]}"); engines=("${full_study_engines[@]}"); search_args=("${full_search_args[@]}")
+  else
+    parts=("${default_study_parts[@]}"); engines=("${default_study_engines[@]}"); search_args=("${default_search_args[@]}")
+  fi
+  for part in "${parts[@]}"; do
+    read -r -a part_args <<<"$part"
+    part_status=0
+    "$impactbench" suite "${part_args[@]}" "${engines[@]}" "$@" "${resume[@]}" --out "$out" || part_status=$?
+    (( part_status > status )) && status=$part_status
+    (( status == 2 || status >= 3 )) && return "$status"
+    [[ " $* " == *" --resume "* ]] || resume=(--resume)
+  done
+  if (( search )); then
+    part_status=0
+    "$impactbench" suite "${search_args[@]}" "$@" "${resume[@]}" --out "$out" || part_status=$?
+    (( part_status > status )) && status=$part_status
   fi
   return "$status"
 }

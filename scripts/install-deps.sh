@@ -10,6 +10,7 @@ packages=(
   libtomlplusplus-dev            # scenario files
   nlohmann-json3-dev             # summary.json
   libcli11-dev                   # command line
+  zlib1g-dev                     # gzip: series.csv.gz written and read
   libmujoco-dev libqhull-dev      # MuJoCo 2.2.2 (its CMake config names qhull's headers)
   libode-dev                     # ODE 0.16.2, double precision
   libbullet-dev                  # Bullet 3.24, linked as bullet-float64 (double precision)

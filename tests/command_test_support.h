@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +28,18 @@ inline CommandOutput run_impactbench(const std::string& arguments, const std::fi
   std::stringstream buffer;
   buffer << in.rdbuf();
   out.text = buffer.str();
+  return out;
+}
+
+// A shell command (e.g. zcat, as a user reads a gzipped series) and what it printed on stdout.
+inline CommandOutput run_command(const std::string& command) {
+  CommandOutput out;
+  if (std::FILE* pipe = ::popen(command.c_str(), "r")) {
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.text.append(buffer, n);
+    const int status = ::pclose(pipe);
+    out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
   return out;
 }
 

@@ -91,10 +91,10 @@ RunRecord a_record() {
 }
 
 TEST_F(OutputErrors, AFullDiskUnderARunsFilesNamesTheFileTheReasonAndWhatToDo) {
-  for (const std::string name : {"series.csv", "events.csv", "summary.json"}) {
+  for (const std::string name : {"series.csv.gz", "series.csv", "events.csv", "summary.json"}) {
     const std::string path = full_disk_file(name);
     const std::string message = output_error([&] {
-      if (name == "series.csv") write_series_csv(path, two_samples());
+      if (name.rfind("series.csv", 0) == 0) write_series_csv(path, two_samples());
       if (name == "events.csv") write_events_csv(path, two_samples());
       if (name == "summary.json") write_summary_json(path, a_record());
     });
@@ -175,7 +175,7 @@ std::size_t lines_of(const fs::path& path) {
 TEST_F(OutputErrors, AJobsFilesOnAFullDiskStopTheSuiteWithTheirNameAndKeepWhatWasRecorded) {
   SuiteSettings s = short_suite(root_ / "out");
   s.engines = {"reference", "fills_the_disk"};
-  g_full_series = s.out + "/runs/short_free_vibration/fills_the_disk/hertz/series.csv";
+  g_full_series = s.out + "/runs/short_free_vibration/fills_the_disk/hertz/series.csv.gz";
   const std::string message = output_error([&] { run_suite(s); });
   EXPECT_EQ(message.rfind(g_full_series + ": cannot write: " + kFullDiskReason, 0), 0u) << message;
   EXPECT_EQ(lines_of(root_ / "out" / "runs.jsonl"), 1u);  // the reference, recorded before, is kept

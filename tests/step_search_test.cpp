@@ -275,8 +275,9 @@ TEST_F(StepSearchSuite, FindsTheKnownStepsAndResumesWithoutRepeating) {
             grid_neighbours(grid, kSensorPeakOffAbove_s).first);
   EXPECT_EQ(row["contact_duration_largest_step_within_tolerance_s"].get<double>(),
             grid_neighbours(grid, kDurationOffAbove_s).first);
-  // below its boundaries the synthetic engine is the reference on its chain: no error at all there
-  EXPECT_EQ(row["frame1_sensor_peak_relative_error_at_largest_step"].get<double>(), 0.0);
+  // below its boundaries the synthetic engine is the reference on its chain: no error there but the
+  // 9 digits of the reference's saved series (the suite reads a reference back from its files)
+  EXPECT_LT(std::abs(row["frame1_sensor_peak_relative_error_at_largest_step"].get<double>()), 1e-8);
   EXPECT_NE(row["frame1_sensor_peak_relative_error_vs_beam_reference_at_largest_step"].get<double>(), 0.0);
   EXPECT_TRUE(row["impacts_per_cycle_largest_step_within_tolerance_s"].is_null());
   EXPECT_EQ(row["impacts_per_cycle_status"], "not applicable: the scenario has no excitation");

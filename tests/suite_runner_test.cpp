@@ -124,18 +124,19 @@ TEST_F(SuiteRunner, AbortingAndHangingJobsAreRecordedAndTheSuiteFinishes) {
   ASSERT_TRUE(hung);
   EXPECT_EQ(hung->verdict, "failed");
   EXPECT_NE(hung->reason.find("time limit of 3 s"), std::string::npos) << hung->reason;
-  // the mirror agrees exactly with the reference on its own chain, and differs from the beam's by
-  // the 4-link discretisation; its verdict is judged on its own chain
+  // the mirror agrees with the reference on its own chain (to the 9 digits its saved series holds: the
+  // suite reads a reference back from its files), and differs from the beam's by the 4-link
+  // discretisation; its verdict is judged on its own chain
   const Row* mirror = find(all, "short_free/mirror/hertz");
   ASSERT_TRUE(mirror);
   EXPECT_EQ(mirror->verdict, "ok") << mirror->reason;
-  EXPECT_EQ(mirror->json["vs_chain_reference_frame1_sensor_peak_relative_error"].get<double>(), 0.0);
-  EXPECT_EQ(mirror->json["vs_chain_reference_frame1_displacement_relative_rms_error"].get<double>(), 0.0);
-  EXPECT_NE(mirror->json["vs_reference_frame1_displacement_relative_rms_error"].get<double>(), 0.0);
+  EXPECT_LT(std::abs(mirror->json["vs_chain_reference_frame1_sensor_peak_relative_error"].get<double>()), 1e-8);
+  EXPECT_LT(mirror->json["vs_chain_reference_frame1_displacement_relative_rms_error"].get<double>(), 1e-8);
+  EXPECT_GT(mirror->json["vs_reference_frame1_displacement_relative_rms_error"].get<double>(), 1e-3);
   EXPECT_EQ(mirror->json["chain_links"].get<double>(), 4);
   EXPECT_TRUE(find(all, "short_free/reference/hertz/links=4;modes=chain"));
   // per-run files
-  EXPECT_TRUE(fs::exists(fs::path(settings_.out) / "runs/short_free/mirror/hertz/series.csv"));
+  EXPECT_TRUE(fs::exists(fs::path(settings_.out) / "runs/short_free/mirror/hertz/series.csv.gz"));
   EXPECT_TRUE(fs::exists(fs::path(settings_.out) / "runs/short_free/aborter/hertz/log.txt"));
   // runs.csv has the header and one row per run
   std::ifstream csv(settings_.out + "/runs.csv");

@@ -3,7 +3,7 @@
 // (the short free vibration and the resonance cut to 1 s, the reference and up to two engines of this
 // build, two laws, two time steps) is run whole into one folder and as 3 shards merged into another:
 // every job id once, every field of runs.jsonl and runs.csv equal but the timing ones, every run's
-// series.csv, events.csv and impact.csv equal byte for byte; each engine job in exactly one shard; one
+// series.csv.gz, events.csv and impact.csv equal byte for byte; each engine job in exactly one shard; one
 // shard of one is the whole suite. A small step search (--find-steps over a narrow range) gives the same
 // steps.csv sharded and merged, and there (where shards need different references) each shard runs the
 // references its own groups need, no other. A shard stopped early
@@ -121,7 +121,7 @@ void expect_same_results(const fs::path& expected, const fs::path& actual, bool 
             csv_rows(expected / "runs.csv", kRunTimingFields, want_header));
   EXPECT_EQ(got_header, want_header);
   for (const auto& [id, record] : want)
-    for (const char* file : {"series.csv", "events.csv", "impact.csv"}) {
+    for (const char* file : {"series.csv.gz", "events.csv", "impact.csv"}) {
       const fs::path a = expected / "runs" / id / file, b = actual / "runs" / id / file;
       EXPECT_EQ(fs::exists(b), fs::exists(a)) << b;
       if (fs::exists(a)) {
@@ -245,7 +245,7 @@ TEST_F(SuiteSharding, ShardsMergedGiveTheWholeSuite) {
   EXPECT_NE(summary.find("- suite: " + (*root_ / "merged").string()), std::string::npos) << summary;
   // hard links where the file system allows (here, one temporary folder)
   const std::string some_run = records(whole() / "runs.jsonl", "job_id", {}).begin()->first;
-  EXPECT_GE(fs::hard_link_count(*root_ / "merged" / "runs" / some_run / "series.csv"), 2u);
+  EXPECT_GE(fs::hard_link_count(*root_ / "merged" / "runs" / some_run / "series.csv.gz"), 2u);
   // a shard's folder is a suite's folder of its own
   const CommandOutput report = command("report " + quoted(shard(2)));
   EXPECT_EQ(report.exit_code, 0) << report.text;
@@ -337,7 +337,7 @@ TEST_F(SuiteSharding, MergeRefusesWhatItCannotJoin) {
   const CommandOutput header =
       command("merge " + out + " " + quoted(shard(1)) + " " + quoted(shard(2)) + " " + quoted(renamed) + " --no-report");
   EXPECT_EQ(header.exit_code, 2) << header.text;
-  EXPECT_NE(header.text.find((renamed / "runs.csv").string() + ": header differs from this build's: column 8 is 'outcome', "
+  EXPECT_NE(header.text.find((renamed / "runs.csv").string() + ": header differs from this build's: column 9 is 'outcome', "
                              "expected 'verdict'"),
             std::string::npos) << header.text;
   // two shards that disagree on a job (a reference both ran)

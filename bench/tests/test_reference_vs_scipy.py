@@ -11,6 +11,7 @@ simulator's, must agree with the reference's:
 Speed is never asserted. Run: /usr/bin/python3 bench/tests/test_reference_vs_scipy.py IMPACTBENCH
 """
 import csv
+import gzip
 import json
 import os
 import subprocess
@@ -80,7 +81,7 @@ class ShortComparison(unittest.TestCase):
         included, within TOLERANCE of the column's largest magnitude: the metrics alone take one maximum
         over the whole window, which would not see peaks put in the wrong interval."""
         for c in self.record["cases"]:
-            reference, scipy = (read_series(os.path.join(c["folder"], run, "series.csv")) for run in ("reference", "scipy"))
+            reference, scipy = (read_series(os.path.join(c["folder"], run)) for run in ("reference", "scipy"))
             self.assertEqual(list(reference), list(scipy), "the same columns in the same order")
             for name, values in reference.items():
                 scale = max(abs(v) for v in values) or 1.0
@@ -88,8 +89,11 @@ class ShortComparison(unittest.TestCase):
                 self.assertLessEqual(worst, TOLERANCE, f"{c['law']} {name}")
 
 
-def read_series(path):
-    with open(path, encoding="utf-8") as f:
+def read_series(folder):
+    """A run folder's series: impactbench writes series.csv.gz, bench/scipy_reference.py series.csv."""
+    path = os.path.join(folder, "series.csv")
+    opener, path = (gzip.open, path + ".gz") if os.path.exists(path + ".gz") else (open, path)
+    with opener(path, "rt", encoding="utf-8") as f:
         rows = list(csv.reader(f))
     return {name: [float(row[i]) for row in rows[1:]] for i, name in enumerate(rows[0])}
 

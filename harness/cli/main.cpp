@@ -80,7 +80,9 @@ std::map<std::string, std::string> parse_options(const std::vector<std::string>&
 
 ib::ContactLaw parse_law(const std::string& name) {
   const auto law = ib::contact_law_from_string(name);
-  if (!law) throw std::invalid_argument("law '" + name + "': unknown; allowed: hertz, viscoelastic, newton");
+  if (!law)
+    throw std::invalid_argument("law '" + name + "': unknown; allowed: hertz, viscoelastic, newton (spring-dashpot: "
+                                "another name for viscoelastic)");
   return *law;
 }
 
@@ -95,15 +97,21 @@ void require_engine(const std::string& engine) {
 // How runs are measured; shared by `run` and `suite`.
 struct MeasurementOptions {
   double window_s = -1, sensor_rate_hz = 2048, merge_window_s = 0.002;
-  int timed_repeats = 2;  // timed runs of every run: separate from the logged one, and repeated
-  // with_timing: the command runs simulators (run, suite), so --repeat applies; score measures files only
+  int timed_repeats = 0;  // timed runs after the logged one (0: the logged run's own time is the cost)
+  std::string series = "window";
+  // with_timing: the command runs simulators (run, suite), so --repeat and --series apply; score measures files only
   void add_to(CLI::App* app, bool with_timing) {
     app->add_option("--window", window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's");
     app->add_option("--sensor-rate", sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]")->capture_default_str();
     app->add_option("--merge-window", merge_window_s, "onsets closer than this are one impact [s]")->capture_default_str();
     if (with_timing)
       app->add_option("--repeat", timed_repeats,
-                      "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's)")
+                      "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's own)")
+          ->capture_default_str();
+    if (with_timing)
+      app->add_option("--series", series,
+                      "what a run's folder keeps of its series (series.csv.gz): window (the scoring window), all "
+                      "(the whole run) or none (a suite's references keep their window)")
           ->capture_default_str();
   }
   ib::Measurement build() const {
@@ -119,26 +127,44 @@ struct MeasurementOptions {
     if (timed_repeats < 0 || timed_repeats > 100)
       throw std::invalid_argument("--repeat " + std::to_string(timed_repeats) + ": allowed: 0 to 100 timed runs");
     m.timed_repeats = timed_repeats;
+    if (series == "window") m.series = ib::SeriesOutput::window;
+    else if (series == "all") m.series = ib::SeriesOutput::all;
+    else if (series == "none") m.series = ib::SeriesOutput::none;
+    else throw std::invalid_argument("--series " + series + ": allowed: window, all, none");
     return m;
   }
 };
 
+// A number for a person: "n/a (why)" instead of nan.
+std::string shown(double value, const char* format, const char* why_not) {
+  if (!std::isfinite(value)) return std::string("n/a (") + why_not + ")";
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
 void print_record(const ib::RunRecord& r) {
   std::printf("%s: %s%s%s\n", r.job_id.c_str(), ib::to_string(r.verdict), r.reason.empty() ? "" : ": ", r.reason.c_str());
-  if (!r.metrics) return;
-  const ib::Metrics& m = *r.metrics;
-  std::printf("  impacts %d (%d onsets), impacts per cycle %.4g, mean contact duration %.6g s\n", m.impacts, m.raw_onsets,
-              m.impacts_per_cycle, m.contact_duration_mean_s);
-  std::printf("  sensor peak %.4g g / %.4g g, true peak %.4g g / %.4g g (frame 1 / frame 2)\n",
-              m.frames[0].sensor_peak_acceleration_g, m.frames[1].sensor_peak_acceleration_g,
-              m.frames[0].true_peak_acceleration_g, m.frames[1].true_peak_acceleration_g);
-  if (r.errors_vs_reference)
-    std::printf("  against the reference: sensor peak %+.3g %% / %+.3g %%, contact duration %+.3g %%, impacts per cycle %+.3g\n",
-                100 * r.errors_vs_reference->sensor_peak_relative_error[0],
-                100 * r.errors_vs_reference->sensor_peak_relative_error[1],
-                100 * r.errors_vs_reference->contact_duration_relative_error,
-                r.errors_vs_reference->impacts_per_cycle_difference);
-  std::printf("  wall time %.3f s\n", r.cost.wall_time_s);
+  if (r.metrics) {
+    const ib::Metrics& m = *r.metrics;
+    std::printf("  impacts %d (%d onsets), impacts per cycle %s, mean contact duration %s\n", m.impacts, m.raw_onsets,
+                shown(m.impacts_per_cycle, "%.4g", "no motor").c_str(),
+                shown(m.contact_duration_mean_s, "%.6g s", "no impacts").c_str());
+    std::printf("  sensor peak %.4g g / %.4g g, true peak %.4g g / %.4g g (frame 1 / frame 2)\n",
+                m.frames[0].sensor_peak_acceleration_g, m.frames[1].sensor_peak_acceleration_g,
+                m.frames[0].true_peak_acceleration_g, m.frames[1].true_peak_acceleration_g);
+  }
+  if (r.errors_vs_reference) {
+    const ib::MetricErrors& e = *r.errors_vs_reference;
+    std::printf("  against the beam reference: sensor peak %s / %s, contact duration %s, impacts per cycle %s\n",
+                shown(100 * e.sensor_peak_relative_error[0], "%+.3g %%", "no peak").c_str(),
+                shown(100 * e.sensor_peak_relative_error[1], "%+.3g %%", "no peak").c_str(),
+                shown(100 * e.contact_duration_relative_error, "%+.3g %%", "no impacts").c_str(),
+                shown(e.impacts_per_cycle_difference, "%+.3g", "no motor").c_str());
+  }
+  std::printf("  time step %s, %lld steps, CPU time %.3f s, wall time %.3f s (load average %s)\n",
+              shown(r.time_step_s > 0 ? r.time_step_s : NAN, "%g s", "adaptive").c_str(), r.cost.steps, r.cost.cpu_time_s, r.cost.wall_time_s,
+              shown(r.load_average, "%.2f", "unknown").c_str());
 }
 
 int command_modes(const std::string& path, bool json, const std::vector<std::string>& option_pairs) {
@@ -189,6 +215,7 @@ int command_run(const std::string& path, const std::string& engine, const std::s
   job.settings.time_step_s = time_step_s;
   job.settings.options = parse_options(option_pairs);
   const ib::Measurement measurement = measurement_options.build();
+  if (measurement.window_s) ib::warn_if_window_in_transient(scenario, measurement);
   // An engine is compared with the reference of the same scenario and law, run here first.
   std::optional<ib::ReferenceData> beam, chain;
   if (engine != "reference") {
@@ -217,7 +244,8 @@ struct SuiteOptions {
   double time_limit_s = 600, rate_hz = 4096, max_duration_s = 0;
   bool resume = false;
   std::vector<std::string> options;
-  bool find_steps = false;
+  bool find_steps = false, keep_series = false;
+  int steps_per_octave = 4;
   std::string step_range = "1e-6,1e-3", tolerances;
   std::string shard;  // K/N, empty: the whole suite
 };
@@ -237,6 +265,9 @@ double parse_positive(const std::string& text, const std::string& option) {
 // --find-steps with --step-range MIN,MAX and --tolerance metric=value,...
 ib::StepSearchSettings parse_step_search(const SuiteOptions& o) {
   ib::StepSearchSettings s;
+  if (o.steps_per_octave < 1 || o.steps_per_octave > 64)
+    throw std::invalid_argument("--steps-per-octave " + std::to_string(o.steps_per_octave) + ": allowed: 1 to 64");
+  s.points_per_octave = o.steps_per_octave;
   const auto range = split(o.step_range, ',');
   if (range.size() != 2) throw std::invalid_argument("--step-range " + o.step_range + ": expected MIN,MAX in seconds, e.g. 1e-6,1e-3");
   s.min_step_s = parse_positive(range[0], "--step-range");
@@ -308,8 +339,10 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   if (o.find_steps) {
     if (!s.time_steps_s.empty()) throw std::invalid_argument("--dt cannot be combined with --find-steps (the search chooses the steps)");
     s.step_search = parse_step_search(o);
-  } else if (o.step_range != SuiteOptions{}.step_range || !o.tolerances.empty()) {
-    throw std::invalid_argument("--step-range and --tolerance need --find-steps");
+    s.keep_probe_series = o.keep_series;
+  } else if (o.step_range != SuiteOptions{}.step_range || !o.tolerances.empty() ||
+             o.steps_per_octave != SuiteOptions{}.steps_per_octave || o.keep_series) {
+    throw std::invalid_argument("--step-range, --steps-per-octave, --tolerance and --keep-series need --find-steps");
   }
   const ib::SuiteOutcome outcome = ib::run_suite(s);
   if (outcome.interrupted_by != 0) {
@@ -514,8 +547,13 @@ int main(int argc, char** argv) {
   suite_measurement.add_to(suite, /*with_timing=*/true);
   suite->add_flag("--find-steps", suite_options.find_steps,
                   "per scenario, law, engine and options: search the largest stable step and the largest step at "
-                  "which each headline metric is within tolerance, by bisection on a grid of 4 steps per octave; "
+                  "which each headline metric is within tolerance, by bisection on a geometric grid (--steps-per-octave); "
                   "writes DIR/steps.csv and DIR/steps.jsonl");
+  suite->add_option("--steps-per-octave", suite_options.steps_per_octave,
+                    "with --find-steps: grid steps per halving of the step (4: a ratio of 1.19; 1: a coarse search, ratio 2)")
+      ->capture_default_str();
+  suite->add_flag("--keep-series", suite_options.keep_series,
+                  "with --find-steps: keep every probe's series.csv.gz (default: its summary and events only)");
   suite->add_option("--step-range", suite_options.step_range, "with --find-steps: MIN,MAX step searched [s]")
       ->capture_default_str();
   suite->add_option("--tolerance", suite_options.tolerances,

@@ -1,6 +1,7 @@
 """Reading a suite's results: runs.csv rows as plain records, the series of a run, the experiment."""
 
 import csv
+import gzip
 import math
 import os
 import tomllib
@@ -9,7 +10,8 @@ from dataclasses import dataclass, field
 G = 9.80665  # standard gravity [m/s^2]
 
 # runs.csv columns that are text; every other column is a number (empty: not applicable).
-TEXT_COLUMNS = {"job_id", "scenario", "law", "engine", "options", "verdict", "reason", "scenario_file", "engine_version"}
+TEXT_COLUMNS = {"job_id", "scenario", "law", "engine", "options", "same_run_as", "verdict", "reason", "scenario_file",
+                "engine_version"}
 
 
 @dataclass
@@ -66,9 +68,13 @@ class Suite:
         return None
 
     def series(self, run, name="series.csv"):
-        """A run's sampled series (series.csv), or its strongest impact finely resolved (impact.csv)."""
+        """A run's sampled series (series.csv.gz, or series.csv in older folders), or its strongest impact
+        finely resolved (impact.csv); None when the run kept none (--series none, a step-search probe)."""
         path = os.path.join(self.folder, "runs", run["job_id"], name)
-        return read_series(path) if os.path.exists(path) else None
+        for candidate in (path + ".gz", path):
+            if os.path.exists(candidate):
+                return read_series(candidate)
+        return None
 
 
 class ResultsError(ValueError):
@@ -104,8 +110,9 @@ def read_runs(folder):
 
 
 def read_series(path):
-    """series.csv as a dict of column name -> list of floats."""
-    with open(path, newline="") as f:
+    """series.csv (plain, or gzipped when the name ends in .gz) as a dict of column name -> list of floats."""
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "rt", newline="") as f:
         reader = csv.reader(f)
         header = next(reader)
         columns = {name: [] for name in header}
