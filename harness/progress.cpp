@@ -16,7 +16,7 @@ void RemainingTime::start(const std::string& id, double now_s) {
   started_kinds_.insert(job->second.work.kind);
 }
 
-void RemainingTime::finish(const std::string& id, double now_s, double units_done) {
+void RemainingTime::finish(const std::string& id, double now_s, double units_done, double compute_s) {
   const auto found = jobs_.find(id);
   if (found == jobs_.end() || found->second.finished) return;
   Job& job = found->second;
@@ -24,8 +24,14 @@ void RemainingTime::finish(const std::string& id, double now_s, double units_don
   if (job.started_s < 0 || !(job.work.units > 0)) return;  // recorded without running: nothing measured
   const double seconds = std::max(0.0, now_s - job.started_s);
   const double units = units_done >= 0 ? units_done : job.work.units;
+  // Without the simulator's own time, the whole job counts as its work (no overhead measured).
+  const double work_s = compute_s >= 0 ? std::min(compute_s, seconds) : seconds;
+  if (compute_s >= 0) {
+    overhead_.seconds += seconds - work_s;
+    overhead_.units += 1;
+  }
   for (Sum* sum : {&by_kind_[job.work.kind], &by_engine_[job.work.engine], &by_unit_[job.work.in_steps]}) {
-    sum->seconds += seconds;
+    sum->seconds += work_s;
     sum->units += units;
   }
 }
@@ -40,6 +46,11 @@ double RemainingTime::cost_per_unit(const JobWork& work) const {
   return same_unit.units > 0 ? same_unit.seconds / same_unit.units : -1;
 }
 
+void RemainingTime::expect(const std::string& key, const JobWork& work, int count) {
+  if (count > 0) expected_[key] = {work, count};
+  else expected_.erase(key);
+}
+
 bool RemainingTime::measured(const std::string& kind) const {
   const auto sum = by_kind_.find(kind);
   return sum != by_kind_.end() && sum->second.units > 0;
@@ -51,7 +62,9 @@ bool RemainingTime::started_kind(const std::string& kind) const {
 
 double RemainingTime::cost_s(const JobWork& work) const {
   const double per_unit = cost_per_unit(work);
-  return per_unit < 0 ? -1 : per_unit * work.units;
+  if (per_unit < 0) return -1;
+  const double overhead_s = overhead_.units > 0 ? overhead_.seconds / overhead_.units : 0;
+  return work.units > 0 ? overhead_s + per_unit * work.units : 0;
 }
 
 double RemainingTime::remaining_s(double now_s, int workers) const {
@@ -62,6 +75,11 @@ double RemainingTime::remaining_s(double now_s, int workers) const {
     const double cost = cost_s(job.work);
     if (cost < 0) return -1;
     left.push_back(job.started_s >= 0 ? std::max(0.0, cost - (now_s - job.started_s)) : cost);
+  }
+  for (const auto& [key, expected] : expected_) {
+    const double cost = cost_s(expected.first);
+    if (cost < 0) return -1;
+    for (int k = 0; k < expected.second; ++k) left.push_back(cost);
   }
   // The workers share the work; the longest job alone bounds it from below.
   double total = 0, longest = 0;

@@ -28,8 +28,14 @@ class RemainingTime {
  public:
   void plan(const std::string& id, const JobWork& work);                      // a job to run
   void start(const std::string& id, double now_s);                            // it started at now_s
-  // It ended at now_s after units_done of its work (< 0: all of it; fewer when it stopped early).
-  void finish(const std::string& id, double now_s, double units_done = -1);
+  // It ended at now_s after units_done of its work (< 0: all of it; fewer when it stopped early), of
+  // which the simulator itself took compute_s (< 0: unknown); the rest is the job's overhead (its
+  // process, references, files), the same for every job, so that a run that stopped early does not
+  // make its kind's steps look costly.
+  void finish(const std::string& id, double now_s, double units_done = -1, double compute_s = -1);
+  // Jobs not planned yet but expected (a step search's later probes): count jobs like `work`, under a
+  // key that a later call replaces.
+  void expect(const std::string& key, const JobWork& work, int count);
   // Seconds until every planned job has ended on `workers` processes; negative when a job's cost
   // cannot be estimated yet (nothing of its unit measured).
   double remaining_s(double now_s, int workers) const;
@@ -48,11 +54,13 @@ class RemainingTime {
   double cost_per_unit(const JobWork& work) const;
   std::map<std::string, Job> jobs_;
   std::set<std::string> started_kinds_;
+  std::map<std::string, std::pair<JobWork, int>> expected_;
   struct Sum {
     double seconds = 0, units = 0;
   };
   std::map<std::string, Sum> by_kind_, by_engine_;
   Sum by_unit_[2];  // [in_steps]
+  Sum overhead_;    // seconds of a job beyond its simulator's own, over jobs (units: jobs)
 };
 
 // Which of the pending jobs to start next (an index into pending): first a job of each kind not yet

@@ -169,9 +169,12 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
     std::error_code error;
     std::filesystem::create_directories(run_folder, error);
     if (error) throw OutputError(output_error_text(run_folder, "create the run folder", error.value()));
-    if (measurement.series != SeriesOutput::none) write_series_csv(run_folder + "/series.csv.gz", result.trajectory);
+    // The series and the impact zoom (a series too), gzipped, unless --series none.
+    if (measurement.series != SeriesOutput::none) {
+      write_series_csv(run_folder + "/series.csv.gz", result.trajectory);
+      if (result.impact_zoom.size() > 0) write_series_csv(run_folder + "/impact.csv.gz", result.impact_zoom);
+    }
     write_events_csv(run_folder + "/events.csv", result.trajectory);
-    if (result.impact_zoom.size() > 0) write_series_csv(run_folder + "/impact.csv", result.impact_zoom);
   }
   if (result.status != RunStatus::failed) time_runs(*simulator, scenario, settings, measurement.timed_repeats, record);
   if (!run_folder.empty()) write_summary_json(run_folder + "/summary.json", record);
@@ -200,7 +203,7 @@ RunRecord score_for_law(const Scenario& scenario, const RunRecord& run, const Re
     std::filesystem::create_directories(run_folder, error);
     if (error) throw OutputError(output_error_text(run_folder, "create the run folder", error.value()));
     // The same files, linked (no second copy on disk; copied where links are not possible).
-    for (const char* name : {"series.csv.gz", "events.csv", "impact.csv"}) {
+    for (const char* name : {"series.csv.gz", "events.csv", "impact.csv.gz"}) {
       const std::string from = source_folder + "/" + name, to = run_folder + "/" + name;
       if (!std::filesystem::exists(from, error)) continue;
       std::filesystem::remove(to, error);

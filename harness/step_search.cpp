@@ -253,6 +253,21 @@ std::optional<int> StepSearch::unprobed_inside(const Bracket& b) const {
 
 bool StepSearch::closed(const Bracket& b) const { return b.not_applicable || !unprobed_inside(b); }
 
+int StepSearch::probes_left_estimate() const {
+  int most = 0, open = 0;
+  for (int p : predicates()) {
+    const Bracket b = bracket(p);
+    if (!unprobed_inside(b)) continue;
+    ++open;
+    int unprobed = 0;
+    for (int k = (b.fail ? *b.fail : -1) + 1; k < (b.pass ? *b.pass : static_cast<int>(grid_.size())); ++k)
+      unprobed += results_.count(k) ? 0 : 1;
+    most = std::max(most, static_cast<int>(std::ceil(std::log2(unprobed + 1.0))));
+  }
+  // The brackets mostly close together; where several are open, about one probe more.
+  return open > 1 ? most + 1 : most;
+}
+
 std::optional<int> StepSearch::next_probe() const {
   std::optional<int> next;
   int widest = -1;

@@ -87,6 +87,9 @@ class StepSearch {
   std::optional<int> next_probe() const;
   void add(int index, const ProbeResult& result);
   bool probed(int index) const { return results_.count(index) > 0; }
+  // About how many more probes the search needs: a bisection of its widest open bracket's unprobed
+  // grid points, one more where several brackets are open (a remaining-time estimate, not a promise).
+  int probes_left_estimate() const;
   int probes() const { return static_cast<int>(results_.size()); }
 
   // What the search found, with the notes (non-monotone outcomes, probes not decided).

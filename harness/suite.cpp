@@ -88,10 +88,11 @@ std::string verdict_of(const std::string& json_line) {
   return j.is_object() && j.contains("verdict") && j["verdict"].is_string() ? j["verdict"].get<std::string>() : "";
 }
 
-// The steps a recorded run took (fewer than planned when it stopped unstable); -1 when not recorded.
-double steps_of(const std::string& json_line) {
+// A number of a recorded run (e.g. the steps it took: fewer than planned when it stopped unstable);
+// -1 when not recorded.
+double number_of(const std::string& json_line, const char* name) {
   const auto j = nlohmann::json::parse(json_line, nullptr, false);
-  return j.is_object() && j.contains("steps") && j["steps"].is_number() ? j["steps"].get<double>() : -1;
+  return j.is_object() && j.contains(name) && j[name].is_number() ? j[name].get<double>() : -1;
 }
 
 std::string read_file(const std::string& path) {
@@ -490,7 +491,8 @@ class SuiteRunner {
       ++by_engine[job.spec.engine];
       const Scenario& s = scenarios_[job.scenario];
       char text[96];
-      std::snprintf(text, sizeof text, "%s (%g s, window %g s)", s.name.c_str(), s.duration_s, s.scoring_window_s);
+      const MetricSettings window = metric_settings(s, settings_.measurement);
+      std::snprintf(text, sizeof text, "%s (%g s, scored from %g s)", s.name.c_str(), s.duration_s, window.window_start_s);
       names.insert(text);
       laws.insert(to_string(job.spec.settings.law));
       if (job.spec.settings.time_step_s > 0) {
@@ -676,10 +678,10 @@ class SuiteRunner {
     if (clean) {
       const std::string json = read_file(folder + "/row.jsonl");
       // The work done, for the cost per step: an engine run that stopped unstable took fewer steps.
-      const double steps = steps_of(json);
+      const double steps = number_of(json, "steps");
       const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
       if (!recorded_.count(job.id))  // (recorded before: run again only for the jobs scored from it)
-        append_row_of(job, job.spec.settings.time_step_s > 0 && steps > 0 ? steps : -1);
+        append_row_of(job, job.spec.settings.time_step_s > 0 && steps > 0 ? steps : -1, number_of(json, "wall_time_s"));
       else
         remove_row_files(folder);
       for (const PlannedJob* other : scored) append_row_of(*other, 0);
@@ -716,13 +718,13 @@ class SuiteRunner {
   }
 
   // Appends the record a job's process left in its folder (row.csv, row.jsonl) and shows it.
-  void append_row_of(const PlannedJob& job, double units_done) {
+  void append_row_of(const PlannedJob& job, double units_done, double compute_s = -1) {
     const std::string folder = folder_of(job);
     const std::string json = read_file(folder + "/row.jsonl"), csv = read_file(folder + "/row.csv");
     append_rows(settings_.out, csv, json);
     recorded_.insert(job.id);
     const auto verdict = verdict_from_string(verdict_of(json));
-    count_and_show(job.id, verdict.value_or(Verdict::failed), units_done);
+    count_and_show(job.id, verdict.value_or(Verdict::failed), units_done, compute_s);
     remove_row_files(folder);
   }
 
@@ -737,10 +739,10 @@ class SuiteRunner {
     count_and_show(record.job_id, record.verdict);
   }
 
-  void count_and_show(const std::string& id, Verdict verdict, double units_done = -1) {
+  void count_and_show(const std::string& id, Verdict verdict, double units_done = -1, double compute_s = -1) {
     ++outcome_.jobs_run;
     if (verdict == Verdict::unstable || verdict == Verdict::failed) ++outcome_.not_ok;
-    progress_->estimate().finish(id, progress_->now_s(), units_done);
+    progress_->estimate().finish(id, progress_->now_s(), units_done, compute_s);
     progress_->job_done(id, verdict, std::max(1, settings_.jobs));
   }
 
@@ -792,9 +794,14 @@ class SuiteRunner {
           append_step_row(settings_.out, StepRow{g.info, search_settings, g.search.get()});
           g.finished = true;
           ++outcome_.step_searches;
+          progress_->estimate().expect(g.info.group_id, {}, 0);
           continue;
         }
+        // The probes still to come, for the remaining time: about a bisection's worth, each like this one.
+        const int probes_left = g.search->probes_left_estimate();
+        progress_->estimate().expect(g.info.group_id, work_of(probe), probes_left);
         if (interrupted() || static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) continue;  // waits for a worker
+        progress_->estimate().expect(g.info.group_id, work_of(probe), probes_left - 1);  // this one is planned below
         probe_jobs_.push_back(probe);
         group_of_probe[probe.id] = i;
         g.probe_index = *next;

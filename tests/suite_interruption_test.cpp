@@ -6,7 +6,7 @@
 // Each is sent once a few results are recorded. The suite (two short scenarios, two laws, the reference
 // and MuJoCo when built) is compared with an uninterrupted run of the same command: the same job ids and
 // every field of runs.jsonl and runs.csv equal except the timing ones (ib::timing_field_names()), compared sorted by job id, and every run's series.csv.gz, events.csv and
-// impact.csv equal byte for byte. The report is made from nothing else, so one test (Ctrl-C) also makes
+// impact.csv.gz equal byte for byte. The report is made from nothing else, so one test (Ctrl-C) also makes
 // both reports (it takes matplotlib several seconds each) and compares summary.md with its date, its
 // folder and the timing it shows masked (the run-time column, and the "at equal run time" line, whose
 // choice depends on measured times). The report sorts its runs by job id, so that the order in which
@@ -224,7 +224,7 @@ class SuiteInterruption : public ::testing::Test {
     // and the same files of every run (a killed job's half-written folder was replaced by its rerun)
     int series_compared = 0;
     for (const auto& [id, record] : whole)
-      for (const char* file : {"series.csv.gz", "events.csv", "impact.csv"}) {
+      for (const char* file : {"series.csv.gz", "events.csv", "impact.csv.gz"}) {
         const fs::path a = root_ / "whole" / "runs" / id / file, b = root_ / "cut" / "runs" / id / file;
         EXPECT_EQ(fs::exists(b), fs::exists(a)) << b;
         if (fs::exists(a)) {

@@ -3,7 +3,7 @@
 // (the short free vibration and the resonance cut to 1 s, the reference and up to two engines of this
 // build, two laws, two time steps) is run whole into one folder and as 3 shards merged into another:
 // every job id once, every field of runs.jsonl and runs.csv equal but the timing ones, every run's
-// series.csv.gz, events.csv and impact.csv equal byte for byte; each engine job in exactly one shard; one
+// series.csv.gz, events.csv and impact.csv.gz equal byte for byte; each engine job in exactly one shard; one
 // shard of one is the whole suite. A small step search (--find-steps over a narrow range) gives the same
 // steps.csv sharded and merged, and there (where shards need different references) each shard runs the
 // references its own groups need, no other. A shard stopped early
@@ -121,7 +121,7 @@ void expect_same_results(const fs::path& expected, const fs::path& actual, bool 
             csv_rows(expected / "runs.csv", kRunTimingFields, want_header));
   EXPECT_EQ(got_header, want_header);
   for (const auto& [id, record] : want)
-    for (const char* file : {"series.csv.gz", "events.csv", "impact.csv"}) {
+    for (const char* file : {"series.csv.gz", "events.csv", "impact.csv.gz"}) {
       const fs::path a = expected / "runs" / id / file, b = actual / "runs" / id / file;
       EXPECT_EQ(fs::exists(b), fs::exists(a)) << b;
       if (fs::exists(a)) {

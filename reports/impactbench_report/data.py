@@ -69,7 +69,7 @@ class Suite:
 
     def series(self, run, name="series.csv"):
         """A run's sampled series (series.csv.gz, or series.csv in older folders), or its strongest impact
-        finely resolved (impact.csv); None when the run kept none (--series none, a step-search probe)."""
+        finely resolved (impact.csv.gz); None when the run kept none (--series none, a step-search probe)."""
         path = os.path.join(self.folder, "runs", run["job_id"], name)
         for candidate in (path + ".gz", path):
             if os.path.exists(candidate):

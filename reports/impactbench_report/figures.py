@@ -109,7 +109,7 @@ def sensor_time_history(suite, scenario, law, chosen, folder, provenance, second
 
 
 def impact_zoom(suite, scenario, law, chosen, folder, provenance):
-    """Each simulator's strongest impact in the window (impact.csv: the reference at 1 MHz, an engine at
+    """Each simulator's strongest impact in the window (impact.csv.gz: the reference at 1 MHz, an engine at
     every step), aligned on its onset: frame 1's acceleration and the contact force. The impacts fall at
     different times in different simulators (the motion is chaotic), so each shows its own."""
     reference = suite.beam_reference(scenario, law)
