@@ -268,6 +268,29 @@ int StepSearch::probes_left_estimate() const {
   return open > 1 ? most + 1 : most;
 }
 
+double StepSearch::mean_unprobed_steps_per_second() const {
+  double widest_sum = 0;
+  int widest = -1, widest_count = 0;
+  for (int p : predicates()) {
+    const Bracket b = bracket(p);
+    if (!unprobed_inside(b)) continue;
+    const int lo = b.fail ? *b.fail : -1, hi = b.pass ? *b.pass : static_cast<int>(grid_.size());
+    double sum = 0;
+    int count = 0;
+    for (int k = lo + 1; k < hi; ++k)
+      if (!results_.count(k)) {
+        sum += 1.0 / grid_[k];
+        ++count;
+      }
+    if (hi - lo > widest) {
+      widest = hi - lo;
+      widest_sum = sum;
+      widest_count = count;
+    }
+  }
+  return widest_count > 0 ? widest_sum / widest_count : 0;
+}
+
 std::optional<int> StepSearch::next_probe() const {
   std::optional<int> next;
   int widest = -1;

@@ -90,6 +90,9 @@ class StepSearch {
   // About how many more probes the search needs: a bisection of its widest open bracket's unprobed
   // grid points, one more where several brackets are open (a remaining-time estimate, not a promise).
   int probes_left_estimate() const;
+  // The mean of 1 / step over the unprobed grid points of the widest open bracket [1/s]: a later
+  // probe's steps per simulated second, on average (the smaller steps cost the most); 0 when none.
+  double mean_unprobed_steps_per_second() const;
   int probes() const { return static_cast<int>(results_.size()); }
 
   // What the search found, with the notes (non-monotone outcomes, probes not decided).

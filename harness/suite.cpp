@@ -797,11 +797,14 @@ class SuiteRunner {
           progress_->estimate().expect(g.info.group_id, {}, 0);
           continue;
         }
-        // The probes still to come, for the remaining time: about a bisection's worth, each like this one.
+        // The probes still to come, for the remaining time: about a bisection's worth, each costing on
+        // average what a probe at the bracket's unprobed steps costs.
         const int probes_left = g.search->probes_left_estimate();
-        progress_->estimate().expect(g.info.group_id, work_of(probe), probes_left);
+        JobWork later = work_of(probe);
+        later.units = scenarios_[probe.scenario].duration_s * g.search->mean_unprobed_steps_per_second();
+        progress_->estimate().expect(g.info.group_id, later, probes_left);
         if (interrupted() || static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) continue;  // waits for a worker
-        progress_->estimate().expect(g.info.group_id, work_of(probe), probes_left - 1);  // this one is planned below
+        progress_->estimate().expect(g.info.group_id, later, probes_left - 1);  // this one is planned below
         probe_jobs_.push_back(probe);
         group_of_probe[probe.id] = i;
         g.probe_index = *next;
