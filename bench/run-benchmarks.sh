@@ -3,7 +3,7 @@
 # folder given (default results/performance): reference_benchmark.json (the reference per case and law,
 # simulated seconds per wall second), engine_step_benchmark.json (each engine's cost per step) and
 # harness_overhead_benchmark.json (the harness against a bare loop of the same engine model), each with
-# the machine and versions (bench/machine.sh) in its context. About two and a half minutes.
+# the machine and versions (bench/machine.sh) in its context. About two minutes.
 # The report (impactbench report) shows them when the folder is RESULTS/performance.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,4 +19,4 @@ run() {
 run reference_benchmark
 run engine_step_benchmark --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 # interleaved harness and bare runs; a longer minimum time evens out the machine's drift
-run harness_overhead_benchmark --benchmark_min_time=6
+run harness_overhead_benchmark --benchmark_min_time=3

@@ -34,6 +34,15 @@ void RemainingTime::finish(const std::string& id, double now_s, double units_don
     sum->seconds += work_s;
     sum->units += units;
   }
+  Sum& share = share_run_[job.work.stop_key.empty() ? job.work.kind : job.work.stop_key];
+  share.seconds += std::min(units, job.work.units);
+  share.units += job.work.units;
+}
+
+double RemainingTime::likely_units(const JobWork& work) const {
+  const auto share = share_run_.find(work.stop_key.empty() ? work.kind : work.stop_key);
+  if (share == share_run_.end() || !(share->second.units > 0)) return work.units;
+  return work.units * share->second.seconds / share->second.units;
 }
 
 double RemainingTime::cost_per_unit(const JobWork& work) const {
@@ -64,7 +73,7 @@ double RemainingTime::cost_s(const JobWork& work) const {
   const double per_unit = cost_per_unit(work);
   if (per_unit < 0) return -1;
   const double overhead_s = overhead_.units > 0 ? overhead_.seconds / overhead_.units : 0;
-  return work.units > 0 ? overhead_s + per_unit * work.units : 0;
+  return work.units > 0 ? overhead_s + per_unit * likely_units(work) : 0;
 }
 
 double RemainingTime::remaining_s(double now_s, int workers) const {

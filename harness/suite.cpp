@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "number_text.h"
 #include "progress.h"
 #include "reference_simulator.h"
 #include "reporters.h"
@@ -474,6 +475,7 @@ class SuiteRunner {
     work.kind = job.spec.engine + "/" + options_text(job.spec.settings.options);
     work.in_steps = dt > 0;
     work.units = dt > 0 ? duration_s / dt : duration_s;
+    work.stop_key = work.kind + "/dt=" + exact_number_text(dt);
     if (!job.same_run_as.empty()) work.units = 0;  // scored from another job's run: no work of its own
     return work;
   }

@@ -49,7 +49,9 @@ std::vector<SyntheticJob> default_study_like() {
             const double steps = c.duration_s / dt;
             const double fraction = std::string(engine) == "bullet" && dt > 7.5e-5 ? 0.05 : 1.0;
             const double compute_s = cost_per_step_s * steps * fraction * next_scatter();
-            jobs.push_back({{std::string(engine) + "/" + path, engine, steps, true}, compute_s + 0.2, compute_s, fraction});
+            const std::string kind = std::string(engine) + "/" + path;
+            jobs.push_back({{kind, engine, steps, true, kind + "/dt=" + std::to_string(dt)}, compute_s + 0.2, compute_s,
+                            fraction});
           }
         }
       }
