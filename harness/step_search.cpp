@@ -264,8 +264,9 @@ int StepSearch::probes_left_estimate() const {
       unprobed += results_.count(k) ? 0 : 1;
     most = std::max(most, static_cast<int>(std::ceil(std::log2(unprobed + 1.0))));
   }
-  // The brackets mostly close together; where several are open, about one probe more.
-  return open > 1 ? most + 1 : most;
+  // The widest bracket's bisection, and about one probe more for each other open bracket (each tends to
+  // need its own last probe).
+  return open > 0 ? most + open - 1 : 0;
 }
 
 double StepSearch::mean_unprobed_steps_per_second() const {

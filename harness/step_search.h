@@ -88,7 +88,7 @@ class StepSearch {
   void add(int index, const ProbeResult& result);
   bool probed(int index) const { return results_.count(index) > 0; }
   // About how many more probes the search needs: a bisection of its widest open bracket's unprobed
-  // grid points, one more where several brackets are open (a remaining-time estimate, not a promise).
+  // grid points and one more per other open bracket (a remaining-time estimate, not a promise).
   int probes_left_estimate() const;
   // The mean of 1 / step over the unprobed grid points of the widest open bracket [1/s]: a later
   // probe's steps per simulated second, on average (the smaller steps cost the most); 0 when none.

@@ -206,6 +206,7 @@ class SuiteRunner {
     progress_ = std::make_unique<Progress>(to_run);
     for (const auto& job : jobs_)
       if (!recorded_.count(job.id)) progress_->estimate().plan(job.id, work_of(job));
+    if (settings_.step_search) expect_whole_searches();
     describe_plan(to_run);
     outcome_.jobs_total = static_cast<int>(jobs_.size() + unrunnable_.size());
     for (const RunRecord& r : unrunnable_) finish(r);
@@ -464,6 +465,24 @@ class SuiteRunner {
     job.spec.settings.options = options;
     job.id = job_id(scenarios_[scenario].name, job.spec);
     return job;
+  }
+
+  // Before a step search starts (its references run first), its probes to come: about a bisection of
+  // the whole grid, each costing what a probe at the grid's steps costs on average. The search itself
+  // replaces this as it goes (run_step_searches).
+  void expect_whole_searches() {
+    const std::vector<double> grid = step_grid(*settings_.step_search);
+    double steps_per_second = 0;
+    for (double dt : grid) steps_per_second += 1.0 / dt / static_cast<double>(grid.size());
+    // a bisection, and a last probe for each of the three metrics' brackets beside stability's
+    const int probes = static_cast<int>(std::ceil(std::log2(grid.size() + 1.0))) + 3;
+    for (const PlannedJob& group : step_groups_) {
+      JobWork work = work_of(group);
+      work.in_steps = true;
+      work.units = scenarios_[group.scenario].duration_s * steps_per_second;
+      work.stop_key = "";
+      progress_->estimate().expect(group.id, work, probes);
+    }
   }
 
   // A job's work for the remaining-time estimate: its steps (an engine at a given step), else its
@@ -768,13 +787,17 @@ class SuiteRunner {
       g.job = &job;
       g.with_chain = !job.chain_reference.empty();
       g.info = step_group(job);
-      if (rows_done.count(step_row_key(g.info, search_settings))) continue;
+      if (rows_done.count(step_row_key(g.info, search_settings))) {
+        progress_->estimate().expect(g.info.group_id, {}, 0);  // recorded before (--resume): nothing to come
+        continue;
+      }
       const std::string& reference_id = g.with_chain ? job.chain_reference : job.beam_reference;
       const ReferenceFacts facts = recorded.count(reference_id) ? reference_from_json(recorded[reference_id]) : ReferenceFacts{};
       g.search = std::make_unique<StepSearch>(search_settings, facts, g.info.accuracy_reference);
       groups.push_back(std::move(g));
     }
     std::map<std::string, std::size_t> group_of_probe;
+    int finished_groups = 0, finished_probes = 0;  // the searches done here: how many probes a search takes
     while (!interrupted()) {  // an interruption leaves the rest to --resume (run() stops the workers)
       for (std::size_t i = 0; i < groups.size(); ++i) {
         Group& g = groups[i];
@@ -796,12 +819,17 @@ class SuiteRunner {
           append_step_row(settings_.out, StepRow{g.info, search_settings, g.search.get()});
           g.finished = true;
           ++outcome_.step_searches;
+          ++finished_groups;
+          finished_probes += g.search->probes();
           progress_->estimate().expect(g.info.group_id, {}, 0);
           continue;
         }
         // The probes still to come, for the remaining time: about a bisection's worth, each costing on
         // average what a probe at the bracket's unprobed steps costs.
-        const int probes_left = g.search->probes_left_estimate();
+        // A bisection's worth at least; as many as the searches that ended needed, where they needed more.
+        const int measured_left =
+            finished_groups > 0 ? (finished_probes + finished_groups - 1) / finished_groups - g.search->probes() : 0;
+        const int probes_left = std::max(g.search->probes_left_estimate(), measured_left);
         JobWork later = work_of(probe);
         later.units = scenarios_[probe.scenario].duration_s * g.search->mean_unprobed_steps_per_second();
         progress_->estimate().expect(g.info.group_id, later, probes_left);

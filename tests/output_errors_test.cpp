@@ -15,6 +15,7 @@
 
 #include "reference_simulator.h"
 #include "reporters.h"
+#include "suite_test_support.h"
 #include "run_files.h"
 #include "run_record.h"
 #include "command_test_support.h"
@@ -165,21 +166,14 @@ SuiteSettings short_suite(const fs::path& out) {
   return s;
 }
 
-std::size_t lines_of(const fs::path& path) {
-  std::ifstream in(path);
-  std::size_t n = 0;
-  for (std::string line; std::getline(in, line);) ++n;
-  return n;
-}
-
 TEST_F(OutputErrors, AJobsFilesOnAFullDiskStopTheSuiteWithTheirNameAndKeepWhatWasRecorded) {
   SuiteSettings s = short_suite(root_ / "out");
   s.engines = {"reference", "fills_the_disk"};
   g_full_series = s.out + "/runs/short_free_vibration/fills_the_disk/hertz/series.csv.gz";
   const std::string message = output_error([&] { run_suite(s); });
   EXPECT_EQ(message.rfind(g_full_series + ": cannot write: " + kFullDiskReason, 0), 0u) << message;
-  EXPECT_EQ(lines_of(root_ / "out" / "runs.jsonl"), 1u);  // the reference, recorded before, is kept
-  EXPECT_EQ(lines_of(root_ / "out" / "runs.csv"), 2u);
+  EXPECT_EQ(test::line_count(root_ / "out" / "runs.jsonl"), 1u);  // the reference, recorded before, is kept
+  EXPECT_EQ(test::line_count(root_ / "out" / "runs.csv"), 2u);
 }
 
 TEST_F(OutputErrors, ARunsFolderThatCannotBeMadeStopsTheSuite) {
@@ -209,15 +203,15 @@ TEST_F(OutputErrors, TheSuiteCommandExitsWith3AndResumesOnceThereIsRoom) {
                            "; free space on that disk (or choose another output folder), then continue the suite with --resume"),
             std::string::npos)
       << full.text;
-  EXPECT_EQ(lines_of(out / "runs.jsonl"), 1u);  // the first result is in runs.jsonl, the record of what finished
+  EXPECT_EQ(test::line_count(out / "runs.jsonl"), 1u);  // the first result is in runs.jsonl, the record of what finished
   // room again: --resume rebuilds runs.csv from runs.jsonl and runs the rest
   fs::remove(out / "runs.csv");
   const Output resumed = impactbench(arguments + " --resume", root_ / "log.txt");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.text;
   EXPECT_NE(resumed.text.find("1 runs recorded"), std::string::npos) << resumed.text;
   EXPECT_NE(resumed.text.find("(1 skipped as already done)"), std::string::npos) << resumed.text;
-  EXPECT_EQ(lines_of(out / "runs.jsonl"), 2u);
-  EXPECT_EQ(lines_of(out / "runs.csv"), 3u);
+  EXPECT_EQ(test::line_count(out / "runs.jsonl"), 2u);
+  EXPECT_EQ(test::line_count(out / "runs.csv"), 3u);
 }
 
 TEST_F(OutputErrors, TheRunAndExportCommandsExitWith3) {

@@ -231,13 +231,6 @@ class SteppedMirror final : public Simulator {
   double hang_below_s_;
 };
 
-std::vector<nlohmann::json> lines(const std::string& path) {
-  std::vector<nlohmann::json> out;
-  std::ifstream in(path);
-  for (std::string line; std::getline(in, line);) out.push_back(nlohmann::json::parse(line));
-  return out;
-}
-
 class StepSearchSuite : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -262,7 +255,7 @@ class StepSearchSuite : public ::testing::Test {
 TEST_F(StepSearchSuite, FindsTheKnownStepsAndResumesWithoutRepeating) {
   const SuiteOutcome first = run_suite(settings_);
   EXPECT_EQ(first.step_searches, 1);
-  const auto rows = lines(settings_.out + "/steps.jsonl");
+  const auto rows = test::json_lines(settings_.out + "/steps.jsonl");
   ASSERT_EQ(rows.size(), 1u);
   const auto& row = rows[0];
   const auto grid = step_grid(StepSearchSettings{});
@@ -282,7 +275,7 @@ TEST_F(StepSearchSuite, FindsTheKnownStepsAndResumesWithoutRepeating) {
   EXPECT_TRUE(row["impacts_per_cycle_largest_step_within_tolerance_s"].is_null());
   EXPECT_EQ(row["impacts_per_cycle_status"], "not applicable: the scenario has no excitation");
   // every probe is an ordinary run: beam reference + chain reference + the probes
-  const auto runs = lines(settings_.out + "/runs.jsonl");
+  const auto runs = test::json_lines(settings_.out + "/runs.jsonl");
   EXPECT_EQ(runs.size(), 2 + row["probes"].get<std::size_t>());
   EXPECT_EQ(first.jobs_run, static_cast<int>(runs.size()));
   std::ifstream csv(settings_.out + "/steps.csv");
@@ -295,20 +288,20 @@ TEST_F(StepSearchSuite, FindsTheKnownStepsAndResumesWithoutRepeating) {
   const SuiteOutcome again = run_suite(settings_);
   EXPECT_EQ(again.jobs_run, 0);
   EXPECT_EQ(again.step_searches, 0);
-  EXPECT_EQ(lines(settings_.out + "/steps.jsonl").size(), 1u);
+  EXPECT_EQ(test::json_lines(settings_.out + "/steps.jsonl").size(), 1u);
   // a kill before the row was written: the row is recomputed from the recorded probes, none re-run
   fs::remove(settings_.out + "/steps.jsonl");
   const SuiteOutcome recomputed = run_suite(settings_);
   EXPECT_EQ(recomputed.jobs_run, 0);
   EXPECT_EQ(recomputed.step_searches, 1);
-  const auto after = lines(settings_.out + "/steps.jsonl");
+  const auto after = test::json_lines(settings_.out + "/steps.jsonl");
   ASSERT_EQ(after.size(), 1u);
   EXPECT_EQ(after[0], row);
-  EXPECT_EQ(lines(settings_.out + "/runs.jsonl").size(), runs.size());
+  EXPECT_EQ(test::json_lines(settings_.out + "/runs.jsonl").size(), runs.size());
   // other tolerances are another search: a second row, reusing the probes it shares with the first
   settings_.step_search->tolerance[HeadlineMetric::frame1_sensor_peak] = 0.3;
   const SuiteOutcome looser = run_suite(settings_);
-  const auto both = lines(settings_.out + "/steps.jsonl");
+  const auto both = test::json_lines(settings_.out + "/steps.jsonl");
   ASSERT_EQ(both.size(), 2u);
   EXPECT_EQ(both[1]["frame1_sensor_peak_largest_step_within_tolerance_s"].get<double>(),
             grid_neighbours(grid, kUnstableAbove_s).first);
@@ -323,7 +316,7 @@ TEST_F(StepSearchSuite, AProbeAtTheTimeLimitIsNotDecidedNotUnstable) {
     return name == "stepped" ? std::make_unique<SteppedMirror>(1e-4) : make_simulator(name);
   };
   run_suite(settings_);
-  const auto rows = lines(settings_.out + "/steps.jsonl");
+  const auto rows = test::json_lines(settings_.out + "/steps.jsonl");
   ASSERT_EQ(rows.size(), 1u);
   const auto grid = step_grid(*settings_.step_search);
   EXPECT_EQ(rows[0]["largest_stable_step_s"].get<double>(), grid_neighbours(grid, kUnstableAbove_s).first);

@@ -40,20 +40,6 @@ class Counted final : public Simulator {
   }
 };
 
-std::vector<nlohmann::json> records(const fs::path& jsonl) {
-  std::vector<nlohmann::json> lines;
-  std::ifstream in(jsonl);
-  for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
-  return lines;
-}
-
-std::size_t lines_of(const fs::path& path) {
-  std::ifstream in(path);
-  std::size_t n = 0;
-  for (std::string line; std::getline(in, line);) ++n;
-  return n;
-}
-
 class SuiteNativeContact : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -78,9 +64,9 @@ class SuiteNativeContact : public ::testing::Test {
 TEST_F(SuiteNativeContact, OneNativeRunScoredAgainstEveryLaw) {
   const SuiteOutcome outcome = run_suite(settings_);
   EXPECT_EQ(outcome.not_ok, 0);
-  EXPECT_EQ(lines_of(g_run_log), 4u);  // three matched runs, one native
+  EXPECT_EQ(test::line_count(g_run_log), 4u);  // three matched runs, one native
   std::map<std::string, nlohmann::json> by_id;
-  for (const auto& r : records(root_ / "out" / "runs.jsonl")) by_id[r["job_id"]] = r;
+  for (const auto& r : test::json_lines(root_ / "out" / "runs.jsonl")) by_id[r["job_id"]] = r;
   const std::string source = "short_free/counted/hertz/contact=native";
   ASSERT_TRUE(by_id.count(source));
   EXPECT_EQ(by_id[source]["same_run_as"], "");
@@ -109,7 +95,7 @@ TEST_F(SuiteNativeContact, OneNativeRunScoredAgainstEveryLaw) {
 TEST_F(SuiteNativeContact, AResumedSuiteRecordsALostScoredRowAgain) {
   run_suite(settings_);
   const fs::path jsonl = root_ / "out" / "runs.jsonl";
-  const std::vector<nlohmann::json> whole = records(jsonl);
+  const std::vector<nlohmann::json> whole = test::json_lines(jsonl);
   // Lose the scored Newton row, as a kill between two appends would.
   std::string kept;
   for (const auto& r : whole)
@@ -118,10 +104,10 @@ TEST_F(SuiteNativeContact, AResumedSuiteRecordsALostScoredRowAgain) {
   settings_.resume = true;
   const SuiteOutcome resumed = run_suite(settings_);
   EXPECT_EQ(resumed.jobs_run, 1);               // the lost row alone is recorded
-  EXPECT_EQ(lines_of(g_run_log), 4u + 1u);      // by running the native run again
+  EXPECT_EQ(test::line_count(g_run_log), 4u + 1u);      // by running the native run again
   std::map<std::string, nlohmann::json> before, after;
   for (const auto& r : whole) before[r["job_id"]] = r;
-  for (const auto& r : records(jsonl)) after[r["job_id"]] = r;
+  for (const auto& r : test::json_lines(jsonl)) after[r["job_id"]] = r;
   ASSERT_EQ(after.size(), before.size());
   for (auto& [id, r] : after) {
     for (const std::string& timing : timing_field_names()) {

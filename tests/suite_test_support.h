@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace ib::test {
 
@@ -34,6 +36,22 @@ inline void write_short_free_vibration(const std::filesystem::path& folder) {
   }
   std::filesystem::create_directories(folder);
   std::ofstream(folder / "short_free.toml") << text;
+}
+
+// How many lines a file has (a suite's runs.jsonl, runs.csv); 0 when it is absent.
+inline std::size_t line_count(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
+// Each line of a JSON-lines file (runs.jsonl, steps.jsonl), parsed.
+inline std::vector<nlohmann::json> json_lines(const std::filesystem::path& path) {
+  std::vector<nlohmann::json> lines;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
+  return lines;
 }
 
 }  // namespace ib::test
