@@ -832,6 +832,8 @@ class SuiteRunner {
         const int probes_left = std::max(g.search->probes_left_estimate(), measured_left);
         JobWork later = work_of(probe);
         later.units = scenarios_[probe.scenario].duration_s * g.search->mean_unprobed_steps_per_second();
+        // Their steps differ from this probe's: what share of this step's runs ended early says nothing of them.
+        later.stop_key = "expected probes";
         progress_->estimate().expect(g.info.group_id, later, probes_left);
         if (interrupted() || static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) continue;  // waits for a worker
         progress_->estimate().expect(g.info.group_id, later, probes_left - 1);  // this one is planned below
