@@ -46,8 +46,6 @@ std::string step_text(double dt) {
   return text;
 }
 
-// The key's numbers exactly: a row is found again only under the same range and tolerances.
-std::string exact_text(double value) { return exact_number_text(value); }
 
 std::string csv_escape(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
@@ -111,10 +109,11 @@ Json step_json(const StepRow& row) {
   return j;
 }
 
+// The key's numbers exactly: a row is found again only under the same range and tolerances.
 std::string key_text(const std::string& group_id, double min_s, double max_s, double points,
                      const std::vector<double>& tolerances) {
-  std::string key = group_id + "|" + exact_text(min_s) + "|" + exact_text(max_s) + "|" + exact_text(points);
-  for (double t : tolerances) key += "|" + exact_text(t);
+  std::string key = group_id + "|" + exact_number_text(min_s) + "|" + exact_number_text(max_s) + "|" + exact_number_text(points);
+  for (double t : tolerances) key += "|" + exact_number_text(t);
   return key;
 }
 
@@ -131,7 +130,7 @@ const char* to_string(HeadlineMetric metric) {
 
 std::vector<double> step_grid(const StepSearchSettings& s) {
   if (!(s.min_step_s > 0) || !(s.max_step_s >= s.min_step_s) || !std::isfinite(s.max_step_s))
-    throw std::invalid_argument("step range " + exact_text(s.min_step_s) + "," + exact_text(s.max_step_s) +
+    throw std::invalid_argument("step range " + exact_number_text(s.min_step_s) + "," + exact_number_text(s.max_step_s) +
                                 ": allowed: 0 < MIN <= MAX [s]");
   if (s.points_per_octave < 1)
     throw std::invalid_argument("grid points per octave " + std::to_string(s.points_per_octave) + ": allowed: >= 1");

@@ -84,16 +84,21 @@ std::string last_line(const std::string& path) {
 }
 
 // The verdict written in a runs.jsonl line.
-std::string verdict_of(const std::string& json_line) {
-  const auto j = nlohmann::json::parse(json_line, nullptr, false);
-  return j.is_object() && j.contains("verdict") && j["verdict"].is_string() ? j["verdict"].get<std::string>() : "";
-}
+// What the suite reads back of a job's runs.jsonl line: its verdict, and for the remaining-time estimate
+// the steps it took (fewer than planned when it stopped unstable) and its simulator's own time.
+struct RowFacts {
+  std::string verdict;
+  double steps = -1, wall_time_s = -1;  // -1: not recorded
+};
 
-// A number of a recorded run (e.g. the steps it took: fewer than planned when it stopped unstable);
-// -1 when not recorded.
-double number_of(const std::string& json_line, const char* name) {
+RowFacts facts_of(const std::string& json_line) {
   const auto j = nlohmann::json::parse(json_line, nullptr, false);
-  return j.is_object() && j.contains(name) && j[name].is_number() ? j[name].get<double>() : -1;
+  RowFacts facts;
+  if (!j.is_object()) return facts;
+  if (j.contains("verdict") && j["verdict"].is_string()) facts.verdict = j["verdict"].get<std::string>();
+  for (const auto& [name, value] : {std::pair{"steps", &facts.steps}, std::pair{"wall_time_s", &facts.wall_time_s}})
+    if (j.contains(name) && j[name].is_number()) *value = j[name].get<double>();
+  return facts;
 }
 
 std::string read_file(const std::string& path) {
@@ -697,15 +702,15 @@ class SuiteRunner {
       throw OutputError(output_error.empty() ? output_error_text(folder, "write the run's files", 0) : output_error);
     const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
     if (clean) {
-      const std::string json = read_file(folder + "/row.jsonl");
-      // The work done, for the cost per step: an engine run that stopped unstable took fewer steps.
-      const double steps = number_of(json, "steps");
       const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
-      if (!recorded_.count(job.id))  // (recorded before: run again only for the jobs scored from it)
-        append_row_of(job, job.spec.settings.time_step_s > 0 && steps > 0 ? steps : -1, number_of(json, "wall_time_s"));
-      else
+      std::string json;
+      if (!recorded_.count(job.id)) {
+        json = append_row_of(job);
+      } else {  // recorded before: run again only for the jobs scored from it
+        json = read_file(folder + "/row.jsonl");
         remove_row_files(folder);
-      for (const PlannedJob* other : scored) append_row_of(*other, 0);
+      }
+      for (const PlannedJob* other : scored) append_row_of(*other);
       return json;
     }
     if (interrupted()) return "";  // stopped by the interruption, not by its own fault: --resume reruns it
@@ -738,15 +743,21 @@ class SuiteRunner {
     return jobs;
   }
 
-  // Appends the record a job's process left in its folder (row.csv, row.jsonl) and shows it.
-  void append_row_of(const PlannedJob& job, double units_done, double compute_s = -1) {
+  // Appends the record a job's process left in its folder (row.csv, row.jsonl), shows it and returns its
+  // runs.jsonl line. The work done, for the cost per step: the steps an engine run took (a job scored
+  // from another's run did none of its own, and its time is that run's).
+  std::string append_row_of(const PlannedJob& job) {
     const std::string folder = folder_of(job);
     const std::string json = read_file(folder + "/row.jsonl"), csv = read_file(folder + "/row.csv");
     append_rows(settings_.out, csv, json);
     recorded_.insert(job.id);
-    const auto verdict = verdict_from_string(verdict_of(json));
-    count_and_show(job.id, verdict.value_or(Verdict::failed), units_done, compute_s);
+    const RowFacts facts = facts_of(json);
+    const bool own_run = job.same_run_as.empty();
+    const double steps = own_run && job.spec.settings.time_step_s > 0 && facts.steps > 0 ? facts.steps : -1;
+    count_and_show(job.id, verdict_from_string(facts.verdict).value_or(Verdict::failed), own_run ? steps : 0,
+                   own_run ? facts.wall_time_s : -1);
     remove_row_files(folder);
+    return json;
   }
 
   static void remove_row_files(const std::string& folder) {
