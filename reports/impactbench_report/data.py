@@ -2,6 +2,7 @@
 
 import csv
 import gzip
+import json
 import math
 import os
 import tomllib
@@ -49,6 +50,43 @@ class Run(Record):
 class Suite:
     folder: str
     runs: list = field(default_factory=list)
+    _records: dict = None  # runs.jsonl by job id, read on first use
+
+    def record(self, run):
+        """A run's full record from runs.jsonl (its diagnostics: the settings the engine used, the
+        reference's frequencies and energy ledger), or {} when runs.jsonl does not hold it."""
+        if self._records is None:
+            self._records = {}
+            path = os.path.join(self.folder, "runs.jsonl")
+            if os.path.exists(path):
+                with open(path) as f:
+                    for line in f:
+                        try:
+                            record = json.loads(line)
+                        except json.JSONDecodeError:
+                            continue  # a cut last line: runs.csv is the report's source of truth
+                        self._records[record.get("job_id", "")] = record
+        return self._records.get(run["job_id"], {})
+
+    def diagnostics(self, run):
+        return self.record(run).get("diagnostics") or {}
+
+    def motor_frequency_hz(self, scenario):
+        """The motor's frequency in a case (the beam reference reports it), NaN without a motor or a
+        reference run."""
+        for law in sorted({r["law"] for r in self.runs if r["scenario"] == scenario}):
+            reference = self.beam_reference(scenario, law)
+            if reference is not None:
+                value = self.diagnostics(reference).get("motor_frequency_hz")
+                return float(value) if value else math.nan
+        return math.nan
+
+    def events(self, run):
+        """A run's contact episodes (events.csv: onset, end, duration, approach and rebound velocity,
+        restitution, peak force, impulse, indentation) as a dict of column -> list of floats; None when
+        the run kept none."""
+        path = os.path.join(self.folder, "runs", run["job_id"], "events.csv")
+        return read_series(path) if os.path.exists(path) else None
 
     def cases(self):
         """(scenario, law) pairs in a stable order: published cases first."""
