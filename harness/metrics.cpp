@@ -1,6 +1,8 @@
 // Metrics from a trajectory and its contact events (rig.md section 5), the same for every simulator.
 #include "metrics.h"
 
+#include "amplitude_decay.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -292,7 +294,13 @@ void add_energy_metric(Metrics& m, const Trajectory& t, const MetricSettings& se
 
 Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& settings) {
   Metrics m;
-  for (int f = 0; f < 2; ++f) m.frames[f] = frame_metrics(trajectory, f, settings);
+  for (int f = 0; f < 2; ++f) {
+    m.frames[f] = frame_metrics(trajectory, f, settings);
+    m.frames[f].log_decrement =
+        settings.excitation_frequency_hz > 0
+            ? kNaN
+            : log_decrement(trajectory.time_s, trajectory.displacement_m[f], settings.window_start_s, settings.window_end_s);
+  }
   add_impact_metrics(m, merge_impacts(trajectory.events, settings.window_start_s, settings.window_end_s,
                                       settings.merge_window_s));
   m.raw_onsets = onsets_in(trajectory.events, settings.window_start_s, settings.window_end_s);
@@ -309,6 +317,7 @@ MetricErrors compare_metrics(const Metrics& run, const Trajectory& run_trajector
                                                      reference.frames[f].sensor_peak_acceleration_g);
     e.displacement_relative_rms_error[f] =
         displacement_relative_rms_error(run_trajectory, reference_trajectory, f, settings);
+    e.log_decrement_relative_error[f] = relative_error(run.frames[f].log_decrement, reference.frames[f].log_decrement);
   }
   e.contact_duration_relative_error =
       relative_error(run.contact_duration_mean_s, reference.contact_duration_mean_s);
@@ -325,6 +334,7 @@ std::vector<std::pair<std::string, double>> flatten(const Metrics& m) {
     out.emplace_back(frame + "true_peak_acceleration_g", m.frames[f].true_peak_acceleration_g);
     out.emplace_back(frame + "rms_acceleration_g", m.frames[f].rms_acceleration_g);
     out.emplace_back(frame + "peak_displacement_m", m.frames[f].peak_displacement_m);
+    out.emplace_back(frame + "log_decrement", m.frames[f].log_decrement);
   }
   out.emplace_back("impacts", m.impacts);
   out.emplace_back("raw_onsets", m.raw_onsets);
@@ -351,6 +361,8 @@ std::vector<std::pair<std::string, double>> flatten(const MetricErrors& e, const
       {prefix + "impacts_per_cycle_difference", e.impacts_per_cycle_difference},
       {prefix + "frame1_displacement_relative_rms_error", e.displacement_relative_rms_error[0]},
       {prefix + "frame2_displacement_relative_rms_error", e.displacement_relative_rms_error[1]},
+      {prefix + "frame1_log_decrement_relative_error", e.log_decrement_relative_error[0]},
+      {prefix + "frame2_log_decrement_relative_error", e.log_decrement_relative_error[1]},
   };
 }
 

@@ -56,6 +56,9 @@ struct FrameMetrics {
   double true_peak_acceleration_g = 0;    // max |a| the simulator resolves, between samples too [g]
   double rms_acceleration_g = 0;          // RMS of the sampled acceleration [g]
   double peak_displacement_m = 0;         // max |u| [m]
+  // logarithmic decrement per cycle of the tip's displacement peaks over the window (amplitude_decay.h);
+  // a free vibration's only (NaN with a motor: a forced steady state does not decay)
+  double log_decrement = 0;
 };
 
 struct Metrics {
@@ -86,6 +89,7 @@ struct MetricErrors {
   double contact_duration_relative_error = 0;               // mean contact duration [-]
   double impacts_per_cycle_difference = 0;                  // run - ref [-]
   std::array<double, 2> displacement_relative_rms_error{};  // RMS(u - u_ref) / RMS(u_ref) over the window [-]
+  std::array<double, 2> log_decrement_relative_error{};     // free decay [-]; NaN with a motor
 };
 MetricErrors compare_metrics(const Metrics& run, const Trajectory& run_trajectory, const Metrics& reference,
                              const Trajectory& reference_trajectory, const MetricSettings& settings);

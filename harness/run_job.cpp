@@ -98,14 +98,18 @@ double diagnostic(const RunResult& result, const std::string& name) {
 }
 
 // Accuracy is judged against the reference on the engine's own chain when there is one: that
-// isolates the engine's contact handling and time stepping. Only a stable run (verdict ok) is judged.
+// isolates the engine's contact handling and time stepping (its errors against the beam, the whole
+// error a user sees, are in the record beside it). Only a stable run (verdict ok) is judged, and
+// never a reference: a reference is what others are judged against (the chain reference's distance
+// from the beam is the discretisation's, reported as data).
 void judge_accuracy_of(RunRecord& record, const Measurement& measurement) {
-  const auto& accuracy_errors = record.errors_vs_chain_reference ? record.errors_vs_chain_reference : record.errors_vs_reference;
-  if (record.verdict == Verdict::ok && accuracy_errors) {
-    const Judgement accuracy = judge_accuracy(*accuracy_errors, measurement.verdicts);
-    record.verdict = accuracy.verdict;
-    record.reason = accuracy.reason;
-  }
+  if (record.engine == "reference" || record.verdict != Verdict::ok) return;
+  const bool on_chain = record.errors_vs_chain_reference.has_value();
+  const auto& accuracy_errors = on_chain ? record.errors_vs_chain_reference : record.errors_vs_reference;
+  if (!accuracy_errors) return;
+  const Judgement accuracy = judge_accuracy(*accuracy_errors, measurement.verdicts, on_chain ? "own chain" : "beam");
+  record.verdict = accuracy.verdict;
+  record.reason = accuracy.reason;
 }
 
 // The errors of a run's metrics against the references (none where a reference is missing).

@@ -61,7 +61,7 @@ struct RunCost {
 
 struct RunResult {
   Trajectory trajectory;
-  // The strongest impact in the scoring window, finely resolved: every step of a fixed-step engine (the
+  // The first impact in the scoring window, finely resolved: every step of a fixed-step engine (the
   // reference: 1 MHz samples) from 1 ms before its onset to 1 ms after its end. Series only; may be empty.
   Trajectory impact_zoom;
   RunStatus status = RunStatus::ok;

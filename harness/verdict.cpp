@@ -84,20 +84,25 @@ Judgement judge_stability(const Scenario& scenario, const RunResult& result, con
   return {};
 }
 
-Judgement judge_accuracy(const MetricErrors& e, const VerdictSettings& s) {
+Judgement judge_accuracy(const MetricErrors& e, const VerdictSettings& s, const std::string& against) {
   std::ostringstream why;
   why.precision(3);
-  for (int f = 0; f < 2; ++f)
-    if (std::abs(e.sensor_peak_relative_error[f]) > s.sensor_peak_tolerance)
-      why << (why.tellp() > 0 ? "; " : "") << "frame " << f + 1 << " sensor peak off by "
-          << 100 * e.sensor_peak_relative_error[f] << " %";
-  if (std::abs(e.contact_duration_relative_error) > s.contact_duration_tolerance)
-    why << (why.tellp() > 0 ? "; " : "") << "mean contact duration off by " << 100 * e.contact_duration_relative_error << " %";
-  if (std::abs(e.impacts_per_cycle_difference) > s.impacts_per_cycle_tolerance)
-    why << (why.tellp() > 0 ? "; " : "") << "impacts per cycle off by " << e.impacts_per_cycle_difference;
+  why << std::showpos;
+  auto beyond = [&](const char* what, double error, double tolerance, bool relative) {
+    if (!(std::abs(error) > tolerance)) return;  // NaN (not defined in this case) is never beyond
+    why << (why.tellp() > 0 ? "; " : "") << what << " " << (relative ? 100 * error : error) << (relative ? " %" : "")
+        << std::noshowpos << " (tolerance " << (relative ? 100 * tolerance : tolerance) << (relative ? " %)" : ")")
+        << std::showpos;
+  };
+  beyond("frame 1 sensor peak", e.sensor_peak_relative_error[0], s.sensor_peak_tolerance, true);
+  beyond("frame 2 sensor peak", e.sensor_peak_relative_error[1], s.sensor_peak_tolerance, true);
+  beyond("mean contact duration", e.contact_duration_relative_error, s.contact_duration_tolerance, true);
+  beyond("impacts per cycle", e.impacts_per_cycle_difference, s.impacts_per_cycle_tolerance, false);
+  beyond("frame 1 log decrement", e.log_decrement_relative_error[0], s.log_decrement_tolerance, true);
+  beyond("frame 2 log decrement", e.log_decrement_relative_error[1], s.log_decrement_tolerance, true);
   const std::string reason = why.str();
   if (reason.empty()) return {};
-  return {Verdict::inaccurate, reason + " against the reference"};
+  return {Verdict::inaccurate, "vs " + against + ": " + reason};
 }
 
 }  // namespace ib

@@ -45,20 +45,19 @@ int parse_integer(const std::string& key, const std::string& text, int low, int 
   return static_cast<int>(value);
 }
 
-// The strongest impact in the series window (largest peak force; Newton: largest impulse) sampled at
+// The first impact in the series window (the one every simulator's zoom shows: step_recorder.h) sampled at
 // 1 MHz from 1 ms before its onset to 1 ms after its end: the run solved again up to there (the same
 // bits: the solver is deterministic), for the report's zoom. Empty when the window has no impact.
-Trajectory zoom_on_strongest_impact(const ModalModel& model, const Scenario& scenario,
-                                    const std::vector<ContactEvent>& events, const OutputWindow& window,
-                                    const ReferenceSettings& settings) {
-  const ContactEvent* strongest = nullptr;
-  auto strength = [](const ContactEvent& e) { return std::isfinite(e.peak_force_n) ? e.peak_force_n : e.impulse_n_s; };
+Trajectory zoom_on_first_impact(const ModalModel& model, const Scenario& scenario,
+                                 const std::vector<ContactEvent>& events, const OutputWindow& window,
+                                 const ReferenceSettings& settings) {
+  const ContactEvent* first = nullptr;
   for (const ContactEvent& e : events)
-    if (e.onset_time_s >= window.start_s && (!strongest || strength(e) > strength(*strongest))) strongest = &e;
-  if (!strongest) return {};
+    if (e.onset_time_s >= window.start_s && (!first || e.onset_time_s < first->onset_time_s)) first = &e;
+  if (!first) return {};
   const double margin = 1e-3;
-  const OutputWindow zoom{std::max(0.0, strongest->onset_time_s - margin),
-                          std::min(scenario.duration_s, strongest->end_time_s + margin), 1e6};
+  const OutputWindow zoom{std::max(0.0, first->onset_time_s - margin),
+                          std::min(scenario.duration_s, first->end_time_s + margin), 1e6};
   ReferenceSettings quiet = settings;
   quiet.track_energy = false;
   return solve_reference(model, initial_state(scenario, model), zoom.end_s, zoom, quiet).trajectory;
@@ -85,7 +84,7 @@ class ReferenceSimulator final : public Simulator {
     result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     result.cost.steps = solution.integrator_steps + solution.grid_intervals + solution.coarse_intervals;
     // after the cost is taken: the zoom is the report's, not the run's
-    result.impact_zoom = zoom_on_strongest_impact(model, scenario, solution.trajectory.events, window, settings);
+    result.impact_zoom = zoom_on_first_impact(model, scenario, solution.trajectory.events, window, settings);
     result.trajectory = std::move(solution.trajectory);
     result.trajectory.initial_mechanical_energy_j = solution.energy.initial_energy_j;
     result.status = solution.status;

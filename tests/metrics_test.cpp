@@ -506,13 +506,14 @@ TEST(Metrics, FlattenNamesEveryFigureOnceWithItsUnit) {
   // counts and ratios carry no unit
   const std::set<std::string> dimensionless = {"impacts", "raw_onsets", "excitation_cycles",
                                                "impacts_per_cycle", "impacts_per_beat", "mean_restitution",
-                                               "energy_change_relative"};
+                                               "energy_change_relative", "frame1_log_decrement",
+                                               "frame2_log_decrement"};
   std::set<std::string> names;
   for (const auto& [name, value] : flat) {
     EXPECT_TRUE(names.insert(name).second) << "duplicate " << name;
     EXPECT_TRUE(has_unit_suffix(name) || dimensionless.count(name)) << name;
   }
-  ASSERT_EQ(flat.size(), 22u);
+  ASSERT_EQ(flat.size(), 24u);
 
   auto value = [&](const std::string& name) {
     for (const auto& [n, v] : flat)
@@ -526,6 +527,7 @@ TEST(Metrics, FlattenNamesEveryFigureOnceWithItsUnit) {
   EXPECT_EQ(value("frame1_true_peak_acceleration_g"), m.frames[0].true_peak_acceleration_g);
   EXPECT_EQ(value("frame1_rms_acceleration_g"), m.frames[0].rms_acceleration_g);
   EXPECT_EQ(value("frame1_peak_displacement_m"), m.frames[0].peak_displacement_m);
+  EXPECT_TRUE(std::isnan(value("frame1_log_decrement")));  // a forced run does not decay
   EXPECT_EQ(value("frame2_true_peak_acceleration_g"), m.frames[1].true_peak_acceleration_g);
   EXPECT_EQ(value("impacts"), m.impacts);
   EXPECT_EQ(value("raw_onsets"), m.raw_onsets);
@@ -563,6 +565,7 @@ TEST(Metrics, FlattenErrorsPrefixesEveryName) {
   e.contact_duration_relative_error = 0.3;
   e.impacts_per_cycle_difference = 0.4;
   e.displacement_relative_rms_error = {0.5, 0.6};
+  e.log_decrement_relative_error = {0.7, 0.8};
   const auto flat = flatten(e, "vs_reference_");
   const std::vector<std::pair<std::string, double>> expected = {
       {"vs_reference_frame1_sensor_peak_relative_error", 0.1},
@@ -570,7 +573,9 @@ TEST(Metrics, FlattenErrorsPrefixesEveryName) {
       {"vs_reference_contact_duration_relative_error", 0.3},
       {"vs_reference_impacts_per_cycle_difference", 0.4},
       {"vs_reference_frame1_displacement_relative_rms_error", 0.5},
-      {"vs_reference_frame2_displacement_relative_rms_error", 0.6}};
+      {"vs_reference_frame2_displacement_relative_rms_error", 0.6},
+      {"vs_reference_frame1_log_decrement_relative_error", 0.7},
+      {"vs_reference_frame2_log_decrement_relative_error", 0.8}};
   EXPECT_EQ(flat, expected);
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -120,6 +121,28 @@ TEST(StepRecorder, EnergyIsNeededOnlyWhereTheSeriesAndTheZoomReachIt) {
   EXPECT_LT(impact.time_s.front(), series.events[0].onset_time_s - 1e-3 + h);
   for (double e : impact.mechanical_energy_j) EXPECT_TRUE(std::isfinite(e));
   EXPECT_LT(computed, steps / 2);  // most of the run before the window went without it
+}
+
+// The zoom keeps the window's first impact, not its strongest: every simulator's zoom then shows the
+// same impact (the report compares them like with like). An impact before the window does not count.
+TEST(StepRecorder, TheZoomHoldsTheFirstImpactOfTheWindow) {
+  const double h = 1e-4, start = 0.1, end = 0.3;
+  StepRecorder recorder(start, end, 1000);
+  StepState s;
+  for (int k = 0; k * h <= end + 1e-12; ++k) {
+    s.t = k * h;
+    const bool before = s.t > 0.05 && s.t < 0.052, first = s.t > 0.15 && s.t < 0.152, second = s.t > 0.25 && s.t < 0.252;
+    s.contact_force_n = before ? 500.0 : first ? 20.0 : second ? 300.0 : 0.0;
+    s.energy_j = 1;
+    recorder.record(s);
+  }
+  const Trajectory series = recorder.finish();
+  const Trajectory impact = recorder.impact_zoom();
+  ASSERT_EQ(series.events.size(), 3u);
+  ASSERT_GT(impact.size(), 2u);
+  EXPECT_NEAR(impact.time_s.front(), series.events[1].onset_time_s - 1e-3, h);
+  EXPECT_NEAR(impact.time_s.back(), series.events[1].end_time_s + 1e-3, h);
+  EXPECT_EQ(*std::max_element(impact.contact_force_n.begin(), impact.contact_force_n.end()), 20.0);
 }
 
 }  // namespace

@@ -125,13 +125,25 @@ TEST(Verdict, TheSimulatorsOwnErrorIsKeptWithItsReason) {
 
 TEST(Verdict, ErrorsBeyondToleranceAreInaccurate) {
   MetricErrors e;
-  EXPECT_EQ(judge_accuracy(e, {}).verdict, Verdict::ok);
+  EXPECT_EQ(judge_accuracy(e, {}, "own chain").verdict, Verdict::ok);
   e.sensor_peak_relative_error[1] = -0.25;
   e.impacts_per_cycle_difference = 0.5;
-  const Judgement j = judge_accuracy(e, {});
+  e.log_decrement_relative_error[0] = 0.46;
+  const Judgement j = judge_accuracy(e, {}, "own chain");
   EXPECT_EQ(j.verdict, Verdict::inaccurate);
-  EXPECT_NE(j.reason.find("frame 2 sensor peak off by -25 %"), std::string::npos) << j.reason;
-  EXPECT_NE(j.reason.find("impacts per cycle off by 0.5"), std::string::npos) << j.reason;
+  // the reference named once, every error signed, every tolerance stated
+  EXPECT_EQ(j.reason.rfind("vs own chain: ", 0), 0u) << j.reason;
+  EXPECT_NE(j.reason.find("frame 2 sensor peak -25 % (tolerance 10 %)"), std::string::npos) << j.reason;
+  EXPECT_NE(j.reason.find("impacts per cycle +0.5 (tolerance 0.1)"), std::string::npos) << j.reason;
+  EXPECT_NE(j.reason.find("frame 1 log decrement +46 % (tolerance 10 %)"), std::string::npos) << j.reason;
+}
+
+TEST(Verdict, AnErrorAtTheToleranceOrUndefinedIsNotInaccurate) {
+  MetricErrors e;
+  e.sensor_peak_relative_error = {0.10, -0.10};
+  e.contact_duration_relative_error = std::nan("");
+  e.log_decrement_relative_error = {std::nan(""), 0.0999};
+  EXPECT_EQ(judge_accuracy(e, {}, "beam").verdict, Verdict::ok);
 }
 
 TEST(Verdict, NamesRoundTrip) {

@@ -61,16 +61,15 @@ void StepRecorder::record(const StepState& s) {
 }
 
 void StepRecorder::keep_for_zoom(const StepSample& sample, bool episode_started, bool episode_ended) {
+  if (zoom_done_) return;  // the first impact of the window is kept; nothing more to capture
   if (episode_started && !capturing_ && episode_.onset_time_s >= start_s_) {
     capturing_ = true;
     // the steps from the margin before the onset on (recent_ may still hold older ones, dropped in batches)
     capture_.assign(recent_.begin() + static_cast<std::ptrdiff_t>(recent_stale_), recent_.end());
-    capture_peak_ = 0;
     capture_until_ = std::numeric_limits<double>::infinity();
   }
   if (capturing_) {
     capture_.push_back(sample);
-    capture_peak_ = std::max(capture_peak_, std::abs(sample.force));
     if (episode_ended) capture_until_ = std::min(capture_until_, sample.t + kZoomMargin_s);
     if (sample.t >= capture_until_ || capture_.size() >= kZoomMaxSteps) end_capture();
     return;
@@ -87,10 +86,8 @@ void StepRecorder::keep_for_zoom(const StepSample& sample, bool episode_started,
 
 void StepRecorder::end_capture() {
   capturing_ = false;
-  if (capture_peak_ > strongest_peak_) {
-    strongest_peak_ = capture_peak_;
-    strongest_.swap(capture_);
-  }
+  zoom_done_ = true;
+  zoomed_.swap(capture_);
   capture_.clear();
   recent_.clear();
   recent_stale_ = 0;
@@ -98,8 +95,8 @@ void StepRecorder::end_capture() {
 
 Trajectory StepRecorder::impact_zoom() const {
   Trajectory z;
-  z.reserve(strongest_.size());
-  for (const StepSample& s : strongest_) {
+  z.reserve(zoomed_.size());
+  for (const StepSample& s : zoomed_) {
     z.time_s.push_back(s.t);
     for (int f = 0; f < 2; ++f) {
       z.displacement_m[f].push_back(s.displacement[f]);

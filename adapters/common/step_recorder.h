@@ -46,8 +46,10 @@ class StepRecorder {
 
   long long steps() const { return steps_; }
   Trajectory finish();
-  // The strongest impact (largest contact force) whose onset lies in the series window: every step from
-  // 1 ms before its onset to 1 ms after its end (call after finish()).
+  // The first impact whose onset lies in the series window: every step from 1 ms before its onset to
+  // 1 ms after its end (call after finish()). The first, not the strongest: every simulator then shows
+  // the same impact (in a free vibration the same physical one; in a chaotic forced case the window's
+  // first), which the report compares like with like.
   Trajectory impact_zoom() const;
 
  private:
@@ -70,11 +72,11 @@ class StepRecorder {
   double peak_force_ = 0;
   bool in_contact_ = false;
   ContactEvent episode_;
-  // impact zoom: the last 1 ms of steps, the impact being captured, the strongest so far
-  std::vector<StepSample> recent_, capture_, strongest_;
+  // impact zoom: the last 1 ms of steps, the impact being captured, the impact kept
+  std::vector<StepSample> recent_, capture_, zoomed_;
   std::size_t recent_stale_ = 0;  // recent_[0, recent_stale_) are older than the zoom's margin
-  bool capturing_ = false;
-  double capture_until_ = 0, capture_peak_ = 0, strongest_peak_ = 0;
+  bool capturing_ = false, zoom_done_ = false;
+  double capture_until_ = 0;
 };
 
 }  // namespace ib

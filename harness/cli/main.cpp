@@ -11,7 +11,9 @@
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
+#include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -58,6 +60,33 @@ std::string resume_command(int argc, char** argv) {
 }
 int g_argc = 0;
 char** g_argv = nullptr;
+
+// Appends the suite's command, when it started, and the verdicts' tolerances to OUT/commands.jsonl
+// before the suite runs: the report names the commands that produced its folder (a study runs several
+// into one folder) and states the tolerances its verdicts used.
+void record_command(const std::string& out, const ib::VerdictSettings& v) {
+  std::string typed = resume_command(g_argc, g_argv);
+  if (std::find(g_argv, g_argv + g_argc, std::string("--resume")) == g_argv + g_argc)
+    typed.resize(typed.size() - std::string(" --resume").size());
+  char started[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(started, sizeof started, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  const nlohmann::json line = {
+      {"command", typed},
+      {"started_utc", started},
+      {"verdict_tolerances",
+       {{"sensor_peak_relative_error", v.sensor_peak_tolerance},
+        {"contact_duration_relative_error", v.contact_duration_tolerance},
+        {"impacts_per_cycle_difference", v.impacts_per_cycle_tolerance},
+        {"log_decrement_relative_error", v.log_decrement_tolerance}}},
+      {"stability_bounds",
+       {{"displacement_fraction_of_length", v.displacement_bound_fraction_of_length},
+        {"penetration_gaps", v.penetration_bound_gaps},
+        {"energy_growth_relative", v.energy_growth_tolerance}}}};
+  std::error_code error;
+  std::filesystem::create_directories(out, error);  // when it cannot, the suite reports why (exit 3)
+  if (!error) ib::append_text_file(out + "/commands.jsonl", line.dump() + "\n");
+}
 
 std::vector<std::string> split(const std::string& text, char separator) {
   std::vector<std::string> parts;
@@ -344,6 +373,7 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
              o.steps_per_octave != SuiteOptions{}.steps_per_octave || o.keep_series) {
     throw std::invalid_argument("--step-range, --steps-per-octave, --tolerance and --keep-series need --find-steps");
   }
+  record_command(o.out, s.measurement.verdicts);
   const ib::SuiteOutcome outcome = ib::run_suite(s);
   if (outcome.interrupted_by != 0) {
     // A step search plans its probes as they end, so its total is not known in advance.
