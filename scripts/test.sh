@@ -6,6 +6,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
+# The report's page is tested as a reader sees it, in headless Chromium (reports/tests/test_page_in_chromium.py):
+# Debian's chromium, installed when missing (as root or with sudo, as the other packages).
+command -v chromium >/dev/null || IMPACTBENCH_EXTRA_PACKAGES=chromium scripts/install-deps.sh --only-extra
 (cd build && ctest --output-on-failure -j "$(nproc)")
 
 if [[ "${IMPACTBENCH_SKIP_SANITIZE:-0}" == 1 ]]; then
