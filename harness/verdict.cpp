@@ -98,8 +98,9 @@ Judgement judge_accuracy(const MetricErrors& e, const VerdictSettings& s, const 
   beyond("frame 2 sensor peak", e.sensor_peak_relative_error[1], s.sensor_peak_tolerance, true);
   beyond("mean contact duration", e.contact_duration_relative_error, s.contact_duration_tolerance, true);
   beyond("impacts per cycle", e.impacts_per_cycle_difference, s.impacts_per_cycle_tolerance, false);
+  // Frame 1's decay only: frame 1 is released and its envelope decays throughout, while frame 2 starts at
+  // rest and first gains from the impacts, so a fitted decrement of its peaks is not a decay rate.
   beyond("frame 1 log decrement", e.log_decrement_relative_error[0], s.log_decrement_tolerance, true);
-  beyond("frame 2 log decrement", e.log_decrement_relative_error[1], s.log_decrement_tolerance, true);
   const std::string reason = why.str();
   if (reason.empty()) return {};
   return {Verdict::inaccurate, "vs " + against + ": " + reason};

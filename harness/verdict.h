@@ -31,7 +31,7 @@ struct VerdictSettings {
   double sensor_peak_tolerance = 0.10;                 // |relative error| of either frame's sensor peak [-]
   double contact_duration_tolerance = 0.10;            // |relative error| of the mean contact duration [-]
   double impacts_per_cycle_tolerance = 0.10;           // |difference| of impacts per cycle [-]
-  double log_decrement_tolerance = 0.10;               // |relative error| of either frame's free decay [-]
+  double log_decrement_tolerance = 0.10;               // |relative error| of frame 1's free decay [-]
 };
 
 // From the simulator's own status and the trajectory alone.
