@@ -10,6 +10,9 @@ Debian's python3-matplotlib (run with /usr/bin/python3)."""
 
 import argparse
 import datetime
+import json
+import math
+import multiprocessing
 import os
 import platform
 import shutil
@@ -17,7 +20,9 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from impactbench_report import analysis, data, figures, performance, tables  # noqa: E402
+from impactbench_report import analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
+from impactbench_report import step_figures, zoom_figures  # noqa: E402
+from impactbench_report import dynamics  # noqa: E402
 
 CAVEATS = [
     "The experiment's figures (rig.md section 7) are data shown beside the simulators, not targets: the "
@@ -30,7 +35,8 @@ CAVEATS = [
     "With the corrected mode shapes the post-resonance case produces no impacts (the forced amplitude, 0.46 mm, "
     "stays below the 1 mm gap); the experiment reported about 8 impacts per beat.",
     "A fixed-step engine resolves a contact's duration in whole steps; its errors at long steps include that.",
-    "Run times are the simulators' own (stepping only), measured on the machine named below.",
+    "Costs are the simulators' own CPU time (stepping only) per simulated second, measured on the machine "
+    "named above under the load average stated there; wall times are in runs.csv.",
 ]
 
 
@@ -49,18 +55,81 @@ def machine():
     return f"{model or platform.processor()} x {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def provenance(suite):
+def read_commands(folder):
+    """OUT/commands.jsonl: the suite commands that wrote the folder, with the verdict tolerances they
+    used; [] for a folder that predates it."""
+    path = os.path.join(folder, "commands.jsonl")
+    commands = []
+    if os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                try:
+                    commands.append(json.loads(line))
+                except json.JSONDecodeError:
+                    pass  # a line cut by an interruption: the others still name the commands
+    return commands
+
+
+def provenance(suite, commands):
+    """What ran, where and under what load: the page's "What ran" list and summary.json's "suite"."""
     versions = sorted({f"{r['engine']}: {r['engine_version']}" for r in suite.runs if r["engine_version"]})
-    steps = sorted({r.number("time_step_s") for r in suite.runs if r.number("time_step_s") > 0})
-    rates = sorted({r.number("output_rate_hz") for r in suite.runs if r.number("output_rate_hz") > 0})
+    scenarios = {}
+    for r in suite.runs:
+        if r["scenario"] and r["engine"] and r["scenario"] not in scenarios:
+            scenarios[r["scenario"]] = (f"{r.number('duration_s'):g} s simulated, scored over "
+                                        f"{r.number('window_start_s'):g}-{r.number('window_end_s'):g} s")
+    loads = sorted(r.number("load_average") for r in suite.runs if not math.isnan(r.number("load_average")))
+    steps = sorted({r.number("time_step_s") for r in suite.runs if r.number("time_step_s") > 0 and r["engine"] != "reference"})
     return {
-        "date": datetime.datetime.now().strftime("%Y-%m-%d %H:%M"),
-        "machine": machine(),
-        "engines": "; ".join(versions),
+        "made": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+        "commands": "; ".join(c.get("command", "?") + f" (started {c.get('started_utc', '?')})" for c in commands)
+                    or "not recorded (a results folder older than commands.jsonl)",
+        "cases": "; ".join(f"{name}: {text}" for name, text in scenarios.items()),
         "time steps [s]": ", ".join(f"{s:g}" for s in steps) or "adaptive only",
-        "output rate [Hz]": ", ".join(f"{r:g}" for r in rates),
-        "suite": os.path.abspath(suite.folder),
+        "machine": machine(),
+        "load average during the runs (1 min)": (f"{loads[0]:.2f} to {loads[-1]:.2f}, median {loads[len(loads) // 2]:.2f} "
+                                                 f"on {os.cpu_count()} cores") if loads else "not recorded",
+        "engines": "; ".join(versions),
+        "suite folder": os.path.abspath(suite.folder),
     }
+
+
+DYNAMICS = ["acceleration_histories", "phase_portraits", "poincare_sections", "spectra", "scalograms",
+            "impact_distributions", "amplitude_decay"]
+
+
+def case_figures(suite, scenario, law, chosen, steps, tolerances, folder, stamp):
+    """A case's figures in reading order: error against cost, the impact zoom, the researcher's views
+    (dynamics.py), the step search's limits."""
+    paths = [figures.error_against_cost(suite, scenario, law, folder, stamp, tolerances),
+             zoom_figures.impact_zoom(suite, scenario, law, chosen, folder, stamp)]
+    for name in DYNAMICS:
+        view = getattr(dynamics, name, None)
+        if view is not None:
+            paths.append(view(suite, scenario, law, chosen, folder, stamp))
+    if data.steps_of(steps, scenario, law):
+        paths.append(step_figures.step_limits(steps, scenario, law, folder, stamp))
+    return [p for p in paths if p]
+
+
+_CASES = {}  # what the worker processes draw from, set before they fork (nothing is pickled but the answer)
+
+
+def _draw_case(index):
+    c = _CASES
+    scenario, law, chosen = c["cases"][index]
+    return case_figures(c["suite"], scenario, law, chosen, c["steps"], c["tolerances"], c["folder"], c["stamp"])
+
+
+def draw_cases(suite, cases, steps, tolerances, folder, stamp):
+    """Every case's figures, the cases spread over the machine's cores (each figure is independent, and
+    saving them is most of the report's time); in one process where fork is not available."""
+    _CASES.update(suite=suite, cases=cases, steps=steps, tolerances=tolerances, folder=folder, stamp=stamp)
+    workers = min(len(cases), os.cpu_count() or 1)
+    if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        return [_draw_case(i) for i in range(len(cases))]
+    with multiprocessing.get_context("fork").Pool(workers) as pool:
+        return pool.map(_draw_case, range(len(cases)), chunksize=1)
 
 
 def main():
@@ -72,7 +141,9 @@ def main():
         sys.exit(f"make_report: {args.suite}/runs.csv: no such file (is this a suite's output folder?)")
     out = args.out or os.path.join(args.suite, "report")
     figures_folder = os.path.join(out, "figures")
-    os.makedirs(figures_folder, exist_ok=True)
+    if os.path.isdir(figures_folder):
+        shutil.rmtree(figures_folder)  # a figure a case no longer draws must not linger
+    os.makedirs(figures_folder)
 
     try:
         suite = data.read_runs(args.suite)
@@ -80,32 +151,40 @@ def main():
     except data.ResultsError as error:
         sys.exit(f"make_report: {error}")
     experiment = data.read_experiment(os.path.join(os.path.dirname(os.path.abspath(__file__)), "experiment.toml"))
-    facts = provenance(suite)
-    versions = ", ".join(sorted({r["engine_version"] for r in suite.runs if r["engine_version"] and r["engine"] != "reference"}))
-    stamp = f"impactbench, {facts['date']}, {facts['machine']}" + (f"; {versions}" if versions else "")
+    commands = read_commands(args.suite)
+    tolerances = next((c["verdict_tolerances"] for c in reversed(commands) if "verdict_tolerances" in c),
+                      analysis.DEFAULT_TOLERANCES)
+    facts = provenance(suite, commands)
+    document = answer.summarise(suite, steps, experiment, tolerances, facts)
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        json.dump(document, f, indent=1, allow_nan=False)
+    stamp = f"impactbench, {facts['made']}, {facts['machine']}"
 
     sections = []  # (title, markdown text, html text, [figure paths])
     chosen_by_law = {}
+    cases = []
     for scenario, law in suite.cases():
         runs = suite.runs_of(scenario, law)
-        chosen = {config: analysis.best_step(runs, config) for config in analysis.configurations(runs)}
+        chosen = {}
+        for config in analysis.configurations(runs):
+            run = analysis.best_step(runs, config, tolerances)
+            if run is not None:
+                chosen[config] = run
         chosen_by_law.setdefault(law, {})[scenario] = chosen
+        cases.append((scenario, law, chosen))
+    paths_by_case = draw_cases(suite, cases, steps, tolerances, figures_folder, stamp)
+    for (scenario, law, _), paths in zip(cases, paths_by_case):
         header, rows = tables.case_table(suite, scenario, law, experiment)
-        winner = tables.winner_line(suite, scenario, law)
-        paths = [figures.error_against_cost(suite, scenario, law, figures_folder, stamp),
-                 figures.sensor_time_history(suite, scenario, law, chosen, figures_folder, stamp),
-                 figures.impact_zoom(suite, scenario, law, chosen, figures_folder, stamp)]
-        markdown_text = tables.markdown(header, rows) + "\n\n" + winner
-        html_text = tables.html_table(header, rows) + f"<p>{winner}</p>"
+        markdown_text = tables.markdown(header, rows)
+        html_text = tables.html_table(header, rows)
         steps_header, steps_rows = tables.steps_table(steps, scenario, law)
         if steps_rows:
             markdown_text += "\n\n" + STEPS_NOTE + "\n\n" + tables.markdown(steps_header, steps_rows)
             html_text += f"<p>{STEPS_NOTE}</p>" + tables.html_table(steps_header, steps_rows)
-            paths.append(figures.step_limits(steps, scenario, law, figures_folder, stamp))
-        sections.append((f"{scenario}, {law}", markdown_text, html_text, [p for p in paths if p]))
+        sections.append((f"{scenario}, {law}", markdown_text, html_text, paths))
     for law in sorted(chosen_by_law):
-        paths = [figures.stability_map(suite, law, figures_folder, stamp, steps),
-                 figures.against_experiment(suite, law, chosen_by_law[law], experiment, figures_folder, stamp)]
+        paths = [step_figures.stability_map(suite, law, figures_folder, stamp, steps),
+                 zoom_figures.against_experiment(suite, law, chosen_by_law[law], experiment, figures_folder, stamp)]
         sections.append((f"{law}: stability and the experiment", "", "", [p for p in paths if p]))
 
     try:
@@ -115,19 +194,18 @@ def main():
     if measured:
         sections.append(("Performance", measured[0], measured[1], []))
 
-    for name in ("runs.csv", "runs.jsonl"):
+    for name in ("runs.csv", "runs.jsonl", "steps.csv", "commands.jsonl"):
         source = os.path.join(args.suite, name)
         if os.path.exists(source) and os.path.abspath(out) != os.path.abspath(args.suite):
             shutil.copy(source, os.path.join(out, name))
-    write_markdown(os.path.join(out, "summary.md"), facts, sections, out)
-    write_html(os.path.join(out, "index.html"), facts, sections)
-    print(f"report: {os.path.join(out, 'index.html')}, {os.path.join(out, 'summary.md')}")
+    write_markdown(os.path.join(out, "summary.md"), document, facts, sections, out)
+    write_html(os.path.join(out, "index.html"), document, facts, sections, out)
+    print(f"report: {os.path.join(out, 'index.html')}, {os.path.join(out, 'summary.md')}, "
+          f"{os.path.join(out, 'summary.json')}")
 
 
-def write_markdown(path, facts, sections, out):
-    lines = ["# impactbench report", ""]
-    lines += [f"- {name}: {value}" for name, value in facts.items()]
-    lines += ["", "## Caveats", ""] + [f"- {c}" for c in CAVEATS]
+def write_markdown(path, document, facts, sections, out):
+    lines = [first_screen.markdown(document, facts), "", "## Caveats", ""] + [f"- {c}" for c in CAVEATS]
     for title, text, _, paths in sections:
         lines += ["", f"## {title}", ""]
         if text:
@@ -138,8 +216,14 @@ def write_markdown(path, facts, sections, out):
 
 
 STYLE = """
-body { font-family: sans-serif; margin: 1.5em auto; max-width: 1250px; padding: 0 1em; color: #222; }
-h1 { font-size: 1.5em; } h2 { font-size: 1.2em; border-bottom: 1px solid #ccc; margin-top: 2em; }
+body { font-family: sans-serif; margin: 1.5em auto; max-width: 1340px; padding: 0 1em; color: #222; }
+h1 { font-size: 1.35em; margin: 0.3em 0; } .lede { font-size: 0.85em; margin: 0.3em 0; }
+#answer { font-size: 0.8em; } #answer td { white-space: nowrap; padding: 0.15em 0.4em; }
+#answer td:nth-child(3), #answer td:nth-child(7) { white-space: normal; }
+#answer td:nth-child(2), #answer td:nth-child(6) { text-align: left; } #answer th { font-size: 0.9em; }
+.notes { font-size: 0.75em; color: #444; margin: 0.2em 0; } .engines { font-size: 0.8em; margin: 0.4em 0; } .convention { font-size: 0.8em; color: #444; }
+h2 + table, p + table { display: block; overflow-x: auto; max-width: 100%; }
+nav { font-size: 0.85em; margin: 1em 0; } figure img { width: 100%; height: auto; } h2 { font-size: 1.2em; border-bottom: 1px solid #ccc; margin-top: 2em; }
 table { border-collapse: collapse; font-size: 0.85em; margin: 0.8em 0; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.5em; text-align: right; }
 th { background: #f2f2f2; } td:first-child, th:first-child { text-align: left; }
@@ -149,26 +233,41 @@ dt { font-weight: bold; } .caveats li { margin: 0.3em 0; }
 """
 
 
-def inline_svg(path):
+def figure_html(path, out):
+    """A figure as a separate file (index.html stays small and opens at once), its caption, the SVG's
+    title, as the image's text for a reader without images."""
+    import html
+    caption = ""
     with open(path) as f:
-        text = f.read()
-    return text[text.find("<svg"):]  # drop the XML prolog and doctype: the SVG sits inside the page
+        head = f.read(4000)
+    start = head.find("<dc:title>")
+    if start >= 0:
+        caption = head[start + len("<dc:title>"):head.find("</dc:title>")]
+    relative = os.path.relpath(path, out)
+    return (f"<figure><a href='{html.escape(relative)}'><img src='{html.escape(relative)}' loading='lazy' "
+            f"alt='{html.escape(caption)}'></a></figure>")
 
 
-def write_html(path, facts, sections):
+def write_html(path, document, facts, sections, out):
     import html
     parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
              "<meta name='viewport' content='width=device-width, initial-scale=1'>",
              f"<title>impactbench report</title><style>{STYLE}</style></head><body>",
-             "<h1>impactbench report</h1><dl>"]
-    parts += [f"<dt>{html.escape(k)}</dt><dd>{html.escape(v)}</dd>" for k, v in facts.items()]
-    parts += ["</dl><h2>Caveats</h2><ul class='caveats'>"] + [f"<li>{html.escape(c)}</li>" for c in CAVEATS] + ["</ul>"]
+             first_screen.html_page_top(document, facts),
+             "<nav><b>Cases:</b> " + " · ".join(f"<a href='#{anchor(t)}'>{html.escape(t)}</a>" for t, _, _, _ in sections)
+             + " · <a href='#settings'>settings</a> · <a href='#provenance'>what ran</a> · <a href='#caveats'>caveats</a></nav>"]
     for title, _, table_html, paths in sections:
-        parts.append(f"<h2>{html.escape(title)}</h2>{table_html}")
-        parts += [f"<figure>{inline_svg(p)}</figure>" for p in paths]
+        parts.append(f"<h2 id='{anchor(title)}'>{html.escape(title)}</h2>{table_html}")
+        parts += [figure_html(p, out) for p in paths]
+    parts.append(first_screen.html_settings_and_provenance(document, facts))
+    parts += ["<h2 id='caveats'>Caveats</h2><ul class='caveats'>"] + [f"<li>{html.escape(c)}</li>" for c in CAVEATS] + ["</ul>"]
     parts.append("</body></html>")
     with open(path, "w") as f:
         f.write("\n".join(parts))
+
+
+def anchor(title):
+    return "".join(c if c.isalnum() else "-" for c in title.lower())
 
 
 if __name__ == "__main__":

@@ -141,29 +141,37 @@ std::map<std::string, std::string> csv_results(const fs::path& out, std::string&
   return by_id;
 }
 
-// summary.md with what legitimately differs between two runs of the same suite masked: the date, the
-// run-time column of the tables and the equal-run-time line.
+// summary.md with what legitimately differs between two runs of the same suite masked: when and where it
+// was made, the commands (the resumed one says --resume), the load, and every CPU cost (the columns headed
+// "CPU [...]" and the engines' median costs).
 std::string masked_summary(const fs::path& report) {
   std::istringstream in(read_text(report / "summary.md"));
   std::string out;
-  int run_time_column = -1;
+  std::vector<int> cost_columns;
+  const std::regex engine_cost(R"(at [0-9.e+-]+ s CPU/s)");
   for (std::string line; std::getline(in, line);) {
-    if (line.rfind("- date:", 0) == 0) line = "- date: <date>";
-    if (line.rfind("- suite:", 0) == 0) line = "- suite: <folder>";  // the two suites' folders
-    if (line.rfind("At equal run time", 0) == 0) line = "At equal run time: <depends on measured times>";
+    for (const char* varying : {"- made:", "- suite folder:", "- commands:", "- load average"})
+      if (line.rfind(varying, 0) == 0) line = std::string(varying) + " <varies>";
+    line = std::regex_replace(line, engine_cost, "at <cost> s CPU/s");
     if (line.rfind("| ", 0) == 0) {
       std::vector<std::string> cells;
       std::size_t at = 0;
       for (std::size_t next; (next = line.find(" | ", at)) != std::string::npos; at = next + 3) cells.push_back(line.substr(at, next - at));
       cells.push_back(line.substr(at));
+      bool header = false;
       for (std::size_t i = 0; i < cells.size(); ++i)
-        if (cells[i] == "run time [s]") run_time_column = static_cast<int>(i);
-      if (run_time_column >= 0 && run_time_column < static_cast<int>(cells.size()) && cells[run_time_column] != "run time [s]")
-        cells[run_time_column] = "<time>";
+        if (cells[i].rfind("CPU [", 0) == 0) {
+          if (!header) cost_columns.clear();
+          header = true;
+          cost_columns.push_back(static_cast<int>(i));
+        }
+      if (!header)
+        for (int column : cost_columns)
+          if (column < static_cast<int>(cells.size())) cells[column] = "<cost>";
       line.clear();
       for (std::size_t i = 0; i < cells.size(); ++i) line += (i ? " | " : "") + cells[i];
     } else if (line.rfind("|", 0) != 0) {
-      run_time_column = line.empty() ? run_time_column : -1;
+      cost_columns.clear();
     }
     out += line + "\n";
   }

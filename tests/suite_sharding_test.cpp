@@ -242,7 +242,7 @@ TEST_F(SuiteSharding, ShardsMergedGiveTheWholeSuite) {
   EXPECT_NE(merge.text.find("report: " + (*root_ / "merged" / "report" / "index.html").string()), std::string::npos)
       << merge.text;
   const std::string summary = read_text(*root_ / "merged" / "report" / "summary.md");
-  EXPECT_NE(summary.find("- suite: " + (*root_ / "merged").string()), std::string::npos) << summary;
+  EXPECT_NE(summary.find("- suite folder: " + (*root_ / "merged").string()), std::string::npos) << summary;
   // hard links where the file system allows (here, one temporary folder)
   const std::string some_run = records(whole() / "runs.jsonl", "job_id", {}).begin()->first;
   EXPECT_GE(fs::hard_link_count(*root_ / "merged" / "runs" / some_run / "series.csv.gz"), 2u);

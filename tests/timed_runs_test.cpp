@@ -97,6 +97,32 @@ TEST(TimedRuns, WithoutTimedRunsTheCostIsTheLoggedRunsAndNoSpreadIsClaimed) {
   }
 }
 
+// The cost per simulated second is per second the run actually simulated: a fixed-step run stopped as
+// unstable after 200 steps of 1e-4 s (0.02 s of 20 s) cost 0.02 s CPU for 0.02 s, 1 s/s, not 0.001 s/s.
+TEST(TimedRuns, ARunStoppedEarlyCostsPerSecondItSimulated) {
+  RunRecord r;
+  r.duration_s = 20;
+  r.time_step_s = 1e-4;
+  r.cost.steps = 200;
+  r.cost.cpu_time_s = 0.02;
+  r.cost.wall_time_s = 0.04;
+  auto value = [&](const std::string& name) {
+    for (const Field& field : fields(r))
+      if (field.name == name) return std::get<double>(field.value);
+    ADD_FAILURE() << "no " << name;
+    return std::nan("");
+  };
+  EXPECT_DOUBLE_EQ(value("simulated_time_s"), 0.02);
+  EXPECT_DOUBLE_EQ(value("cpu_time_per_simulated_s"), 1.0);
+  EXPECT_DOUBLE_EQ(value("wall_time_per_simulated_s"), 2.0);
+  r.cost.steps = 200000;  // the whole run: its duration
+  EXPECT_DOUBLE_EQ(value("simulated_time_s"), 20.0);
+  EXPECT_DOUBLE_EQ(value("cpu_time_per_simulated_s"), 0.001);
+  r.time_step_s = 0;  // the adaptive reference: its duration
+  r.cost.steps = 123;
+  EXPECT_DOUBLE_EQ(value("simulated_time_s"), 20.0);
+}
+
 TEST(TimedRuns, TimedRunsDoNotChangeWhatIsMeasured) {
   const auto folder = test::fresh_test_folder("timed_runs_");
   Fixture f(folder);

@@ -1,33 +1,86 @@
-"""What the tables and figures pick from the runs: each configuration's best and largest stable time
-step, and which engine wins at equal run time."""
+"""What the report picks from the runs: the headline errors and how they are scored, each configuration's
+best run and largest stable step, and which configuration answers a case best out of the box and tuned.
+
+One error convention (issue 16): every error is named by what it is measured against, the BEAM (the
+continuous-beam reference: the physical question, the whole error a user sees) or the engine's OWN
+CHAIN (the reference solved on the engine's K-link chain: the engine's contact handling and time stepping
+alone). runs.csv names them vs_reference_* and vs_chain_reference_*."""
 
 import math
 
-# The headline errors against the continuous-beam reference (the whole error a user would see) and
-# their names in runs.csv. Impacts per cycle is a difference, the others relative errors.
+AGAINST = {"beam": "vs_reference_", "own chain": "vs_chain_reference_"}
+
+# The headline errors the figures draw (label, error column without its prefix, kind).
 HEADLINE = [
     ("sensor peak, frame 1", "frame1_sensor_peak_relative_error", "relative"),
     ("contact duration", "contact_duration_relative_error", "relative"),
     ("impacts per cycle", "impacts_per_cycle_difference", "difference"),
 ]
 
+# The metrics a run is scored on: (label, runs.csv column of the metric, error column without its prefix, kind,
+# tolerance key in commands.jsonl's verdict_tolerances). Relative errors are fractions; impacts per cycle
+# is a difference.
+SCORED = [
+    ("frame 1 sensor peak", "frame1_sensor_peak_acceleration_g", "frame1_sensor_peak_relative_error", "relative",
+     "sensor_peak_relative_error"),
+    ("frame 2 sensor peak", "frame2_sensor_peak_acceleration_g", "frame2_sensor_peak_relative_error", "relative",
+     "sensor_peak_relative_error"),
+    ("contact duration", "contact_duration_mean_s", "contact_duration_relative_error", "relative",
+     "contact_duration_relative_error"),
+    ("impacts per cycle", "impacts_per_cycle", "impacts_per_cycle_difference", "difference",
+     "impacts_per_cycle_difference"),
+    ("frame 1 log decrement", "frame1_log_decrement", "frame1_log_decrement_relative_error", "relative",
+     "log_decrement_relative_error"),
+]
+
+# The harness's verdict tolerances (harness/verdict.h), used only for a results folder that predates
+# commands.jsonl (which states the tolerances its verdicts used).
+DEFAULT_TOLERANCES = {"sensor_peak_relative_error": 0.10, "contact_duration_relative_error": 0.10,
+                      "impacts_per_cycle_difference": 0.10, "log_decrement_relative_error": 0.10}
+
+NATIVE, TUNED = "native", ("matched", "injected")
+
+
+def contact_path(run):
+    """The contact path of an engine run: matched, injected or native (options contact=...; matched by
+    default)."""
+    for option in run["options"].split(";"):
+        name, _, value = option.partition("=")
+        if name == "contact":
+            return value
+    return "matched"
+
+
+def signed_error(run, column, against="beam"):
+    """A signed error of a run against the beam or its own chain (NaN where not defined); `against` may
+    also be the column prefix itself (vs_reference_, vs_chain_reference_)."""
+    return run.number(AGAINST.get(against, against) + column)
+
 
 def error(run, column, against="vs_reference_"):
-    return abs(run.number(against + column))
+    """|signed_error|, as the log-log figures draw it."""
+    return abs(signed_error(run, column, against))
 
 
-def score(run, against="vs_reference_"):
-    """The largest headline error of a run (NaN-free errors only); inf when it has none."""
-    errors = [error(run, column, against) for _, column, _ in HEADLINE]
-    errors = [e for e in errors if not math.isnan(e)]
-    return max(errors) if errors else math.inf
+def score(run, tolerances, against="beam"):
+    """(largest |error| / tolerance over the headline metrics, that metric's label, its signed error):
+    errors of different kinds compare through their tolerances. (inf, None, NaN) without any error."""
+    worst = (math.inf, None, math.nan)
+    for label, _, column, _, key in SCORED:
+        value = signed_error(run, column, against)
+        if math.isnan(value):
+            continue
+        multiple = abs(value) / tolerances[key]
+        if worst[1] is None or multiple > worst[0]:
+            worst = (multiple, label, value)
+    return worst
 
 
 def configurations(runs):
     """Engine configurations (engine + options) other than the references, in first-seen order."""
     seen = []
     for r in runs:
-        if r["engine"] != "reference" and r.config not in seen:
+        if r["engine"] not in ("reference", "") and r.config not in seen:
             seen.append(r.config)
     return seen
 
@@ -36,38 +89,31 @@ def runs_of_config(runs, config):
     return sorted((r for r in runs if r.config == config), key=lambda r: r.number("time_step_s"))
 
 
-def best_step(runs, config):
-    """The stable run with the smallest headline error (then the cheapest)."""
-    stable = [r for r in runs_of_config(runs, config) if r.stable]
-    if not stable:
+def best_run(runs, tolerances):
+    """The stable run with the smallest score against the beam, then the cheapest CPU time per simulated
+    second; None when no run is stable or scored."""
+    scored = [r for r in runs if r.stable and not math.isinf(score(r, tolerances)[0])]
+    if not scored:
         return None
-    return min(stable, key=lambda r: (score(r), r.number("wall_time_s")))
+    return min(scored, key=lambda r: (score(r, tolerances)[0], r.number("cpu_time_per_simulated_s")))
+
+
+def best_step(runs, config, tolerances=DEFAULT_TOLERANCES):
+    """A configuration's best run (see best_run)."""
+    return best_run(runs_of_config(runs, config), tolerances)
+
+
+def step_limits(runs, config):
+    """(largest stable step tried [s], the run at it, smallest unstable step tried [s] or NaN, whether a
+    larger step was tried and was unstable) over a configuration's fixed-step runs in the suite."""
+    ordered = [r for r in runs_of_config(runs, config) if r.number("time_step_s") > 0]
+    stable = [r for r in ordered if r.stable]
+    unstable = [r for r in ordered if r["verdict"] == "unstable"]
+    largest = max(stable, key=lambda r: r.number("time_step_s")) if stable else None
+    smallest_unstable = min((r.number("time_step_s") for r in unstable), default=math.nan)
+    return largest, smallest_unstable
 
 
 def largest_stable_step(runs, config):
-    stable = [r for r in runs_of_config(runs, config) if r.stable]
-    return max(stable, key=lambda r: r.number("time_step_s")) if stable else None
-
-
-def winner_at_equal_cost(runs):
-    """(budget [s], config, score) for the engine with the smallest headline error among runs that cost at
-    most the budget, the budget being the largest of the configurations' cheapest stable runs, so that
-    every configuration has a run within it. None when there is nothing to compare."""
-    configs = configurations(runs)
-    cheapest = []
-    for config in configs:
-        stable = [r for r in runs_of_config(runs, config) if r.stable and not math.isinf(score(r))]
-        if stable:
-            cheapest.append(min(r.number("wall_time_s") for r in stable))
-    if len(cheapest) < 2:
-        return None
-    budget = max(cheapest)
-    best = None
-    for config in configs:
-        within = [r for r in runs_of_config(runs, config)
-                  if r.stable and r.number("wall_time_s") <= budget and not math.isinf(score(r))]
-        if within:
-            run = min(within, key=score)
-            if best is None or score(run) < best[2]:
-                best = (budget, config, score(run))
-    return best
+    largest, _ = step_limits(runs, config)
+    return largest

@@ -12,9 +12,10 @@ from dataclasses import dataclass
 
 import matplotlib
 import numpy as np
-from scipy import signal, stats
+from scipy import signal
 
 from . import data, figures
+from .signals import MORLET_W, amplitude_spectrum, cycle_peaks, log_decrement, poincare_points, wavelet_amplitude
 
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
@@ -27,66 +28,7 @@ SENSOR_RATE_HZ = 2048.0  # the accelerometer's sampling rate (rig.md section 5)
 SCALOGRAM_RATE_HZ = 512.0  # the sensor signal decimated to this before the wavelet transform (cheap, 0-256 Hz)
 SCALOGRAM_BAND_HZ = (1.0, 200.0)
 SCALOGRAM_SCALES = 72
-MORLET_W = 6.0  # cycles of the Morlet wavelet: the usual balance of time and frequency resolution
 NO_SERIES = "no series kept (run with --series none or a step-search probe)"
-
-
-# ---- signal processing (pure functions) ------------------------------------------------------------------
-
-def cycle_peaks(times, displacements):
-    """One peak per whole cycle: the largest displacement between two upward zero crossings, so that higher
-    modes riding on the first do not count (the same cycles as harness/amplitude_decay.cpp). Returns
-    (peak times, peaks) as arrays."""
-    t, u = np.asarray(times, float), np.asarray(displacements, float)
-    up = np.flatnonzero((u[:-1] <= 0) & (u[1:] > 0)) + 1
-    peak_index = [a + int(np.argmax(u[a:b])) for a, b in zip(up[:-1], up[1:])]
-    return t[peak_index], u[peak_index]
-
-
-def log_decrement(times, displacements):
-    """(logarithmic decrement per cycle [-], decay rate [1/s]) of a free vibration: the least-squares slope of
-    ln(peak) against the cycle's index over its cycle peaks, and that slope over the mean cycle period (the
-    slope of the peaks' times against their index). For u = A exp(-zeta w t) sin(w_d t) they are
-    2 pi zeta / sqrt(1 - zeta^2) and zeta w. NaN, NaN with fewer than three cycles or a non-positive peak."""
-    peak_times, peaks = cycle_peaks(times, displacements)
-    if len(peaks) < 3 or np.any(peaks <= 0):
-        return math.nan, math.nan
-    index = np.arange(len(peaks))
-    decrement = -stats.linregress(index, np.log(peaks)).slope
-    period = stats.linregress(index, peak_times).slope
-    return decrement, decrement / period
-
-
-def poincare_points(times, displacements, velocities, frequency_hz, start_s, end_s):
-    """The states (u, v) once per excitation period, at the motor's phase zero (t = k / f) inside
-    [start_s, end_s] and inside the series (np.interp would hold the last value beyond it), interpolated
-    linearly between samples."""
-    start_s, end_s = max(start_s, times[0]), min(end_s, times[-1])
-    k = np.arange(math.ceil(start_s * frequency_hz - 1e-9), math.floor(end_s * frequency_hz + 1e-9) + 1)
-    instants = k / frequency_hz
-    return (np.interp(instants, times, displacements), np.interp(instants, times, velocities))
-
-
-def amplitude_spectrum(values, rate_hz, segment_s=2.0):
-    """(frequencies [Hz], amplitude of a sine component [unit of values]) by Welch's method: Hann-windowed
-    segments of segment_s with half overlap, power per bin averaged, sqrt(2 P) so a sine of amplitude A on
-    a bin reads A."""
-    values = np.asarray(values, float)
-    segment = min(len(values), int(round(segment_s * rate_hz)))
-    frequencies, power = signal.welch(values, fs=rate_hz, window="hann", nperseg=segment, scaling="spectrum")
-    return frequencies, np.sqrt(2 * power)
-
-
-def wavelet_amplitude(values, rate_hz, frequencies_hz, w=MORLET_W):
-    """Continuous wavelet transform (scipy.signal.cwt, Morlet wavelet scipy.signal.morlet2 with w cycles) as
-    an amplitude: each scale's |coefficient| divided by the response to a unit cosine at its centre
-    frequency, so a sine of amplitude A at f reads A at (t, f). Rows follow frequencies_hz."""
-    frequencies_hz = np.asarray(frequencies_hz, float)
-    widths = w * rate_hz / (2 * np.pi * frequencies_hz)  # scale in samples whose centre frequency is f
-    coefficients = signal.cwt(np.asarray(values, float), signal.morlet2, widths, w=w)
-    # sum_m cos(2 pi f m) psi*(m) = (1/2) pi^(-1/4) sqrt(2 pi s) for morlet2's unit-energy normalisation
-    unit_response = 0.5 * np.pi ** -0.25 * np.sqrt(2 * np.pi * widths)
-    return np.abs(coefficients) / unit_response[:, None]
 
 
 # ---- what each figure draws --------------------------------------------------------------------------------

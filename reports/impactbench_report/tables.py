@@ -18,48 +18,58 @@ def fmt(value, digits=4):
 
 
 def percent(value):
-    return "–" if math.isnan(value) else f"{100 * value:+.3g} %"
+    if math.isnan(value):
+        return "–"
+    return f"{100 * value:+.0f} %" if abs(value) >= 10 else f"{100 * value:+.3g} %"
+
+
+# The case table's metrics: (label with unit, runs.csv column, error column without prefix, kind).
+CASE_METRICS = [(f"{label} [{unit}]", column, error, kind) for (label, column, error, kind, _), unit in
+                zip(analysis.SCORED, ("g", "g", "s", "-", "-"))]
+
+
+def error_cell(run, column, kind, against):
+    value = analysis.signed_error(run, column, against)
+    if math.isnan(value):
+        return "–"
+    return percent(value) if kind == "relative" else f"{value:+.3g}"
+
+
+def verdict_cell(run):
+    if run["engine"] == "reference":
+        return "reference (beam)" if run.is_beam_reference else "reference (chain: no verdict)"
+    judged = "own chain" if not math.isnan(run.number("vs_chain_reference_frame1_sensor_peak_relative_error")) else "beam"
+    return run["verdict"] + (f" (vs {judged})" if run.stable else "")
 
 
 def case_table(suite, scenario, law, experiment):
-    """Per engine configuration: errors against the beam reference and cost at its best time step and
-    at its largest stable step; the reference's and the experiment's own figures first."""
-    header = ["simulator", "time step [s]", "frame 1 sensor peak [g]", "vs reference", "contact duration [s]",
-              "vs reference", "impacts per cycle", "vs reference", "run time [s]", "verdict"]
-    rows = []
-    measured = experiment.get(scenario, {})
-    if measured.get("frame1_peak_acceleration_g") is not None:
-        rows.append([EXPERIMENT_NOTE, "", fmt(measured["frame1_peak_acceleration_g"]), "", "", "", "", "", "", ""])
+    """Every run of a case: each headline metric with its signed error vs beam and vs own chain (the
+    reference a verdict judges against, named in the verdict cell), the CPU cost per simulated second,
+    the verdict and its reason. Columns no run of the case defines are left out (impacts per cycle
+    without a motor, the log decrement with one)."""
     runs = suite.runs_of(scenario, law)
-    reference = suite.beam_reference(scenario, law)
-    if reference:
-        rows.append(["reference (beam)", "adaptive", fmt(reference.number("frame1_sensor_peak_acceleration_g")), "",
-                     fmt(reference.number("contact_duration_mean_s")), "", fmt(reference.number("impacts_per_cycle")), "",
-                     fmt(reference.number("wall_time_s")), reference["verdict"]])
-    for config in analysis.configurations(runs):
-        for label, run in (("best step", analysis.best_step(runs, config)),
-                           ("largest stable step", analysis.largest_stable_step(runs, config))):
-            if run is None:
-                rows.append([f"{config} ({label})", "none stable", "", "", "", "", "", "", "", ""])
-                continue
-            rows.append([f"{config} ({label})", fmt(run.number("time_step_s")),
-                         fmt(run.number("frame1_sensor_peak_acceleration_g")),
-                         percent(run.number("vs_reference_frame1_sensor_peak_relative_error")),
-                         fmt(run.number("contact_duration_mean_s")),
-                         percent(run.number("vs_reference_contact_duration_relative_error")),
-                         fmt(run.number("impacts_per_cycle")),
-                         fmt(run.number("vs_reference_impacts_per_cycle_difference"), 3),
-                         fmt(run.number("wall_time_s")), run["verdict"]])
+    runs = sorted((r for r in runs if r["engine"]), key=lambda r: (r["engine"] != "reference", not r.is_beam_reference,
+                                                                   r.config, r.number("time_step_s")))
+    metrics = [m for m in CASE_METRICS if any(not math.isnan(r.number(m[1])) for r in runs)]
+    header = ["configuration", "time step [s]"]
+    for label, _, _, _ in metrics:
+        header += [label, "vs beam", "vs own chain"]
+    header += ["CPU [s per simulated s]", "verdict", "reason"]
+    rows = []
+    measured = experiment.get(scenario, {}).get("frame1_peak_acceleration_g")
+    if measured is not None:
+        cells = sum(([fmt(measured), "", ""] if m[1] == "frame1_sensor_peak_acceleration_g" else ["", "", ""]
+                     for m in metrics), [])
+        rows.append([EXPERIMENT_NOTE, ""] + cells + ["", "data, not a target", ""])
+    for run in runs:
+        step = "adaptive" if run["engine"] == "reference" else fmt(run.number("time_step_s"))
+        row = [run.config, step]
+        for _, column, error_column, kind in metrics:
+            row += [fmt(run.number(column)), error_cell(run, error_column, kind, "beam"),
+                    error_cell(run, error_column, kind, "own chain")]
+        row += [fmt(run.number("cpu_time_per_simulated_s"), 3), verdict_cell(run), run["reason"]]
+        rows.append(row)
     return header, rows
-
-
-def winner_line(suite, scenario, law):
-    result = analysis.winner_at_equal_cost(suite.runs_of(scenario, law))
-    if result is None:
-        return "Fewer than two engine configurations ran stably: no comparison at equal run time."
-    budget, config, score = result
-    return (f"At equal run time (at most {budget:.3g} s, the cost of the slowest configuration's cheapest stable "
-            f"run), the smallest largest-headline-error is {config}'s: {100 * score:.3g} %.")
 
 
 def markdown(header, rows):

@@ -21,7 +21,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import matplotlib  # noqa: E402
-from impactbench_report import data, dynamics  # noqa: E402
+from impactbench_report import data, dynamics, signals  # noqa: E402
 
 MOTOR_HZ = 7.0
 SERIES_RATE_HZ = 4096.0
@@ -42,42 +42,42 @@ class SignalProcessing(unittest.TestCase):
     def test_log_decrement_of_a_damped_sine_is_the_closed_form(self):
         t = np.arange(0, 3, 1 / SERIES_RATE_HZ)
         u, _ = damped_sine(t)
-        decrement, rate = dynamics.log_decrement(t, u)
+        decrement, rate = signals.log_decrement(t, u)
         self.assertAlmostEqual(decrement, 2 * math.pi * ZETA / math.sqrt(1 - ZETA ** 2), delta=1e-3 * decrement)
         self.assertAlmostEqual(rate, ZETA * 2 * math.pi * FREE_HZ, delta=1e-3 * rate)
         # an undamped sine does not decay; too short a record has no decrement
-        self.assertAlmostEqual(dynamics.log_decrement(t, np.sin(2 * np.pi * FREE_HZ * t))[0], 0, delta=1e-6)
-        self.assertTrue(math.isnan(dynamics.log_decrement(t[:900], u[:900])[0]))
+        self.assertAlmostEqual(signals.log_decrement(t, np.sin(2 * np.pi * FREE_HZ * t))[0], 0, delta=1e-6)
+        self.assertTrue(math.isnan(signals.log_decrement(t[:900], u[:900])[0]))
 
     def test_higher_modes_riding_on_the_first_do_not_count_as_cycles(self):
         t = np.arange(0, 2, 1 / SERIES_RATE_HZ)
         u, _ = damped_sine(t)
         ripple = 2e-5 * np.sin(2 * np.pi * 73 * t)
-        peak_times, _ = dynamics.cycle_peaks(t, u + ripple)
-        self.assertEqual(len(peak_times), len(dynamics.cycle_peaks(t, u)[0]))
+        peak_times, _ = signals.cycle_peaks(t, u + ripple)
+        self.assertEqual(len(peak_times), len(signals.cycle_peaks(t, u)[0]))
         self.assertAlmostEqual(np.mean(np.diff(peak_times)), 1 / (FREE_HZ * math.sqrt(1 - ZETA ** 2)), delta=2e-3)
 
     def test_poincare_section_of_a_periodic_signal_collapses(self):
         t = np.arange(10, 20, 1 / SERIES_RATE_HZ)
         phase = 2 * np.pi * MOTOR_HZ * t
         u, v = 1e-3 * np.sin(phase + 0.4), 1e-3 * 2 * np.pi * MOTOR_HZ * np.cos(phase + 0.4)
-        points_u, points_v = dynamics.poincare_points(t, u, v, MOTOR_HZ, 10, 20)
+        points_u, points_v = signals.poincare_points(t, u, v, MOTOR_HZ, 10, 20)
         self.assertEqual(len(points_u), 70)  # t = k / 7 Hz in [10, 20) s (the series ends before 20 s)
         self.assertLess(np.ptp(points_u), 1e-3 * 1e-3)  # one point, up to the linear interpolation
         self.assertLess(np.ptp(points_v), 1e-3 * np.ptp(v))
         self.assertAlmostEqual(points_u[0], 1e-3 * math.sin(0.4), delta=1e-8)
         # a period-2 response (a subharmonic at f/2) gives two points, a quasi-periodic one a cloud
         u2 = u + 5e-4 * np.sin(phase / 2)
-        points_u2, _ = dynamics.poincare_points(t, u2, v, MOTOR_HZ, 10, 20)
+        points_u2, _ = signals.poincare_points(t, u2, v, MOTOR_HZ, 10, 20)
         self.assertEqual(len(np.unique(np.round(points_u2, 8))), 2)
         u3 = u + 5e-4 * np.sin(phase / math.sqrt(5))
-        self.assertGreater(len(np.unique(np.round(dynamics.poincare_points(t, u3, v, MOTOR_HZ, 10, 20)[0], 8))),
+        self.assertGreater(len(np.unique(np.round(signals.poincare_points(t, u3, v, MOTOR_HZ, 10, 20)[0], 8))),
                            60)
 
     def test_spectrum_of_a_sine_peaks_at_its_frequency_with_its_amplitude(self):
         t = np.arange(0, 10, 1 / 2048.0)
         values = 0.3 * np.sin(2 * np.pi * 20.0 * t) + 0.01 * np.sin(2 * np.pi * 150.0 * t)
-        frequencies, amplitude = dynamics.amplitude_spectrum(values, 2048.0)
+        frequencies, amplitude = signals.amplitude_spectrum(values, 2048.0)
         self.assertAlmostEqual(frequencies[np.argmax(amplitude)], 20.0)
         self.assertAlmostEqual(amplitude.max(), 0.3, delta=0.3 * 0.01)
         near_150 = np.abs(frequencies - 150.0) < 0.1
@@ -88,7 +88,7 @@ class SignalProcessing(unittest.TestCase):
         t = np.arange(0, 6, 1 / rate)
         for frequency, amplitude in ((30.0, 0.5), (7.0, 2.0)):
             values = amplitude * np.cos(2 * np.pi * frequency * t)
-            scalogram = dynamics.wavelet_amplitude(values, rate, frequencies)
+            scalogram = signals.wavelet_amplitude(values, rate, frequencies)
             middle = scalogram[:, len(t) // 2]
             nearest = np.argmin(np.abs(frequencies - frequency))
             self.assertLessEqual(abs(np.argmax(middle) - nearest), 1)

@@ -5,6 +5,7 @@ figure a parseable SVG, the page self-contained, and every number in its tables 
 """
 
 import csv
+import json
 import math
 import os
 import re
@@ -19,6 +20,22 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from impactbench_report import tables  # noqa: E402
 
 EXECUTABLE = SCENARIOS = None
+
+
+def path_of(row):
+    options = dict(o.split("=", 1) for o in row["options"].split(";") if "=" in o)
+    return options.get("contact", "matched")
+
+
+def independent_score(row, tolerances):
+    """The largest |error vs beam| / tolerance of a runs.csv row, written here from the columns alone."""
+    pairs = [("vs_reference_frame1_sensor_peak_relative_error", "sensor_peak_relative_error"),
+             ("vs_reference_frame2_sensor_peak_relative_error", "sensor_peak_relative_error"),
+             ("vs_reference_contact_duration_relative_error", "contact_duration_relative_error"),
+             ("vs_reference_impacts_per_cycle_difference", "impacts_per_cycle_difference"),
+             ("vs_reference_frame1_log_decrement_relative_error", "log_decrement_relative_error")]
+    multiples = [abs(float(row[c])) / tolerances[t] for c, t in pairs if row.get(c)]
+    return max(multiples) if multiples else math.inf
 
 
 class Report(unittest.TestCase):
@@ -44,63 +61,110 @@ class Report(unittest.TestCase):
     def test_every_figure_is_an_svg(self):
         figures = os.listdir(os.path.join(self.report, "figures"))
         kinds = {name.split("_")[0] for name in figures}
-        self.assertTrue({"error", "sensor", "impact", "stability", "experiment"} <= kinds, kinds)
+        # the short cases have no measured peak: no experiment figure
+        self.assertTrue({"error", "impact", "stability", "acceleration", "phase", "poincare", "spectrum", "scalogram",
+                         "impacts", "decay"} <= kinds, kinds)
         for name in figures:
             root = ElementTree.parse(os.path.join(self.report, "figures", name)).getroot()
             self.assertTrue(root.tag.endswith("svg"), name)
 
-    def test_the_page_is_self_contained(self):
+    def test_the_page_names_every_figure_and_fetches_nothing_from_elsewhere(self):
         with open(os.path.join(self.report, "index.html")) as f:
             page = f.read()
-        figures = os.listdir(os.path.join(self.report, "figures"))
-        self.assertEqual(page.count("<svg"), len(figures))
-        self.assertNotRegex(page, r"<(img|script|link)\b[^>]*(src|href)=")  # nothing fetched from elsewhere
-        for fact in ("machine", "engines", "time steps", "Caveats", "mujoco", "ode", "bullet"):
+        figures = sorted(os.listdir(os.path.join(self.report, "figures")))
+        self.assertEqual(sorted(re.findall(r"<img src='figures/([^']+)'", page)), figures)
+        self.assertNotRegex(page, r"(src|href)=['\"](https?:)?//")  # nothing fetched from elsewhere
+        self.assertLess(len(page), 400_000)  # opens at once: the figures are separate files
+        for fact in ("machine", "engines", "load average", "commands", "Caveats", "MuJoCo", "ODE", "Bullet",
+                     "id='answer'"):
             self.assertIn(fact, page)
-        for name in ("runs.csv", "runs.jsonl", "summary.md"):
+        for name in ("runs.csv", "runs.jsonl", "summary.md", "summary.json"):
             self.assertTrue(os.path.exists(os.path.join(self.report, name)), name)
 
-    def test_table_numbers_equal_the_csv(self):
+    def test_case_tables_equal_the_csv(self):
+        """Every run row of every case table: the metric, its signed errors vs beam and vs own chain, the
+        CPU cost and the verdict are runs.csv's, formatted."""
         with open(os.path.join(self.report, "summary.md")) as f:
             text = f.read()
         checked = 0
         for section in re.split(r"\n## ", text)[1:]:
-            title = section.splitlines()[0]
-            match = re.match(r"(\w+), (\w+)$", title)
+            match = re.match(r"(\w+), (\w+)$", section.splitlines()[0])
             if not match:
                 continue
             scenario, law = match.groups()
-            for line in section.splitlines():
-                cells = [c.strip() for c in line.strip().strip("|").split("|")]
-                row = re.match(r"(.+) \((best step|largest stable step)\)$", cells[0]) if cells else None
-                if not row or cells[1] in ("none stable", ""):
+            lines = [line for line in section.splitlines() if line.startswith("| ")]
+            header = [c.strip() for c in lines[0].strip().strip("|").split("|")]
+            for line in lines[1:]:
+                cells = dict(zip(header, (c.strip() for c in line.strip().strip("|").split("|"))))
+                config = cells["configuration"]
+                if config.startswith("experiment") or cells["time step [s]"] == "adaptive":
                     continue
-                config = row.group(1)
                 engine, _, options = config.partition(" [")
-                options = options.rstrip("]")
-                csv_row = next(r for r in self.rows if r["scenario"] == scenario and r["law"] == law and r["engine"] == engine
-                               and r["options"] == options and tables.fmt(float(r["time_step_s"])) == cells[1])
-                number = lambda name: float(csv_row[name]) if csv_row[name] else math.nan  # noqa: E731
-                self.assertEqual(cells[2], tables.fmt(number("frame1_sensor_peak_acceleration_g")))
-                self.assertEqual(cells[3], tables.percent(number("vs_reference_frame1_sensor_peak_relative_error")))
-                self.assertEqual(cells[4], tables.fmt(number("contact_duration_mean_s")))
-                self.assertEqual(cells[6], tables.fmt(number("impacts_per_cycle")))
-                self.assertEqual(cells[8], tables.fmt(number("wall_time_s")))
-                self.assertEqual(cells[9], csv_row["verdict"])
+                row = next(r for r in self.rows if r["scenario"] == scenario and r["law"] == law and
+                           r["engine"] == engine and r["options"] == options.rstrip("]") and
+                           tables.fmt(float(r["time_step_s"])) == cells["time step [s]"])
+                number = lambda name: float(row[name]) if row[name] else math.nan  # noqa: E731
+                position = header.index("frame 1 sensor peak [g]")
+                values = line.strip().strip("|").split("|")
+                self.assertEqual(values[position].strip(), tables.fmt(number("frame1_sensor_peak_acceleration_g")))
+                self.assertEqual(values[position + 1].strip(),
+                                 tables.percent(number("vs_reference_frame1_sensor_peak_relative_error")))
+                self.assertEqual(values[position + 2].strip(),
+                                 tables.percent(number("vs_chain_reference_frame1_sensor_peak_relative_error")))
+                self.assertEqual(cells["CPU [s per simulated s]"], tables.fmt(number("cpu_time_per_simulated_s"), 3))
+                self.assertTrue(cells["verdict"].startswith(row["verdict"]), (cells["verdict"], row["verdict"]))
+                if row["verdict"] in ("ok", "inaccurate"):
+                    self.assertIn("(vs own chain)", cells["verdict"])  # the verdict names its reference
                 checked += 1
         self.assertGreater(checked, 10)
+
+    def test_the_summary_traces_to_runs_csv(self):
+        """summary.json: every run it names is a row of runs.csv with the same values; each case's best
+        configuration is stable and no other stable configuration of its kind scores better."""
+        with open(os.path.join(self.report, "summary.json")) as f:
+            summary = json.load(f)
+        by_id = {r["job_id"]: r for r in self.rows}
+        tolerances = summary["verdict_tolerances"]
+        traced = 0
+        for case in summary["cases"]:
+            for config in case["configurations"]:
+                run = config["best_run"]
+                if run is None:
+                    continue
+                row = by_id[run["job_id"]]
+                for column, value in list(run["runs_csv"].items()) + list(run["errors_vs_beam"].items()) \
+                        + list(run["errors_vs_own_chain"].items()):
+                    if isinstance(value, str):
+                        self.assertEqual(value, row[column], column)
+                    elif value is None:
+                        self.assertEqual(row[column], "", column)
+                    else:
+                        self.assertEqual(value, float(row[column]), column)
+                    traced += 1
+                self.assertIn(row["verdict"], ("ok", "inaccurate"))
+            for kind, paths in (("tuned", ("matched", "injected")), ("out_of_box", ("native",))):
+                best = case["best_" + kind]
+                if best["configuration"] is None:
+                    continue
+                best_score = independent_score(by_id[best["job_id"]], tolerances)
+                for r in self.rows:
+                    if (r["scenario"], r["law"]) == (case["scenario"], case["law"]) and r["engine"] != "reference" \
+                            and r["verdict"] in ("ok", "inaccurate") and path_of(r) in paths:
+                        self.assertLessEqual(best_score, independent_score(r, tolerances) + 1e-12, r["job_id"])
+        self.assertGreater(traced, 100)
+        self.assertEqual({e["engine"] for e in summary["engines"]}, {"mujoco", "ode", "bullet"})
 
     def test_without_steps_csv_there_is_no_steps_view(self):
         self.assertFalse(os.path.exists(os.path.join(self.suite, "steps.csv")))
         self.assertFalse(any(n.startswith("steps_") for n in os.listdir(os.path.join(self.report, "figures"))))
         with open(os.path.join(self.report, "summary.md")) as f:
-            self.assertNotIn("largest stable step [s]", f.read())
+            self.assertNotIn("| configuration | largest stable step [s]", f.read())
 
     def test_a_report_is_made_again_from_the_saved_results_alone(self):
         again = os.path.join(self.folder, "again")
         report = subprocess.run([EXECUTABLE, "report", self.suite, "--out", again], capture_output=True, text=True)
         self.assertEqual(report.returncode, 0, report.stderr)
-        strip = lambda path: [l for l in open(path) if not l.startswith("- date")]  # noqa: E731
+        strip = lambda path: [l for l in open(path) if not l.startswith("- made")]  # noqa: E731
         self.assertEqual(strip(os.path.join(self.report, "summary.md")), strip(os.path.join(again, "summary.md")))
 
 

@@ -1,0 +1,219 @@
+"""The report's answer, as data: for each case and law the best configuration out of the box (native
+contact, the engine's defaults) and the best tuned one (matched or injected contact), each with its
+errors against the beam and its own chain, its largest stable step and its CPU cost per simulated second;
+one standing per engine; the settings behind every configuration; what ran, where and under what load.
+
+It is report/summary.json (schema: docs/summary-json.md). Every number of a run is copied from its row of
+runs.csv under the same column name beside the row's job_id; the few derived numbers (the score, the
+error against the experiment) are computed from such numbers by the formulas the schema states."""
+
+import math
+
+from . import analysis, data, settings
+
+SCHEMA_VERSION = 1
+ENGINE_NAMES = {"mujoco": "MuJoCo", "ode": "ODE", "bullet": "Bullet", "dart": "DART", "simbody": "Simbody"}
+
+RUN_COLUMNS = ["time_step_s", "verdict", "reason", "same_run_as", "chain_links", "duration_s", "window_start_s",
+               "window_end_s", "frame1_sensor_peak_acceleration_g", "frame2_sensor_peak_acceleration_g",
+               "contact_duration_mean_s", "impacts_per_cycle", "frame1_log_decrement", "cpu_time_s",
+               "cpu_time_per_simulated_s", "wall_time_s", "load_average"]
+
+
+def value(run, column):
+    """A runs.csv cell as JSON: text as text, a number as a number, an empty cell as null."""
+    cell = run.values.get(column)
+    if isinstance(cell, float):
+        return None if math.isnan(cell) else cell
+    return cell
+
+
+def run_entry(run, tolerances, experiment_peak_g=None):
+    """One run as the summary names it: its job_id, its runs.csv values, its errors against each
+    reference, its score and (where the experiment measured one) its error against the measured peak."""
+    entry = {"job_id": run["job_id"], "configuration": run.config, "engine": run["engine"], "options": run["options"]}
+    if run["engine"] != "reference":
+        entry["contact_path"] = analysis.contact_path(run)
+    entry["runs_csv"] = {c: value(run, c) for c in RUN_COLUMNS if c in run.values}
+    for name, prefix in analysis.AGAINST.items():
+        errors = {prefix + column: value(run, prefix + column) for _, _, column, _, _ in analysis.SCORED
+                  if prefix + column in run.values}
+        entry["errors_vs_" + name.replace(" ", "_")] = errors
+    for against in analysis.AGAINST:
+        multiple, label, error = analysis.score(run, tolerances, against)
+        entry["largest_error_vs_" + against.replace(" ", "_")] = None if label is None else {
+            "metric": label, "error": error, "tolerance": tolerance_of(label, tolerances), "tolerance_multiple": multiple}
+    peak = run.number("frame1_sensor_peak_acceleration_g")
+    if experiment_peak_g and not math.isnan(peak):
+        entry["vs_experiment_frame1_peak_relative_error"] = (peak - experiment_peak_g) / experiment_peak_g
+    return entry
+
+
+def tolerance_of(label, tolerances):
+    return next(tolerances[key] for name, _, _, _, key in analysis.SCORED if name == label)
+
+
+def step_limit(suite, steps, scenario, law, config):
+    """The configuration's largest stable step in this case: the step search's (steps.csv) when it ran,
+    else the largest stable step the suite tried, with what bounds it."""
+    runs = [r for r in suite.runs_of(scenario, law) if r.config == config]
+    for row in data.steps_of(steps, scenario, law):
+        if row.config == config and not math.isnan(row.number("largest_stable_step_s")):
+            return {"largest_stable_step_s": row.number("largest_stable_step_s"), "bounded_by": "step search",
+                    "smallest_unstable_step_s": none_if_nan(row.number("smallest_unstable_step_s")),
+                    "steps_csv_group_id": row["group_id"]}
+    largest, smallest_unstable = analysis.step_limits(runs, config)
+    if largest is None:
+        return {"largest_stable_step_s": None, "bounded_by": "no stable run",
+                "smallest_unstable_step_s": none_if_nan(smallest_unstable)}
+    step = largest.number("time_step_s")
+    unstable_above = not math.isnan(smallest_unstable) and smallest_unstable > step
+    return {"largest_stable_step_s": step, "job_id": largest["job_id"],
+            "bounded_by": "a larger step was unstable" if unstable_above else "largest step tried (a lower bound)",
+            "smallest_unstable_step_s": none_if_nan(smallest_unstable)}
+
+
+def none_if_nan(x):
+    return None if x is None or (isinstance(x, float) and math.isnan(x)) else x
+
+
+def case_answer(suite, steps, scenario, law, experiment, tolerances):
+    runs = suite.runs_of(scenario, law)
+    measured = experiment.get(scenario, {}).get("frame1_peak_acceleration_g")
+    reference = suite.beam_reference(scenario, law)
+    any_run = reference or next((r for r in runs if r["engine"]), None)
+    case = {"scenario": scenario, "law": law,
+            "duration_s": value(any_run, "duration_s") if any_run else None,
+            "window_start_s": value(any_run, "window_start_s") if any_run else None,
+            "window_end_s": value(any_run, "window_end_s") if any_run else None,
+            "contact_stiffness": contact_stiffness(any_run, law),
+            "experiment_frame1_peak_acceleration_g": measured,
+            "reference": run_entry(reference, tolerances, measured) if reference else None,
+            "configurations": []}
+    best = {}
+    for config in analysis.configurations(runs):
+        config_runs = analysis.runs_of_config(runs, config)
+        chosen = analysis.best_run(config_runs, tolerances)
+        entry = {"configuration": config, "runs": len(config_runs),
+                 "unstable_runs": sum(r["verdict"] == "unstable" for r in config_runs),
+                 "failed_runs": sum(r["verdict"] == "failed" for r in config_runs),
+                 "best_run": run_entry(chosen, tolerances, measured) if chosen else None,
+                 "step_limit": step_limit(suite, steps, scenario, law, config)}
+        case["configurations"].append(entry)
+        if chosen:
+            kind = "out_of_box" if analysis.contact_path(chosen) == analysis.NATIVE else "tuned"
+            incumbent = best.get(kind)
+            if incumbent is None or ranking(chosen, tolerances) < ranking(incumbent[0], tolerances):
+                best[kind] = (chosen, entry)
+    for kind in ("out_of_box", "tuned"):
+        if kind in best:
+            case["best_" + kind] = {"configuration": best[kind][1]["configuration"], "job_id": best[kind][0]["job_id"]}
+        else:
+            ran = any((analysis.contact_path(r) == analysis.NATIVE) == (kind == "out_of_box")
+                      for r in runs if r["engine"] not in ("reference", ""))
+            case["best_" + kind] = {"configuration": None,
+                                    "why": "no stable run" if ran else "not run in this suite"}
+    return case
+
+
+def ranking(run, tolerances):
+    return (analysis.score(run, tolerances)[0], run.number("cpu_time_per_simulated_s"))
+
+
+def contact_stiffness(run, law):
+    if run is None:
+        return None
+    k = data.contact_stiffness(data.read_scenario(run["scenario_file"]), law)
+    if math.isnan(k):
+        return None
+    return {"value": k, "unit": "N/m" if law == "viscoelastic" else "N/m^1.5"}
+
+
+def engine_standing(engine, cases, tolerances):
+    """One engine across the cases: per contact kind, in how many cases its best run is within the
+    verdict tolerances of the beam, its worst case, its CPU cost; and how many of its runs were unstable."""
+    standing = {"engine": engine}
+    for kind, paths in (("tuned", analysis.TUNED), ("out_of_box", (analysis.NATIVE,))):
+        bests = []
+        for case in cases:
+            entries = [c["best_run"] for c in case["configurations"] if c["best_run"]
+                       and c["best_run"]["engine"] == engine and c["best_run"]["contact_path"] in paths]
+            if entries:
+                bests.append((case, min(entries, key=lambda e: e["largest_error_vs_beam"]["tolerance_multiple"]
+                                        if e["largest_error_vs_beam"] else math.inf)))
+        scored = [(c, e) for c, e in bests if e["largest_error_vs_beam"]]
+        within = [1 for _, e in scored if e["largest_error_vs_beam"]["tolerance_multiple"] <= 1]
+        worst = max(scored, key=lambda ce: ce[1]["largest_error_vs_beam"]["tolerance_multiple"], default=None)
+        costs = sorted(e["runs_csv"]["cpu_time_per_simulated_s"] for _, e in scored
+                       if e["runs_csv"].get("cpu_time_per_simulated_s") is not None)
+        standing[kind] = {
+            "cases_with_a_stable_run": len(bests), "cases_within_tolerance_vs_beam": len(within),
+            "worst": None if worst is None else {"scenario": worst[0]["scenario"], "law": worst[0]["law"],
+                                                 "job_id": worst[1]["job_id"], **worst[1]["largest_error_vs_beam"]},
+            "cpu_time_per_simulated_s_median": costs[len(costs) // 2] if costs else None}
+    return standing
+
+
+def summarise(suite, steps, experiment, tolerances, provenance):
+    cases = [case_answer(suite, steps, s, l, experiment, tolerances) for s, l in suite.cases()]
+    engines = sorted({r["engine"] for r in suite.runs if r["engine"] not in ("reference", "")})
+    standings = []
+    for engine in engines:
+        standing = engine_standing(engine, cases, tolerances)
+        runs = [r for r in suite.runs if r["engine"] == engine and not r["same_run_as"]]
+        unstable = [r for r in runs if r["verdict"] == "unstable"]
+        standing["runs"] = len(runs)
+        standing["unstable_runs"] = len(unstable)
+        standing["failed_runs"] = sum(r["verdict"] == "failed" for r in runs)
+        standing["first_unstable"] = None if not unstable else {"job_id": unstable[0]["job_id"],
+                                                                "reason": unstable[0]["reason"]}
+        standing["version"] = next((r["engine_version"] for r in runs if r["engine_version"]), "")
+        standing["line"] = standing_line(standing)
+        standings.append(standing)
+    configurations = {}
+    for run in suite.runs:
+        if run["engine"] in ("reference", "") or run["same_run_as"]:
+            continue
+        entry = configurations.setdefault(run.config, {
+            "engine": run["engine"], "options": run["options"], "contact_path": analysis.contact_path(run),
+            "per_law": {}, "settings_from_job_ids": []})
+        if run["law"] not in entry["per_law"]:
+            entry["per_law"][run["law"]] = settings.describe(run["engine"], analysis.contact_path(run),
+                                                             suite.diagnostics(run))
+            entry["settings_from_job_ids"].append(run["job_id"])
+    for entry in configurations.values():
+        entry["settings"] = settings.merged(entry.pop("per_law"))
+    return {"schema_version": SCHEMA_VERSION, "schema": "docs/summary-json.md", "suite": provenance,
+            "verdict_tolerances": tolerances, "cases": cases, "engines": standings,
+            "configurations": configurations}
+
+
+def percent(x):
+    return f"{100 * x:+.0f} %" if abs(x) >= 10 else f"{100 * x:+.3g} %"
+
+
+def error_text(largest):
+    """'frame 1 sensor peak -6.5 %' or 'impacts per cycle +0.12'."""
+    if not largest:
+        return "no error defined"
+    kind = next(k for name, _, _, k, _ in analysis.SCORED if name == largest["metric"])
+    return f"{largest['metric']} " + (percent(largest["error"]) if kind == "relative" else f"{largest['error']:+.3g}")
+
+
+def standing_line(s):
+    name = ENGINE_NAMES.get(s["engine"], s["engine"])
+    parts = []
+    for kind, label in (("tuned", "tuned"), ("out_of_box", "native contact")):
+        k = s[kind]
+        if k["cases_with_a_stable_run"] == 0:
+            parts.append(f"{label}: no stable run")
+            continue
+        text = (f"{label} within tolerance of the beam in {k['cases_within_tolerance_vs_beam']} of "
+                f"{k['cases_with_a_stable_run']} cases")
+        if k["worst"] and k["worst"]["tolerance_multiple"] > 1:
+            text += f" (worst {k['worst']['scenario']}, {k['worst']['law']}: {error_text(k['worst'])})"
+        if k["cpu_time_per_simulated_s_median"] is not None:
+            text += f" at {k['cpu_time_per_simulated_s_median']:.2g} s CPU/s"
+        parts.append(text)
+    parts.append(f"{s['unstable_runs']} of {s['runs']} runs unstable, {s['failed_runs']} failed")
+    return f"{name}: " + "; ".join(parts) + "."

@@ -1,0 +1,150 @@
+"""The report's first screen, rendered from the summary document (answer.py) in HTML and Markdown: the
+answer table (id "answer"), one line per engine, then the settings behind every configuration and what
+ran where. Every number printed here is in summary.json, which names the runs.csv row it came from."""
+
+import html
+
+from .answer import ENGINE_NAMES, error_text
+
+ANSWER_HEADER = ["case, law", "best out of the box: engine, step [s]", "largest error vs beam",
+                 "largest stable step [s]", "CPU [s/s]", "best tuned: engine, contact, step [s]",
+                 "largest error vs beam", "largest stable step [s]", "CPU [s/s]"]
+
+
+def short(x):
+    """A step in few characters: 5e-05 -> 5e-5, 0.0001 -> 1e-4, 0.001 -> 0.001."""
+    if x >= 1e-3:
+        return f"{x:.3g}"
+    mantissa, _, exponent = f"{x:.2e}".partition("e")
+    return mantissa.rstrip("0").rstrip(".") + "e" + str(int(exponent))
+
+
+def step_text(limit):
+    """The largest stable step and what bounds it: '5e-5 (1e-4 unstable)', '6.25e-5 (searched)', or
+    '≥ 1e-4' when the largest step tried was stable."""
+    step = limit.get("largest_stable_step_s")
+    if step is None:
+        return "none stable"
+    bound = limit["bounded_by"]
+    if bound == "a larger step was unstable":
+        return f"{short(step)} ({short(limit['smallest_unstable_step_s'])} unstable)"
+    if bound == "step search":
+        return f"{short(step)} (searched)"
+    return f"≥ {short(step)}"
+
+
+def pick(case, kind):
+    """(configuration entry, best run entry) of the case's best out-of-box or tuned configuration."""
+    name = case["best_" + kind]["configuration"]
+    if name is None:
+        return None, None
+    entry = next(c for c in case["configurations"] if c["configuration"] == name)
+    return entry, entry["best_run"]
+
+
+def answer_rows(document):
+    """The answer table's rows, and its notes: an engine error vs its own chain that the error vs beam
+    does not show, marked [n] in its cell."""
+    rows, notes = [], []
+    for case in document["cases"]:
+        row = [f"{case['scenario']}, {case['law']}"]
+        for kind in ("out_of_box", "tuned"):
+            entry, run = pick(case, kind)
+            if entry is None:
+                row += [case["best_" + kind]["why"], "–", "–", "–"]
+                continue
+            cost = run["runs_csv"].get("cpu_time_per_simulated_s")
+            name = ENGINE_NAMES.get(run["engine"], run["engine"])
+            if kind == "tuned":
+                name += " " + run["contact_path"]
+            cell = error_text(run["largest_error_vs_beam"]) + verdict_mark(run)
+            note = own_chain_note(run)
+            if note:
+                notes.append(f"[{len(notes) + 1}] {case['scenario']}, {case['law']}, {name}: {note}")
+                cell += f" [{len(notes)}]"
+            row += [f"{name}, {short(run['runs_csv']['time_step_s'])}", cell, step_text(entry["step_limit"]),
+                    "–" if cost is None else f"{cost:.3g}"]
+        rows.append(row)
+    return rows, notes
+
+
+def own_chain_note(run):
+    """The run's largest error vs its own chain where it is beyond tolerance and not the one vs beam
+    already shown: an engine error that the chain's own discretisation error hides (ODE's damping in the
+    free vibration: its excess decay cancels the chain's deficit against the beam)."""
+    own = run.get("largest_error_vs_own_chain")
+    beam = run["largest_error_vs_beam"]
+    if not own or own["tolerance_multiple"] <= 1:
+        return ""
+    if beam and own["metric"] == beam["metric"] and abs(own["error"] - beam["error"]) <= 0.1 * abs(beam["error"]) + 0.02:
+        return ""
+    return (f"beyond tolerance vs its own chain: {error_text(own)} ✗ (what the engine's contact and time "
+            f"stepping add to its chain; the error vs beam is the whole error, the chain's own included)")
+
+
+def verdict_mark(run):
+    largest = run["largest_error_vs_beam"]
+    return "" if not largest or largest["tolerance_multiple"] <= 1 else " ✗"
+
+
+def html_page_top(document, facts):
+    parts = ["<h1>impactbench: which engine, which setting, what error, at what cost</h1>",
+             "<p class='lede'>For each case and contact law: the configuration that comes closest to the "
+             "continuous-beam reference out of the box (the engine's own contact and defaults) and once tuned "
+             "(the law matched in or injected into the engine), its largest headline error against the beam "
+             "(✗: beyond the verdict's tolerance), its largest stable time step and its CPU cost per simulated "
+             "second (CPU [s/s]). ≥: the largest step tried was stable. The configurations' settings and every run are below; report/summary.json holds the "
+             "same, each number with the runs.csv row it came from.</p>",
+             table(ANSWER_HEADER, answer_rows(document)[0], "answer"),
+             "<p class='notes'>" + "<br>".join(html.escape(n) for n in answer_rows(document)[1]) + "</p>",
+             "<ul class='engines'>"]
+    parts += [f"<li>{html.escape(s['line'])}</li>" for s in document["engines"]]
+    parts.append("</ul>")
+    tolerances = document["verdict_tolerances"]
+    parts.append("<p class='convention'>Errors are signed and named by what they are measured against: "
+                 "<b>vs beam</b>, the continuous-beam reference (the physical question), or <b>vs own chain</b>, "
+                 "the reference solved on the engine's own K-link chain (the engine's contact handling and time "
+                 "stepping alone). Verdicts judge the error vs own chain: inaccurate beyond "
+                 f"{100 * tolerances['sensor_peak_relative_error']:g} % in either sensor peak, "
+                 f"{100 * tolerances['contact_duration_relative_error']:g} % in the contact duration, "
+                 f"{tolerances['impacts_per_cycle_difference']:g} in impacts per cycle or "
+                 f"{100 * tolerances['log_decrement_relative_error']:g} % in the free decay's log decrement. "
+                 "The best configuration is the one with the smallest largest error vs beam, measured in "
+                 "multiples of these tolerances, then the cheaper. References carry no accuracy verdict.</p>")
+    return "\n".join(parts)
+
+
+def html_settings_and_provenance(document, facts):
+    rows = []
+    for name, config in document["configurations"].items():
+        text = "; ".join(f"{k}: {v}" for k, v in config["settings"].items())
+        rows.append([name, text])
+    parts = ["<h2 id='settings'>Settings behind every configuration</h2>",
+             table(["configuration", "settings (from the run's own diagnostics, runs.jsonl)"], rows, "settings-table"),
+             "<h2 id='provenance'>What ran</h2><dl>"]
+    parts += [f"<dt>{html.escape(k)}</dt><dd>{html.escape(str(v))}</dd>" for k, v in facts.items()]
+    parts.append("</dl>")
+    return "\n".join(parts)
+
+
+def table(header, rows, element_id=None):
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>" for row in rows)
+    attribute = f" id='{element_id}'" if element_id else ""
+    return f"<table{attribute}><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def markdown(document, facts):
+    from .tables import markdown as markdown_table
+    lines = ["# impactbench: which engine, which setting, what error, at what cost", "",
+             markdown_table(ANSWER_HEADER, answer_rows(document)[0]), ""]
+    lines += answer_rows(document)[1] + [""]
+    lines += [f"- {s['line']}" for s in document["engines"]]
+    lines += ["", "## Settings behind every configuration", ""]
+    lines += [f"- **{name}**: " + "; ".join(f"{k}: {v}" for k, v in c["settings"].items())
+              for name, c in document["configurations"].items()]
+    lines += ["", "## What ran", ""] + [f"- {k}: {v}" for k, v in facts.items()]
+    return "\n".join(lines)
+
+
+__all__ = ["html_page_top", "html_settings_and_provenance", "markdown", "ENGINE_NAMES"]
