@@ -121,6 +121,19 @@ def _draw_case(index):
     return case_figures(c["suite"], scenario, law, chosen, c["steps"], c["tolerances"], c["folder"], c["stamp"])
 
 
+def case_line(case):
+    """What a case is: its law's stiffness, its duration and scoring window."""
+    k = case["contact_stiffness"]
+    parts = [f"contact law {case['law']}" + (f", k = {k['value']:.3g} {k['unit']}" if k else "")
+             + (f", restitution e = {case['restitution']:g}" if case["restitution"] is not None else "")]
+    if case["duration_s"] is not None:
+        parts.append(f"{case['duration_s']:g} s simulated, scored over {case['window_start_s']:g} to "
+                     f"{case['window_end_s']:g} s")
+    if case["experiment_frame1_peak_acceleration_g"] is not None:
+        parts.append(f"measured frame 1 peak {case['experiment_frame1_peak_acceleration_g']:g} g")
+    return "; ".join(parts) + "."
+
+
 def draw_cases(suite, cases, steps, tolerances, folder, stamp):
     """Every case's figures, the cases spread over the machine's cores (each figure is independent, and
     saving them is most of the report's time); in one process where fork is not available."""
@@ -173,10 +186,11 @@ def main():
         chosen_by_law.setdefault(law, {})[scenario] = chosen
         cases.append((scenario, law, chosen))
     paths_by_case = draw_cases(suite, cases, steps, tolerances, figures_folder, stamp)
-    for (scenario, law, _), paths in zip(cases, paths_by_case):
+    for (scenario, law, _), paths, case in zip(cases, paths_by_case, document["cases"]):
         header, rows = tables.case_table(suite, scenario, law, experiment)
-        markdown_text = tables.markdown(header, rows)
-        html_text = tables.html_table(header, rows)
+        line = case_line(case)
+        markdown_text = line + "\n\n" + tables.markdown(header, rows)
+        html_text = f"<p class='case'>{line}</p>" + tables.html_table(header, rows)
         steps_header, steps_rows = tables.steps_table(steps, scenario, law)
         if steps_rows:
             markdown_text += "\n\n" + STEPS_NOTE + "\n\n" + tables.markdown(steps_header, steps_rows)
@@ -222,7 +236,8 @@ h1 { font-size: 1.35em; margin: 0.3em 0; } .lede { font-size: 0.85em; margin: 0.
 #answer td:nth-child(3), #answer td:nth-child(7) { white-space: normal; }
 #answer td:nth-child(2), #answer td:nth-child(6) { text-align: left; } #answer th { font-size: 0.9em; }
 .notes { font-size: 0.75em; color: #444; margin: 0.2em 0; } .engines { font-size: 0.8em; margin: 0.4em 0; } .convention { font-size: 0.8em; color: #444; }
-h2 + table, p + table { display: block; overflow-x: auto; max-width: 100%; }
+p + table { display: block; overflow-x: auto; max-width: 100%; }
+p.case + table td { white-space: nowrap; } p.case + table td:last-child { white-space: normal; min-width: 30em; }
 nav { font-size: 0.85em; margin: 1em 0; } figure img { width: 100%; height: auto; } h2 { font-size: 1.2em; border-bottom: 1px solid #ccc; margin-top: 2em; }
 table { border-collapse: collapse; font-size: 0.85em; margin: 0.8em 0; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.5em; text-align: right; }

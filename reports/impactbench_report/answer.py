@@ -87,6 +87,7 @@ def case_answer(suite, steps, scenario, law, experiment, tolerances):
             "window_start_s": value(any_run, "window_start_s") if any_run else None,
             "window_end_s": value(any_run, "window_end_s") if any_run else None,
             "contact_stiffness": contact_stiffness(any_run, law),
+            "restitution": restitution(any_run, law),
             "experiment_frame1_peak_acceleration_g": measured,
             "reference": run_entry(reference, tolerances, measured) if reference else None,
             "configurations": []}
@@ -127,6 +128,13 @@ def contact_stiffness(run, law):
     if math.isnan(k):
         return None
     return {"value": k, "unit": "N/m" if law == "viscoelastic" else "N/m^1.5"}
+
+
+def restitution(run, law):
+    """The Newton law's coefficient of restitution in the scenario file; None for the other laws."""
+    if run is None or law != "newton":
+        return None
+    return data.read_scenario(run["scenario_file"]).get("contact", {}).get("newton", {}).get("restitution")
 
 
 def engine_standing(engine, cases, tolerances):
