@@ -10,6 +10,7 @@ error against the experiment) are computed from such numbers by the formulas the
 import math
 
 from . import analysis, data, settings
+from .tables import percent
 
 SCHEMA_VERSION = 1
 ENGINE_NAMES = {"mujoco": "MuJoCo", "ode": "ODE", "bullet": "Bullet", "dart": "DART", "simbody": "Simbody"}
@@ -194,10 +195,6 @@ def summarise(suite, steps, experiment, tolerances, provenance):
     return {"schema_version": SCHEMA_VERSION, "schema": "docs/summary-json.md", "suite": provenance,
             "verdict_tolerances": tolerances, "cases": cases, "engines": standings,
             "configurations": configurations}
-
-
-def percent(x):
-    return f"{100 * x:+.0f} %" if abs(x) >= 10 else f"{100 * x:+.3g} %"
 
 
 def error_text(largest):

@@ -15,14 +15,14 @@ import numpy as np
 from scipy import signal
 
 from . import data, figures
+from .figures import REPOSITORY, proxy
+from .tables import step_text
 from .signals import MORLET_W, amplitude_spectrum, cycle_peaks, log_decrement, poincare_points, wavelet_amplitude
 
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
 
-REPOSITORY = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 SENSOR_RATE_HZ = 2048.0  # the accelerometer's sampling rate (rig.md section 5)
 SCALOGRAM_RATE_HZ = 512.0  # the sensor signal decimated to this before the wavelet transform (cheap, 0-256 Hz)
@@ -120,15 +120,8 @@ def sensor(series, frame, start, end):
     return times[keep], values[keep]
 
 
-def proxy(label, **style):
-    style.setdefault("linestyle", "none")
-    return Line2D([], [], label=label, **style)
 
 
-def step_text(step):
-    """A time step as short text: 1e-4, 6.25e-5."""
-    mantissa, exponent = f"{step:.2e}".split("e")
-    return f"{float(mantissa):g}e{int(exponent)}"
 
 
 def layout(count, columns, width, height, legend_height=0.5, **shared):

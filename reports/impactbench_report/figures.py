@@ -17,6 +17,7 @@ from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from . import analysis  # noqa: E402
+from .tables import step_text  # noqa: E402
 
 VERDICT_COLOURS = {"ok": "#2ca02c", "inaccurate": "#ff7f0e", "unstable": "#d62728", "failed": "#7f7f7f"}
 VERDICT_MARKERS = {"ok": "o", "inaccurate": "s", "unstable": "X", "failed": "P"}
@@ -61,10 +62,6 @@ def save(figure, folder, name, caption):
 
 # ---- shared pieces ---------------------------------------------------------------------------------------
 
-def step_text(step):
-    """A time step as short text: 1e-4, 6.25e-5."""
-    mantissa, exponent = f"{step:.2e}".split("e")
-    return f"{float(mantissa):g}e{int(exponent)}"
 
 
 def log_axis(ax, which, low, high):

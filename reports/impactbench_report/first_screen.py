@@ -5,21 +5,14 @@ ran where. Every number printed here is in summary.json, which names the runs.cs
 import html
 
 from .answer import ENGINE_NAMES, error_text
+from .tables import step_text
 
 ANSWER_HEADER = ["case, law", "best out of the box: engine, step [s]", "largest error vs beam",
                  "largest stable step [s]", "CPU [s/s]", "best tuned: engine, contact, step [s]",
                  "largest error vs beam", "largest stable step [s]", "CPU [s/s]"]
 
 
-def short(x):
-    """A step in few characters: 5e-05 -> 5e-5, 0.0001 -> 1e-4, 0.001 -> 0.001."""
-    if x >= 1e-3:
-        return f"{x:.3g}"
-    mantissa, _, exponent = f"{x:.2e}".partition("e")
-    return mantissa.rstrip("0").rstrip(".") + "e" + str(int(exponent))
-
-
-def step_text(limit):
+def limit_text(limit):
     """The largest stable step and what bounds it: '5e-5 (1e-4 unstable)', '6.25e-5 (searched)', or
     '≥ 1e-4' when the largest step tried was stable."""
     step = limit.get("largest_stable_step_s")
@@ -27,10 +20,10 @@ def step_text(limit):
         return "none stable"
     bound = limit["bounded_by"]
     if bound == "a larger step was unstable":
-        return f"{short(step)} ({short(limit['smallest_unstable_step_s'])} unstable)"
+        return f"{step_text(step)} ({step_text(limit['smallest_unstable_step_s'])} unstable)"
     if bound == "step search":
-        return f"{short(step)} (searched)"
-    return f"≥ {short(step)}"
+        return f"{step_text(step)} (searched)"
+    return f"≥ {step_text(step)}"
 
 
 def pick(case, kind):
@@ -62,7 +55,7 @@ def answer_rows(document):
             if note:
                 notes.append(f"[{len(notes) + 1}] {case['scenario']}, {case['law']}, {name}: {note}")
                 cell += f" [{len(notes)}]"
-            row += [f"{name}, {short(run['runs_csv']['time_step_s'])}", cell, step_text(entry["step_limit"]),
+            row += [f"{name}, {step_text(run['runs_csv']['time_step_s'])}", cell, limit_text(entry["step_limit"]),
                     "–" if cost is None else f"{cost:.3g}"]
         rows.append(row)
     return rows, notes

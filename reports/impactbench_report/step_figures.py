@@ -9,7 +9,8 @@ from matplotlib import ticker, transforms
 
 from . import analysis, data
 from .figures import (METRIC_COLOURS, REPOSITORY, STEP_MARKERS, VERDICT_COLOURS, VERDICT_MARKERS, legend_axis,
-                      log_axis, padded, plt, proxy, save, step_text)
+                      log_axis, padded, plt, proxy, save)
+from .tables import step_text
 
 # ---- stability map ---------------------------------------------------------------------------------------
 

@@ -17,6 +17,12 @@ def fmt(value, digits=4):
     return f"{value:.{digits}g}"
 
 
+def step_text(step):
+    """A time step as short text: 1e-4, 6.25e-5."""
+    mantissa, exponent = f"{step:.2e}".split("e")
+    return f"{float(mantissa):g}e{int(exponent)}"
+
+
 def percent(value):
     if math.isnan(value):
         return "–"

@@ -5,7 +5,8 @@ import math
 import textwrap
 
 from . import analysis, data
-from .figures import colour_of, legend_axis, plt, proxy, save, step_text
+from .figures import colour_of, legend_axis, plt, proxy, save
+from .tables import step_text
 from matplotlib import transforms
 
 # ---- impact zoom -----------------------------------------------------------------------------------------
