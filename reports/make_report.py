@@ -103,10 +103,12 @@ def case_figures(suite, scenario, law, chosen, steps, tolerances, folder, stamp)
     (dynamics.py), the step search's limits."""
     paths = [figures.error_against_cost(suite, scenario, law, folder, stamp, tolerances),
              zoom_figures.impact_zoom(suite, scenario, law, chosen, folder, stamp)]
-    for name in DYNAMICS:
-        view = getattr(dynamics, name, None)
-        if view is not None:
-            paths.append(view(suite, scenario, law, chosen, folder, stamp))
+    # The researcher's views compare series: only the runs that kept one (a step search's probes keep
+    # none), and none at all when no engine run did (a panel per simulator saying "no series" is no view).
+    with_series = {name: run for name, run in chosen.items() if suite.has_series(run)}
+    if with_series:
+        for name in DYNAMICS:
+            paths.append(getattr(dynamics, name)(suite, scenario, law, with_series, folder, stamp))
     if data.steps_of(steps, scenario, law):
         paths.append(step_figures.step_limits(steps, scenario, law, folder, stamp))
     return [p for p in paths if p]
@@ -186,9 +188,12 @@ def main():
         chosen_by_law.setdefault(law, {})[scenario] = chosen
         cases.append((scenario, law, chosen))
     paths_by_case = draw_cases(suite, cases, steps, tolerances, figures_folder, stamp)
-    for (scenario, law, _), paths, case in zip(cases, paths_by_case, document["cases"]):
+    for (scenario, law, chosen), paths, case in zip(cases, paths_by_case, document["cases"]):
         header, rows = tables.case_table(suite, scenario, law, experiment)
         line = case_line(case)
+        if not any(suite.has_series(run) for run in chosen.values()):
+            line += (" No engine run of this case kept its series (step-search probes keep none): the histories, "
+                     "portraits, spectra and distributions are not drawn.")
         markdown_text = line + "\n\n" + tables.markdown(header, rows)
         html_text = f"<p class='case'>{line}</p>" + tables.html_table(header, rows)
         steps_header, steps_rows = tables.steps_table(steps, scenario, law)

@@ -81,6 +81,11 @@ class Suite:
                 return float(value) if value else math.nan
         return math.nan
 
+    def has_series(self, run, name="series.csv"):
+        """Whether a run kept its series (a step-search probe or --series none keeps none)."""
+        path = os.path.join(self.folder, "runs", run["job_id"], name)
+        return os.path.exists(path + ".gz") or os.path.exists(path)
+
     def events(self, run):
         """A run's contact episodes (events.csv: onset, end, duration, approach and rebound velocity,
         restitution, peak force, impulse, indentation) as a dict of column -> list of floats; None when
