@@ -36,4 +36,11 @@ nlohmann::ordered_json json_number(double value, bool exact) {
   return std::strtod(number_text(value).c_str(), nullptr);
 }
 
+std::string csv_escape(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
 }  // namespace ib

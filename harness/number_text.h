@@ -1,5 +1,5 @@
-// How the result files write numbers: with the digits the data holds, in one place for every writer
-// (runs.csv, runs.jsonl, summary.json, steps.csv, series and events files).
+// How the result files write numbers (with the digits the data holds) and text cells, in one place for
+// every writer (runs.csv, runs.jsonl, summary.json, steps.csv, series and events files).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -20,5 +20,9 @@ std::string exact_number_text(double value);
 // rounded to number_text's 9 digits (nlohmann writes the shortest text of the rounded double); with
 // exact, the value itself (a setting or a time step: read back, it is the same step).
 nlohmann::ordered_json json_number(double value, bool exact = false);
+
+// A text cell of a CSV file: as it is, or quoted (with "" for ") when it holds a comma, a quote or a
+// line break (RFC 4180), so that a reason such as "off by 12 %; ..." stays one cell.
+std::string csv_escape(const std::string& text);
 
 }  // namespace ib

@@ -47,13 +47,6 @@ std::string step_text(double dt) {
 }
 
 
-std::string csv_escape(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
 struct StepField {
   std::string name;
   std::variant<std::string, double> value;
