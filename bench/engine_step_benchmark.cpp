@@ -8,7 +8,8 @@
 #include <string>
 
 #include "rig_case.h"
-#include "simulator.h"
+#include "model/simulator.h"
+#include "simulators/catalog.h"
 
 namespace {
 

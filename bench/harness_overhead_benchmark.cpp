@@ -22,23 +22,24 @@
 #include <variant>
 #include <vector>
 
-#include "injected_contact.h"
-#include "rig.h"
+#include "adapters/common/injected_contact.h"
+#include "simulators/catalog.h"
+#include "adapters/common/rig.h"
 #include "rig_case.h"
-#include "run_job.h"
-#include "simulator.h"
+#include "harness/run_job.h"
+#include "model/simulator.h"
 
 #if IMPACTBENCH_WITH_MUJOCO
-#include "mujoco_engine.h"
-#include "mujoco_model.h"
+#include "adapters/mujoco/mujoco_engine.h"
+#include "adapters/mujoco/mujoco_model.h"
 #endif
 #if IMPACTBENCH_WITH_ODE
-#include "ode_contact.h"
-#include "ode_library.h"
-#include "ode_rig.h"
+#include "adapters/ode/ode_contact.h"
+#include "adapters/ode/ode_library.h"
+#include "adapters/ode/ode_rig.h"
 #endif
 #if IMPACTBENCH_WITH_BULLET
-#include "bullet_world.h"
+#include "adapters/bullet/bullet_world.h"
 #endif
 
 namespace {

@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "modal_model.h"
-#include "reference_solver.h"
-#include "scenario_toml.h"
+#include "physics/modal_model.h"
+#include "reference/reference_solver.h"
+#include "model/scenario_toml.h"
 
 namespace {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "scenario_toml.h"
-#include "simulator.h"
+#include "model/scenario_toml.h"
+#include "model/simulator.h"
 
 namespace ib::bench {
 

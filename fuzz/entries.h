@@ -16,12 +16,12 @@
 #include <string>
 #include <string_view>
 
-#include "metrics.h"
-#include "modal_model.h"
-#include "reporters.h"
-#include "run_files.h"
-#include "scenario_toml.h"
-#include "trajectory.h"
+#include "harness/metrics.h"
+#include "physics/modal_model.h"
+#include "harness/reporters.h"
+#include "harness/run_files.h"
+#include "model/scenario_toml.h"
+#include "model/trajectory.h"
 
 namespace ib::fuzz {
 

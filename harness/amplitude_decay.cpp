@@ -1,4 +1,4 @@
-#include "amplitude_decay.h"
+#include "harness/amplitude_decay.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "merge.h"
+#include "harness/merge.h"
 
 #include <cerrno>
 #include <cstring>
@@ -10,10 +10,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "reporters.h"
-#include "run_files.h"
-#include "run_record.h"
-#include "step_search.h"
+#include "harness/reporters.h"
+#include "harness/run_files.h"
+#include "harness/run_record.h"
+#include "harness/step_search.h"
 
 namespace ib {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "shard_plan.h"
+#include "harness/shard_plan.h"
 
 namespace ib {
 

@@ -1,7 +1,7 @@
 // Metrics from a trajectory and its contact events (rig.md section 5), the same for every simulator.
-#include "metrics.h"
+#include "harness/metrics.h"
 
-#include "amplitude_decay.h"
+#include "harness/amplitude_decay.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "trajectory.h"
+#include "model/trajectory.h"
 
 namespace ib {
 

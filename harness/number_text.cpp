@@ -1,4 +1,4 @@
-#include "number_text.h"
+#include "harness/number_text.h"
 
 #include <cmath>
 #include <cstdio>

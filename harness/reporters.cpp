@@ -1,4 +1,4 @@
-#include "reporters.h"
+#include "harness/reporters.h"
 
 #include <cerrno>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "number_text.h"
-#include "run_files.h"
+#include "harness/number_text.h"
+#include "harness/run_files.h"
 
 namespace ib {
 namespace {

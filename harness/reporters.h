@@ -5,7 +5,7 @@
 #include <set>
 #include <string>
 
-#include "run_record.h"
+#include "harness/run_record.h"
 
 namespace ib {
 

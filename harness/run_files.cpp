@@ -1,4 +1,4 @@
-#include "run_files.h"
+#include "harness/run_files.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -13,7 +13,7 @@
 #include <vector>
 #include <zlib.h>
 
-#include "number_text.h"
+#include "harness/number_text.h"
 
 namespace ib {
 namespace {

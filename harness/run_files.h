@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "trajectory.h"
+#include "model/trajectory.h"
 
 namespace ib {
 

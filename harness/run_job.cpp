@@ -1,4 +1,4 @@
-#include "run_job.h"
+#include "harness/run_job.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "modal_model.h"
-#include "reporters.h"
-#include "run_files.h"
+#include "physics/modal_model.h"
+#include "harness/reporters.h"
+#include "harness/run_files.h"
 
 namespace ib {
 

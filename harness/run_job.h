@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "metrics.h"
-#include "run_record.h"
-#include "scenario.h"
-#include "simulator.h"
-#include "verdict.h"
+#include "harness/metrics.h"
+#include "harness/run_record.h"
+#include "model/scenario.h"
+#include "model/simulator.h"
+#include "harness/verdict.h"
 
 namespace ib {
 
@@ -62,8 +62,7 @@ void warn_if_window_in_transient(const Scenario& scenario, const Measurement& me
 // keep_trajectory receives the trajectory when given (a reference kept for later comparisons).
 RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measurement& measurement,
                   const ReferenceData* beam_reference, const ReferenceData* chain_reference,
-                  const std::string& run_folder, ReferenceData* keep = nullptr,
-                  const SimulatorFactory& factory = make_simulator);
+                  const std::string& run_folder, ReferenceData* keep, const SimulatorFactory& factory);
 
 // A finished run (its record and what keep received) scored as the run of another law: the same
 // simulation compared with that law's references and judged again for accuracy (stability does not

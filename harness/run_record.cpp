@@ -1,4 +1,4 @@
-#include "run_record.h"
+#include "harness/run_record.h"
 
 #include <algorithm>
 #include <limits>

@@ -9,9 +9,9 @@
 #include <variant>
 #include <vector>
 
-#include "metrics.h"
-#include "trajectory.h"
-#include "verdict.h"
+#include "harness/metrics.h"
+#include "model/trajectory.h"
+#include "harness/verdict.h"
 
 namespace ib {
 

@@ -1,4 +1,4 @@
-#include "shard_plan.h"
+#include "harness/shard_plan.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "run_files.h"
+#include "harness/run_files.h"
 
 namespace ib {
 namespace {

@@ -1,4 +1,4 @@
-#include "step_search.h"
+#include "harness/step_search.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -13,8 +13,8 @@
 #include <utility>
 #include <variant>
 
-#include "number_text.h"
-#include "run_files.h"
+#include "harness/number_text.h"
+#include "harness/run_files.h"
 
 namespace ib {
 namespace {

@@ -1,4 +1,4 @@
-#include "suite.h"
+#include "harness/suite.h"
 
 #include <fcntl.h>
 #include <sys/prctl.h>
@@ -21,12 +21,11 @@
 #include <stdexcept>
 #include <thread>
 
-#include "number_text.h"
-#include "progress.h"
-#include "reference_simulator.h"
-#include "reporters.h"
-#include "run_files.h"
-#include "scenario_toml.h"
+#include "harness/number_text.h"
+#include "harness/progress.h"
+#include "harness/reporters.h"
+#include "harness/run_files.h"
+#include "model/scenario_toml.h"
 
 namespace ib {
 namespace {
@@ -431,10 +430,10 @@ class SuiteRunner {
             if (!path.empty()) options["contact"] = path;
             PlannedJob job = make_job(index, JobKind::engine, engine, law, dt, options);
             job.beam_reference = beam.id;
-            if (auto simulator = settings_.factory(engine)) {
+            if (auto simulator = settings_.simulators.make(engine)) {
               if (const auto links = simulator->chain_links(s, job.spec.settings)) {
                 auto chain_options = settings_.reference_options;
-                for (const auto& [name, value] : chain_reference_options(*links)) chain_options[name] = value;
+                for (const auto& [name, value] : settings_.simulators.chain_reference_options(*links)) chain_options[name] = value;
                 PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options);
                 chain.beam_reference = beam.id;
                 chain.chain_links = *links;
@@ -630,7 +629,7 @@ class SuiteRunner {
     bool ran = false;
     try {
       record = run_job(scenario, job.spec, measurement_of(job), beam, chain, folder, scored.empty() ? nullptr : &run_data,
-                       settings_.factory);
+                       settings_.simulators.make);
       ran = true;
     } catch (const OutputError& e) {
       send_and_exit(message_pipe, e.what());

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "run_job.h"
-#include "shard_plan.h"
-#include "simulator.h"
-#include "step_search.h"
+#include "harness/run_job.h"
+#include "harness/shard_plan.h"
+#include "model/simulator.h"
+#include "harness/step_search.h"
 
 namespace ib {
 
@@ -31,7 +31,7 @@ struct SuiteSettings {
   std::string out;                                 // output folder
   bool resume = false;
   Measurement measurement;
-  SimulatorFactory factory = make_simulator;
+  SimulatorCatalog simulators;                     // what runs the jobs (simulators/catalog.h: this binary's)
   // Set: instead of fixed time steps, each (scenario, law, engine, options) group searches its largest
   // stable and accurate steps by bisection (step_search.h) and appends a row to DIR/steps.csv and
   // DIR/steps.jsonl when its search ends. time_steps_s is then ignored for the engines.

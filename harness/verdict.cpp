@@ -1,4 +1,4 @@
-#include "verdict.h"
+#include "harness/verdict.h"
 
 #include <cmath>
 #include <sstream>

@@ -8,9 +8,9 @@
 #include <optional>
 #include <string>
 
-#include "metrics.h"
-#include "scenario.h"
-#include "simulator.h"
+#include "harness/metrics.h"
+#include "model/scenario.h"
+#include "model/simulator.h"
 
 namespace ib {
 

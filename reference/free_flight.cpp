@@ -1,4 +1,4 @@
-#include "free_flight.h"
+#include "reference/free_flight.h"
 
 #include <cmath>
 #include <boost/math/quadrature/gauss.hpp>

@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "modal_model.h"
+#include "physics/modal_model.h"
 
 namespace ib {
 

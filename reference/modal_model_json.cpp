@@ -1,4 +1,4 @@
-#include "modal_model_json.h"
+#include "reference/modal_model_json.h"
 
 #include <nlohmann/json.hpp>
 #include <vector>

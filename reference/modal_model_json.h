@@ -12,8 +12,8 @@
 
 #include <string>
 
-#include "modal_model.h"
-#include "reference_solver.h"
+#include "physics/modal_model.h"
+#include "reference/reference_solver.h"
 
 namespace ib {
 

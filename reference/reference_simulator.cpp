@@ -1,4 +1,8 @@
-#include "reference_simulator.h"
+#include "reference/reference_simulator.h"
+
+#include "model/run_clock.h"
+#include "physics/modal_model.h"
+#include "reference/modal_model_json.h"
 
 #include <chrono>
 #include <cmath>
@@ -63,25 +67,47 @@ Trajectory zoom_on_first_impact(const ModalModel& model, const Scenario& scenari
   return solve_reference(model, initial_state(scenario, model), zoom.end_s, zoom, quiet).trajectory;
 }
 
+// The reference's modal model as JSON (reference/modal_model_json.h), for the run `run` would make
+// with the same scenario, law, options and --rate: for another solver to integrate the same equations.
+std::string reference_model_json(const Scenario& scenario, const RunSettings& settings) {
+  if (settings.time_step_s != 0)
+    throw std::invalid_argument("--dt " + std::to_string(settings.time_step_s) + ": the reference is adaptive; allowed: no --dt");
+  if (!(settings.output_rate_hz > 0))
+    throw std::invalid_argument("--rate " + std::to_string(settings.output_rate_hz) + ": allowed: > 0 Hz");
+  const ReferenceSettings reference = reference_settings_from_options(settings.options);
+  const ModalModel model = build_modal_model(scenario, settings.law, reference.modes);
+  ModelRunInfo run;
+  run.scenario_name = scenario.name;
+  run.scenario_file = scenario.source_path;
+  run.duration_s = scenario.duration_s;
+  run.scoring_window_start_s = run.series_start_s = scenario.scoring_start_s();  // as `run` samples it
+  run.scoring_window_end_s = scenario.duration_s;
+  run.output_rate_hz = settings.output_rate_hz;
+  return modal_model_json(model, initial_state(scenario, model), run, reference);
+}
+
 class ReferenceSimulator final : public Simulator {
  public:
   std::string name() const override { return "reference"; }
   std::string version() const override { return "impactbench reference (modal, Dormand-Prince 5(4))"; }
   std::vector<std::pair<std::string, std::string>> option_help() const override { return kOptions; }
 
+  void check_settings(const RunSettings& run) const override { reference_settings_from_options(run.options); }
+  std::string export_model(const Scenario& scenario, const RunSettings& settings) const override {
+    return reference_model_json(scenario, settings);
+  }
+
   RunResult run(const Scenario& scenario, const RunSettings& run) override {
     const ReferenceSettings settings = reference_settings_from_options(run.options);
-    const auto wall_start = std::chrono::steady_clock::now();
-    const std::clock_t cpu_start = std::clock();
+    const RunClock clock;
     const ModalModel model = build_modal_model(scenario, run.law, settings.modes);
     OutputWindow window;
-    window.start_s = run.series_start_s >= 0 ? run.series_start_s : scenario.scoring_start_s();
+    window.start_s = series_start_s(run, scenario);
     window.end_s = scenario.duration_s;
     window.rate_hz = run.output_rate_hz;
     ReferenceSolution solution = solve_reference(model, initial_state(scenario, model), scenario.duration_s, window, settings);
     RunResult result;
-    result.cost.cpu_time_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    clock.stop_into(result.cost);
     result.cost.steps = solution.integrator_steps + solution.grid_intervals + solution.coarse_intervals;
     // after the cost is taken: the zoom is the report's, not the run's
     result.impact_zoom = zoom_on_first_impact(model, scenario, solution.trajectory.events, window, settings);

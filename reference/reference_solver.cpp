@@ -1,4 +1,4 @@
-#include "reference_solver.h"
+#include "reference/reference_solver.h"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "free_flight.h"
+#include "reference/free_flight.h"
 
 namespace ib {
 

@@ -15,8 +15,8 @@
 
 #include <string>
 
-#include "modal_model.h"
-#include "trajectory.h"
+#include "physics/modal_model.h"
+#include "model/trajectory.h"
 
 namespace ib {
 

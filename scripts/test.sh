@@ -10,6 +10,11 @@ scripts/build.sh
 # Debian's chromium, installed when missing (as root or with sudo, as the other packages).
 command -v chromium >/dev/null || IMPACTBENCH_EXTRA_PACKAGES=chromium scripts/install-deps.sh --only-extra
 (cd build && ctest --output-on-failure -j "$(nproc)")
+# The layers (scripts/check_layers.py, ctest "layering" above): the model, the physics and the harness with
+# their unit tests build and pass with no simulator at all, in build-harness-only/.
+cmake -S . -B build-harness-only -DIMPACTBENCH_HARNESS_ONLY=ON >/dev/null
+cmake --build build-harness-only -j "$(nproc)"
+(cd build-harness-only && ctest --output-on-failure -j "$(nproc)")
 
 if [[ "${IMPACTBENCH_SKIP_SANITIZE:-0}" == 1 ]]; then
   echo "test: sanitizer build skipped (IMPACTBENCH_SKIP_SANITIZE=1)"

@@ -39,9 +39,10 @@
 #include <vector>
 
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
-#include "run_job.h"
-#include "simulator.h"
+#include "simulators/catalog.h"
+#include "reference/reference_simulator.h"
+#include "harness/run_job.h"
+#include "model/simulator.h"
 
 namespace ib {
 namespace {
@@ -258,7 +259,7 @@ const ReferenceData& reference_run(const std::string& scenario_name, ContactLaw 
       if (s.contact.viscoelastic) s.contact.viscoelastic->clip_tension = true;
     }
     slot = std::make_unique<ReferenceData>();
-    const RunRecord record = run_job(s, job, Measurement{}, nullptr, nullptr, "", slot.get());
+    const RunRecord record = run_job(s, job, Measurement{}, nullptr, nullptr, "", slot.get(), make_simulator);
     if (record.verdict == Verdict::unstable || record.verdict == Verdict::failed)
       throw std::runtime_error("reference " + key + ": " + to_string(record.verdict) + ": " + record.reason);
   }
@@ -290,7 +291,7 @@ const Comparison& compare(const AgreementRow& row) {
     const ReferenceData& chain = reference_run(row.scenario, row.law, *links);
     const ReferenceData& beam = reference_run(row.scenario, row.law, std::nullopt);
     slot = std::make_unique<Comparison>();
-    slot->engine = run_job(s, job, Measurement{}, &beam, &chain, "");
+    slot->engine = run_job(s, job, Measurement{}, &beam, &chain, "", nullptr, make_simulator);
     slot->chain_reference = chain.metrics;
     slot->beam_reference = beam.metrics;
     slot->chain_links = *links;

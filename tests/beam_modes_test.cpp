@@ -1,11 +1,11 @@
 // Modes of the clamped-free beam with a tip mass against closed-form results (rig.md section 2).
-#include "beam_modes.h"
+#include "physics/beam_modes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "scenario.h"
+#include "model/scenario.h"
 
 namespace ib {
 namespace {

@@ -16,7 +16,7 @@
 #include <memory>
 #include <vector>
 
-#include "bullet_contact.h"
+#include "adapters/bullet/bullet_contact.h"
 
 namespace ib::bullet {
 namespace {

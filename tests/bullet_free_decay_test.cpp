@@ -12,10 +12,10 @@
 #include <utility>
 #include <vector>
 
-#include "bullet_simulator.h"
-#include "link_chain.h"
+#include "adapters/bullet/bullet_simulator.h"
+#include "physics/link_chain.h"
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
+#include "reference/reference_simulator.h"
 
 namespace ib {
 namespace {

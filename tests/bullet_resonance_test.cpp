@@ -7,11 +7,11 @@
 #include <cstdio>
 #include <string>
 
-#include "bullet_simulator.h"
-#include "metrics.h"
-#include "modal_model.h"
+#include "adapters/bullet/bullet_simulator.h"
+#include "harness/metrics.h"
+#include "physics/modal_model.h"
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
+#include "reference/reference_simulator.h"
 
 namespace ib {
 namespace {

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "bullet_simulator.h"
+#include "adapters/bullet/bullet_simulator.h"
 #include "reference_fixtures.h"
 
 namespace ib {

@@ -8,9 +8,9 @@
 #include <map>
 #include <string>
 
-#include "bullet_simulator.h"
+#include "adapters/bullet/bullet_simulator.h"
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
+#include "reference/reference_simulator.h"
 
 namespace ib {
 namespace {

@@ -9,9 +9,9 @@
 
 #include <cmath>
 
-#include "bullet_world.h"
+#include "adapters/bullet/bullet_world.h"
 #include "reference_fixtures.h"
-#include "rig.h"
+#include "adapters/common/rig.h"
 
 namespace ib::bullet {
 namespace {

@@ -1,13 +1,13 @@
 // The linked-body chain of rig.md section 4: its modes converge to the beam's, its damping is
 // stiffness-proportional with exactly zeta on mode 1.
-#include "link_chain.h"
+#include "physics/link_chain.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "beam_modes.h"
-#include "modal_model.h"
+#include "physics/beam_modes.h"
+#include "physics/modal_model.h"
 
 namespace ib {
 namespace {

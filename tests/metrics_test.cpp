@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "metrics.h"
+#include "harness/metrics.h"
 
 namespace ib {
 namespace {

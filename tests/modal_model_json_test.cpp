@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "modal_model_json.h"
+#include "reference/modal_model_json.h"
 #include "reference_fixtures.h"
 
 namespace ib {

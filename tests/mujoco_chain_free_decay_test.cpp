@@ -10,8 +10,8 @@
 #include <complex>
 #include <vector>
 
-#include "link_chain.h"
-#include "mujoco_simulator.h"
+#include "physics/link_chain.h"
+#include "adapters/mujoco/mujoco_simulator.h"
 #include "reference_fixtures.h"
 
 namespace ib {

@@ -3,7 +3,7 @@
 // is k delta + c delta' (fitted back from its own contact forces), and the contact lasts and rebounds
 // as the exact spring-dashpot that cannot pull. The closed forms used for that are checked against a
 // direct integration first, and so is the spring-dashpot chosen for Newton's law.
-#include "mujoco_contact_mapping.h"
+#include "adapters/mujoco/mujoco_contact_mapping.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <cmath>
 #include <string>
 
-#include "mujoco_engine.h"
+#include "adapters/mujoco/mujoco_engine.h"
 
 namespace ib {
 namespace {

@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <string>
 
-#include "mujoco_engine.h"
-#include "mujoco_simulator.h"
+#include "adapters/mujoco/mujoco_engine.h"
+#include "adapters/mujoco/mujoco_simulator.h"
 #include "reference_fixtures.h"
 
 namespace ib {

@@ -11,9 +11,10 @@
 #include <vector>
 
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
-#include "rig.h"
-#include "run_job.h"
+#include "simulators/catalog.h"
+#include "reference/reference_simulator.h"
+#include "adapters/common/rig.h"
+#include "harness/run_job.h"
 
 namespace ib {
 namespace {
@@ -40,11 +41,11 @@ TEST_P(MujocoLongStep, VerdictSaysSo) {
   JobSpec reference_job{"", "reference", settings};
   reference_job.settings.options = chain_reference_options(default_links(s));
   ReferenceData chain_reference;
-  run_job(s, reference_job, measurement, nullptr, nullptr, "", &chain_reference);
+  run_job(s, reference_job, measurement, nullptr, nullptr, "", &chain_reference, make_simulator);
 
   JobSpec job{"", "mujoco", settings};
   job.settings.time_step_s = c.time_step_s;
-  const RunRecord record = run_job(s, job, measurement, nullptr, &chain_reference, "");
+  const RunRecord record = run_job(s, job, measurement, nullptr, &chain_reference, "", nullptr, make_simulator);
   std::printf("%s, h = %g s: %s (%s)\n", to_string(c.law), c.time_step_s, to_string(record.verdict),
               record.reason.c_str());
   bool allowed = false;

@@ -10,11 +10,11 @@
 #include <fstream>
 #include <string>
 
-#include "mujoco_engine.h"
-#include "mujoco_model.h"
-#include "mujoco_simulator.h"
+#include "adapters/mujoco/mujoco_engine.h"
+#include "adapters/mujoco/mujoco_model.h"
+#include "adapters/mujoco/mujoco_simulator.h"
 #include "reference_fixtures.h"
-#include "rig.h"
+#include "adapters/common/rig.h"
 
 namespace ib {
 namespace {

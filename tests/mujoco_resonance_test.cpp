@@ -12,11 +12,11 @@
 #include <cmath>
 #include <string>
 
-#include "metrics.h"
-#include "mujoco_simulator.h"
+#include "harness/metrics.h"
+#include "adapters/mujoco/mujoco_simulator.h"
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
-#include "run_job.h"
+#include "reference/reference_simulator.h"
+#include "harness/run_job.h"
 
 namespace ib {
 namespace {

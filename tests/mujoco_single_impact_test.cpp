@@ -15,12 +15,12 @@
 #include <ostream>
 #include <string>
 
-#include "metrics.h"
-#include "mujoco_contact_mapping.h"
-#include "mujoco_simulator.h"
+#include "harness/metrics.h"
+#include "adapters/mujoco/mujoco_contact_mapping.h"
+#include "adapters/mujoco/mujoco_simulator.h"
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
-#include "rig.h"
+#include "reference/reference_simulator.h"
+#include "adapters/common/rig.h"
 
 namespace ib {
 namespace {

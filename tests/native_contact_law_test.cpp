@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "reference_fixtures.h"
-#include "simulator.h"
+#include "simulators/catalog.h"
+#include "model/simulator.h"
 
 namespace ib {
 namespace {

@@ -8,8 +8,8 @@
 #include <array>
 #include <cstdio>
 
-#include "ode_contact.h"
-#include "ode_library.h"
+#include "adapters/ode/ode_contact.h"
+#include "adapters/ode/ode_library.h"
 
 namespace ib {
 namespace {

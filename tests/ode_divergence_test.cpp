@@ -10,14 +10,15 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "ode_library.h"
-#include "ode_rig.h"
-#include "ode_simulator.h"
+#include "adapters/ode/ode_library.h"
+#include "simulators/catalog.h"
+#include "adapters/ode/ode_rig.h"
+#include "adapters/ode/ode_simulator.h"
 #include "reference_fixtures.h"
-#include "rig.h"
-#include "suite.h"
+#include "adapters/common/rig.h"
+#include "harness/suite.h"
 #include "suite_test_support.h"
-#include "verdict.h"
+#include "harness/verdict.h"
 
 namespace ib {
 namespace {
@@ -104,7 +105,8 @@ TEST(OdeDivergence, TheSuiteRecordsTheVerdictAndAnOdeAbort) {
   settings.engine_options["ode"] = {{"springs", "explicit"}};
   settings.jobs = 2;
   settings.time_limit_s = 120;
-  settings.factory = factory;
+  settings.simulators = simulator_catalog();
+  settings.simulators.make = factory;
   const SuiteOutcome outcome = run_suite(settings);
   EXPECT_EQ(outcome.not_ok, 2);
 

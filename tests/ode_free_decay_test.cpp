@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <vector>
 
-#include "link_chain.h"
-#include "ode_simulator.h"
+#include "physics/link_chain.h"
+#include "adapters/ode/ode_simulator.h"
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
-#include "rig.h"
+#include "reference/reference_simulator.h"
+#include "adapters/common/rig.h"
 
 namespace ib {
 namespace {

@@ -8,9 +8,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "ode_simulator.h"
+#include "adapters/ode/ode_simulator.h"
+#include "simulators/catalog.h"
 #include "reference_fixtures.h"
-#include "rig.h"
+#include "adapters/common/rig.h"
 
 namespace ib {
 namespace {

@@ -15,13 +15,13 @@
 #include <cmath>
 #include <cstdio>
 
-#include "metrics.h"
-#include "modal_model.h"
-#include "ode_simulator.h"
+#include "harness/metrics.h"
+#include "physics/modal_model.h"
+#include "adapters/ode/ode_simulator.h"
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
-#include "rig.h"
-#include "run_job.h"
+#include "reference/reference_simulator.h"
+#include "adapters/common/rig.h"
+#include "harness/run_job.h"
 
 namespace ib {
 namespace {

@@ -9,11 +9,11 @@
 #include <cstdio>
 #include <optional>
 
-#include "metrics.h"
-#include "ode_simulator.h"
+#include "harness/metrics.h"
+#include "adapters/ode/ode_simulator.h"
 #include "reference_fixtures.h"
-#include "reference_simulator.h"
-#include "rig.h"
+#include "reference/reference_simulator.h"
+#include "adapters/common/rig.h"
 
 namespace ib {
 namespace {

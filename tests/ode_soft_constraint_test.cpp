@@ -2,7 +2,7 @@
 // it: on a single contact between two free spheres, and on a single hinge, ODE reproduces the
 // backward-Euler spring-dashpot step for step; against the exact spring-dashpot it loses energy at first
 // order in the step, about as exp(-pi omega h / 2). Also: the ODE this build links is the double-precision 0.16 library.
-#include "soft_constraint.h"
+#include "adapters/ode/soft_constraint.h"
 
 #include <gtest/gtest.h>
 #include <ode/ode.h>
@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "ode_library.h"
-#include "ode_simulator.h"
+#include "adapters/ode/ode_library.h"
+#include "adapters/ode/ode_simulator.h"
 
 namespace ib {
 namespace {

@@ -13,13 +13,14 @@
 #include <sstream>
 #include <string>
 
-#include "reference_simulator.h"
-#include "reporters.h"
+#include "reference/reference_simulator.h"
+#include "simulators/catalog.h"
+#include "harness/reporters.h"
 #include "suite_test_support.h"
-#include "run_files.h"
-#include "run_record.h"
+#include "harness/run_files.h"
+#include "harness/run_record.h"
 #include "command_test_support.h"
-#include "suite.h"
+#include "harness/suite.h"
 
 namespace ib {
 namespace {
@@ -162,7 +163,8 @@ SuiteSettings short_suite(const fs::path& out) {
   s.laws = {ContactLaw::hertz};
   s.out = out.string();
   s.jobs = 1;
-  s.factory = factory;
+  s.simulators = simulator_catalog();
+  s.simulators.make = factory;
   return s;
 }
 

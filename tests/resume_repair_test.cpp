@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "reporters.h"
-#include "run_record.h"
+#include "harness/reporters.h"
+#include "harness/run_record.h"
 
 namespace ib {
 namespace {

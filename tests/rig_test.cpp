@@ -1,12 +1,12 @@
 // The rig every engine builds, derived in one place: masses, inertias, geometry, initial shape,
 // default discretisation and the energy measure.
-#include "rig.h"
+#include "adapters/common/rig.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "beam_modes.h"
+#include "physics/beam_modes.h"
 #include "reference_fixtures.h"
 
 namespace ib {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "scenario.h"
-#include "scenario_toml.h"
+#include "model/scenario.h"
+#include "model/scenario_toml.h"
 
 namespace ib {
 namespace {

@@ -1,6 +1,6 @@
 // The recorder that turns a fixed-step engine's states into a trajectory: samples between steps,
 // per-step accelerations and their peaks, and contact episodes from the applied force.
-#include "step_recorder.h"
+#include "adapters/common/step_recorder.h"
 
 #include <gtest/gtest.h>
 

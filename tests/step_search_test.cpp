@@ -3,7 +3,8 @@
 // bracket, outcomes that are not monotone in the step are noted, a probe at the time limit decides
 // nothing; through the suite runner with a simulator that is unstable and inaccurate above known
 // steps, it writes one row per group, and --resume re-runs no probe and duplicates no row.
-#include "step_search.h"
+#include "harness/step_search.h"
+#include "simulators/catalog.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -21,8 +22,8 @@
 #include <thread>
 #include <vector>
 
-#include "reference_simulator.h"
-#include "suite.h"
+#include "reference/reference_simulator.h"
+#include "harness/suite.h"
 #include "suite_test_support.h"
 
 namespace ib {
@@ -243,7 +244,8 @@ class StepSearchSuite : public ::testing::Test {
     settings_.jobs = 2;
     settings_.time_limit_s = 60;
     settings_.step_search = StepSearchSettings{};
-    settings_.factory = [](const std::string& name) -> std::unique_ptr<Simulator> {
+    settings_.simulators = simulator_catalog();
+    settings_.simulators.make = [](const std::string& name) -> std::unique_ptr<Simulator> {
       return name == "stepped" ? std::make_unique<SteppedMirror>() : make_simulator(name);
     };
   }
@@ -312,7 +314,8 @@ TEST_F(StepSearchSuite, AProbeAtTheTimeLimitIsNotDecidedNotUnstable) {
   settings_.time_limit_s = 3;
   settings_.step_search->min_step_s = 1e-5;
   settings_.step_search->max_step_s = 1e-3;
-  settings_.factory = [](const std::string& name) -> std::unique_ptr<Simulator> {
+  settings_.simulators = simulator_catalog();
+  settings_.simulators.make = [](const std::string& name) -> std::unique_ptr<Simulator> {
     return name == "stepped" ? std::make_unique<SteppedMirror>(1e-4) : make_simulator(name);
   };
   run_suite(settings_);

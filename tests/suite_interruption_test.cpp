@@ -30,7 +30,7 @@
 #include <thread>
 #include <vector>
 
-#include "run_record.h"
+#include "harness/run_record.h"
 
 namespace {
 

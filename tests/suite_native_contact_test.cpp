@@ -3,7 +3,8 @@
 // against every law's references: a row per law, the others naming the run they were scored from,
 // sharing its files. A resumed suite that lost such a row runs the native run again and records only
 // what was missing.
-#include "suite.h"
+#include "harness/suite.h"
+#include "simulators/catalog.h"
 #include "suite_test_support.h"
 
 #include <gtest/gtest.h>
@@ -15,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "reference_simulator.h"
+#include "reference/reference_simulator.h"
 
 namespace ib {
 namespace {
@@ -51,7 +52,8 @@ class SuiteNativeContact : public ::testing::Test {
     settings_.contact_paths = {"matched", "native"};
     settings_.out = (root_ / "out").string();
     settings_.jobs = 2;
-    settings_.factory = [](const std::string& name) -> std::unique_ptr<Simulator> {
+    settings_.simulators = simulator_catalog();
+    settings_.simulators.make = [](const std::string& name) -> std::unique_ptr<Simulator> {
       if (name == "counted") return std::make_unique<Counted>();
       return make_simulator(name);
     };

@@ -1,7 +1,8 @@
 // The suite runner with engines that misbehave on purpose: a job that aborts or hangs is recorded
 // with its reason and the suite finishes; --resume repeats no finished job; a malformed scenario in a
 // folder fails that scenario alone; the reference of each scenario and law runs once.
-#include "suite.h"
+#include "harness/suite.h"
+#include "simulators/catalog.h"
 #include "suite_test_support.h"
 
 #include <gtest/gtest.h>
@@ -17,8 +18,8 @@
 #include <thread>
 #include <vector>
 
-#include "reference_simulator.h"
-#include "reporters.h"
+#include "reference/reference_simulator.h"
+#include "harness/reporters.h"
 
 namespace ib {
 namespace {
@@ -101,7 +102,8 @@ class SuiteRunner : public ::testing::Test {
     settings_.laws = {ContactLaw::hertz};
     settings_.jobs = 2;
     settings_.time_limit_s = 3;
-    settings_.factory = test_factory;
+    settings_.simulators = simulator_catalog();
+    settings_.simulators.make = test_factory;
   }
   void TearDown() override { fs::remove_all(root_); }
   fs::path root_;

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "command_test_support.h"
-#include "run_record.h"
+#include "harness/run_record.h"
 #include "suite_test_support.h"
 
 namespace {

@@ -10,9 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "reference_simulator.h"
-#include "run_job.h"
-#include "scenario_toml.h"
+#include "reference/reference_simulator.h"
+#include "simulators/catalog.h"
+#include "harness/run_job.h"
+#include "model/scenario_toml.h"
 #include "suite_test_support.h"
 
 namespace ib {
@@ -130,8 +131,8 @@ TEST(TimedRuns, TimedRunsDoNotChangeWhatIsMeasured) {
   Measurement once, repeated;
   once.timed_repeats = 0;
   repeated.timed_repeats = 2;
-  const RunRecord a = run_job(f.scenario, f.job, once, nullptr, nullptr, "");
-  const RunRecord b = run_job(f.scenario, f.job, repeated, nullptr, nullptr, "");
+  const RunRecord a = run_job(f.scenario, f.job, once, nullptr, nullptr, "", nullptr, make_simulator);
+  const RunRecord b = run_job(f.scenario, f.job, repeated, nullptr, nullptr, "", nullptr, make_simulator);
   ASSERT_TRUE(a.metrics && b.metrics);
   const auto fa = flatten(*a.metrics), fb = flatten(*b.metrics);
   ASSERT_EQ(fa.size(), fb.size());

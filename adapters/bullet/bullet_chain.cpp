@@ -1,4 +1,4 @@
-#include "bullet_chain.h"
+#include "adapters/bullet/bullet_chain.h"
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>

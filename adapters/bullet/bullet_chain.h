@@ -16,7 +16,7 @@
 #include <Eigen/Core>
 #include <memory>
 
-#include "rig.h"
+#include "adapters/common/rig.h"
 
 class btCollisionObject;
 class btDiscreteDynamicsWorld;

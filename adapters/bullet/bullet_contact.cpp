@@ -1,4 +1,4 @@
-#include "bullet_contact.h"
+#include "adapters/bullet/bullet_contact.h"
 
 #include <btBulletCollisionCommon.h>
 #include <btBulletDynamicsCommon.h>

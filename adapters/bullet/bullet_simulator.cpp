@@ -1,4 +1,4 @@
-#include "bullet_simulator.h"
+#include "adapters/bullet/bullet_simulator.h"
 
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
@@ -15,14 +15,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "adapter_options.h"
-#include "bullet_chain.h"
-#include "bullet_contact.h"
-#include "bullet_world.h"
-#include "injected_contact.h"
-#include "link_chain.h"
-#include "rig.h"
-#include "step_recorder.h"
+#include "model/simulator_options.h"
+#include "adapters/bullet/bullet_chain.h"
+#include "adapters/bullet/bullet_contact.h"
+#include "adapters/bullet/bullet_world.h"
+#include "adapters/common/injected_contact.h"
+#include "physics/link_chain.h"
+#include "adapters/common/rig.h"
+#include "adapters/common/step_recorder.h"
 
 // Bullet's single-precision build would keep a 40 um indentation at 0.3 m from the origin to a few
 // hundred float ulps; CMake refuses it too (adapters/bullet/CMakeLists.txt).
@@ -140,7 +140,7 @@ class BulletSimulator final : public Simulator {
     std::optional<InjectedContact> injector;
     if (injected) injector.emplace(rig);
     const bool instantaneous = is_instantaneous(rig.law);
-    const double series_start = settings.series_start_s >= 0 ? settings.series_start_s : scenario.scoring_start_s();
+    const double series_start = series_start_s(settings, scenario);
     StepRecorder recorder(series_start, scenario.duration_s, settings.output_rate_hz);
     std::array<Eigen::VectorXd, 2> angles, rates;
 

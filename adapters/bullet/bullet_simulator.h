@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "simulator.h"
+#include "model/simulator.h"
 
 namespace ib {
 

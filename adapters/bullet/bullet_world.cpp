@@ -1,8 +1,8 @@
-#include "bullet_world.h"
+#include "adapters/bullet/bullet_world.h"
 
 #include <variant>
 
-#include "bullet_contact.h"
+#include "adapters/bullet/bullet_contact.h"
 
 namespace ib::bullet {
 

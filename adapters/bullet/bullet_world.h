@@ -13,9 +13,9 @@
 #include <utility>
 #include <vector>
 
-#include "adapter_options.h"
-#include "bullet_chain.h"
-#include "rig.h"
+#include "model/simulator_options.h"
+#include "adapters/bullet/bullet_chain.h"
+#include "adapters/common/rig.h"
 
 namespace ib::bullet {
 

@@ -1,4 +1,4 @@
-#include "injected_contact.h"
+#include "adapters/common/injected_contact.h"
 
 namespace ib {
 

@@ -4,7 +4,7 @@
 // engine; the law is the reference's own (reference/contact_laws.h).
 #pragma once
 
-#include "rig.h"
+#include "adapters/common/rig.h"
 
 namespace ib {
 

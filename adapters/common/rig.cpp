@@ -1,10 +1,10 @@
-#include "rig.h"
+#include "adapters/common/rig.h"
 
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <stdexcept>
 
-#include "beam_modes.h"
+#include "physics/beam_modes.h"
 
 namespace ib {
 
@@ -68,10 +68,7 @@ RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links) {
   rig.frame_spacing_m = scenario.gap_m + 2 * kTipSphereRadius_m;
   rig.frames[0] = build_frame(scenario.frames[0], links, 0.0, scenario.initial.frame1_tip_displacement_m);
   rig.frames[1] = build_frame(scenario.frames[1], links, rig.frame_spacing_m, 0.0);
-  if (scenario.motor) {
-    const double omega = 2 * M_PI * motor_frequency_hz(scenario);
-    rig.motor = MotorForce{scenario.motor->unbalance_mass_kg * scenario.motor->unbalance_radius_m * omega * omega, omega};
-  }
+  rig.motor = motor_force(scenario);
   rig.law = make_contact_model(scenario, law);
   rig.contact_effective_mass_kg =
       1 / (1 / rig.frames[0].tip_effective_mass_kg + 1 / rig.frames[1].tip_effective_mass_kg);

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "contact_laws.h"
-#include "link_chain.h"
-#include "modal_model.h"
-#include "scenario.h"
+#include "physics/contact_laws.h"
+#include "physics/link_chain.h"
+#include "physics/modal_model.h"
+#include "model/scenario.h"
 
 namespace ib {
 

@@ -9,7 +9,7 @@
 #include <array>
 #include <limits>
 
-#include "trajectory.h"
+#include "model/trajectory.h"
 
 namespace ib {
 

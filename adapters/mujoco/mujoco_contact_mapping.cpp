@@ -1,4 +1,4 @@
-#include "mujoco_contact_mapping.h"
+#include "adapters/mujoco/mujoco_contact_mapping.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "mujoco_engine.h"
+#include "adapters/mujoco/mujoco_engine.h"
 
 #include <cstring>
 #include <mutex>

@@ -1,11 +1,11 @@
-#include "mujoco_model.h"
+#include "adapters/mujoco/mujoco_model.h"
 
 #include <charconv>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-#include "mujoco_engine.h"
+#include "adapters/mujoco/mujoco_engine.h"
 
 namespace ib {
 namespace {

@@ -8,10 +8,10 @@
 #include <utility>
 #include <vector>
 
-#include "adapter_options.h"
-#include "mujoco_contact_mapping.h"
-#include "rig.h"
-#include "simulator.h"
+#include "model/simulator_options.h"
+#include "adapters/mujoco/mujoco_contact_mapping.h"
+#include "adapters/common/rig.h"
+#include "model/simulator.h"
 
 namespace ib {
 

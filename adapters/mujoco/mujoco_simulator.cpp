@@ -1,4 +1,4 @@
-#include "mujoco_simulator.h"
+#include "adapters/mujoco/mujoco_simulator.h"
 
 #include <algorithm>
 #include <array>
@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "injected_contact.h"
-#include "link_chain.h"
-#include "mujoco_engine.h"
-#include "mujoco_model.h"
-#include "step_recorder.h"
+#include "adapters/common/injected_contact.h"
+#include "physics/link_chain.h"
+#include "adapters/mujoco/mujoco_engine.h"
+#include "adapters/mujoco/mujoco_model.h"
+#include "adapters/common/step_recorder.h"
 
 namespace ib {
 namespace {
@@ -165,6 +165,9 @@ class MujocoSimulator final : public Simulator {
   std::string name() const override { return "mujoco"; }
   std::string version() const override { return mujoco_version(); }
   std::vector<std::pair<std::string, std::string>> option_help() const override { return mujoco_options(); }
+  std::string export_model(const Scenario& scenario, const RunSettings& settings) const override {
+    return mujoco_model_xml(scenario, settings);
+  }
   std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {
     return mujoco_chain_links(scenario, settings);
   }
@@ -196,7 +199,7 @@ class MujocoSimulator final : public Simulator {
     mjData* d = rig.data();
     const double h = plan.time_step_s;
     const long long steps = static_cast<long long>(std::ceil(scenario.duration_s / h - 1e-9));
-    const double series_start = settings.series_start_s >= 0 ? settings.series_start_s : scenario.scoring_start_s();
+    const double series_start = series_start_s(settings, scenario);
     StepRecorder recorder(series_start, scenario.duration_s, settings.output_rate_hz);
     const RigEnergy energy(plan.rig);
     InjectedContact injected(plan.rig);

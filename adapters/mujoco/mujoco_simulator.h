@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "mujoco_contact_mapping.h"
-#include "simulator.h"
+#include "adapters/mujoco/mujoco_contact_mapping.h"
+#include "model/simulator.h"
 
 namespace ib {
 

@@ -1,8 +1,8 @@
-#include "ode_contact.h"
+#include "adapters/ode/ode_contact.h"
 
 #include <variant>
 
-#include "soft_constraint.h"
+#include "adapters/ode/soft_constraint.h"
 
 namespace ib::ode {
 

@@ -13,8 +13,8 @@
 
 #include <string>
 
-#include "adapter_options.h"
-#include "contact_laws.h"
+#include "model/simulator_options.h"
+#include "physics/contact_laws.h"
 
 namespace ib::ode {
 

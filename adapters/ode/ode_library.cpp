@@ -1,4 +1,4 @@
-#include "ode_library.h"
+#include "adapters/ode/ode_library.h"
 
 #include <ode/ode.h>
 

@@ -1,4 +1,4 @@
-#include "ode_rig.h"
+#include "adapters/ode/ode_rig.h"
 
 #include <cmath>
 #include <stdexcept>

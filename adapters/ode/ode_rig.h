@@ -13,8 +13,8 @@
 #include <array>
 #include <vector>
 
-#include "rig.h"
-#include "soft_constraint.h"
+#include "adapters/common/rig.h"
+#include "adapters/ode/soft_constraint.h"
 
 namespace ib::ode {
 

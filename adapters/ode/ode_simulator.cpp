@@ -1,4 +1,4 @@
-#include "ode_simulator.h"
+#include "adapters/ode/ode_simulator.h"
 
 #include <chrono>
 #include <cmath>
@@ -9,13 +9,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "adapter_options.h"
-#include "injected_contact.h"
-#include "ode_contact.h"
-#include "ode_library.h"
-#include "ode_rig.h"
-#include "rig.h"
-#include "step_recorder.h"
+#include "model/simulator_options.h"
+#include "adapters/common/injected_contact.h"
+#include "adapters/ode/ode_contact.h"
+#include "adapters/ode/ode_library.h"
+#include "adapters/ode/ode_rig.h"
+#include "adapters/common/rig.h"
+#include "adapters/common/step_recorder.h"
 
 namespace ib {
 namespace {
@@ -153,7 +153,7 @@ class RigRun {
         ode_rig_(rig_, model_),
         law_force_(rig_),
         observer_(rig_),
-        recorder_(settings.series_start_s >= 0 ? settings.series_start_s : scenario.scoring_start_s(), scenario.duration_s,
+        recorder_(series_start_s(settings, scenario), scenario.duration_s,
                   settings.output_rate_hz),
         steps_(static_cast<long long>(std::ceil(scenario.duration_s / plan.model.time_step_s - 1e-9))),
         step_limit_s_(explicit_spring_step_limit(rig_)) {}

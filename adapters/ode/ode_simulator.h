@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "simulator.h"
+#include "model/simulator.h"
 
 namespace ib {
 

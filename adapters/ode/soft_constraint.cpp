@@ -1,4 +1,4 @@
-#include "soft_constraint.h"
+#include "adapters/ode/soft_constraint.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,12 +1,12 @@
-#include "modal_model.h"
+#include "physics/modal_model.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "beam_modes.h"
-#include "link_chain.h"
+#include "physics/beam_modes.h"
+#include "physics/link_chain.h"
 
 namespace ib {
 
@@ -70,14 +70,17 @@ ModalBasis frame_modes(const FrameSpec& frame, const ModeSelection& selection) {
   throw std::logic_error("unknown mode set");
 }
 
+std::optional<MotorForce> motor_force(const Scenario& scenario) {
+  if (!scenario.motor) return std::nullopt;
+  const double omega = kTwoPi * motor_frequency_hz(scenario);
+  return MotorForce{scenario.motor->unbalance_mass_kg * scenario.motor->unbalance_radius_m * omega * omega, omega};
+}
+
 ModalModel build_modal_model(const Scenario& scenario, ContactLaw law, const ModeSelection& selection) {
   ModalModel model;
   for (int f = 0; f < 2; ++f) model.frames[f] = frame_modes(scenario.frames[f], selection);
   model.gap_m = scenario.gap_m;
-  if (scenario.motor) {
-    const double omega = kTwoPi * motor_frequency_hz(scenario);
-    model.motor = MotorForce{scenario.motor->unbalance_mass_kg * scenario.motor->unbalance_radius_m * omega * omega, omega};
-  }
+  model.motor = motor_force(scenario);
   model.contact = make_contact_model(scenario, law);
   model.finalise();
   return model;

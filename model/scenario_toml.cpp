@@ -5,7 +5,7 @@
 //   4. parse_scenario: the order of the tables and the few rules that tie keys together.
 // Everything a message says about a key (its type, its range, its unit, the list of allowed keys)
 // comes from the schema tables in section 2; to add a key, add a row there.
-#include "scenario_toml.h"
+#include "model/scenario_toml.h"
 
 #include <toml++/toml.h>
 

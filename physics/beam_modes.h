@@ -10,8 +10,8 @@
 
 #include <vector>
 
-#include "modal_basis.h"
-#include "scenario.h"
+#include "physics/modal_basis.h"
+#include "model/scenario.h"
 
 namespace ib {
 

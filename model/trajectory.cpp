@@ -1,5 +1,5 @@
 // Out-of-line members of the run records (trajectory.h).
-#include "trajectory.h"
+#include "model/trajectory.h"
 
 namespace ib {
 

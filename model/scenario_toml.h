@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scenario.h"
+#include "model/scenario.h"
 
 namespace ib {
 

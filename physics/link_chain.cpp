@@ -1,4 +1,4 @@
-#include "link_chain.h"
+#include "physics/link_chain.h"
 
 #include <Eigen/Eigenvalues>
 #include <stdexcept>

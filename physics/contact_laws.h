@@ -5,7 +5,7 @@
 
 #include <variant>
 
-#include "scenario.h"
+#include "model/scenario.h"
 
 namespace ib {
 

@@ -1,4 +1,4 @@
-#include "contact_laws.h"
+#include "physics/contact_laws.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "adapter_options.h"
+#include "model/simulator_options.h"
 
 #include <cmath>
 #include <stdexcept>

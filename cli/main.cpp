@@ -25,18 +25,15 @@
 #include <string>
 #include <vector>
 
-#include "merge.h"
-#include "modal_model.h"
-#include "modal_model_json.h"
-#include "reference_simulator.h"
-#include "run_files.h"
-#include "run_job.h"
-#include "scenario_toml.h"
-#include "simulator.h"
-#include "suite.h"
-#if IMPACTBENCH_WITH_MUJOCO
-#include "mujoco_simulator.h"
-#endif
+#include "harness/merge.h"
+#include "simulators/catalog.h"
+#include "physics/modal_model.h"
+#include "reference/reference_simulator.h"
+#include "harness/run_files.h"
+#include "harness/run_job.h"
+#include "model/scenario_toml.h"
+#include "model/simulator.h"
+#include "harness/suite.h"
 
 namespace {
 
@@ -253,14 +250,14 @@ int command_run(const std::string& path, const std::string& engine, const std::s
     reference.settings.options.clear();
     reference.settings.time_step_s = 0;
     beam.emplace();
-    ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*beam);
+    ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*beam, ib::make_simulator);
     if (const auto links = ib::make_simulator(engine)->chain_links(scenario, job.settings)) {
       reference.settings.options = ib::chain_reference_options(*links);
       chain.emplace();
-      ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*chain);
+      ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*chain, ib::make_simulator);
     }
   }
-  const ib::RunRecord record = ib::run_job(scenario, job, measurement, beam ? &*beam : nullptr, chain ? &*chain : nullptr, out);
+  const ib::RunRecord record = ib::run_job(scenario, job, measurement, beam ? &*beam : nullptr, chain ? &*chain : nullptr, out, nullptr, ib::make_simulator);
   print_record(record);
   std::printf("  files in %s\n", out.c_str());
   return record.verdict == ib::Verdict::unstable || record.verdict == ib::Verdict::failed ? kExitRunNotOk : kExitOk;
@@ -322,6 +319,7 @@ ib::StepSearchSettings parse_step_search(const SuiteOptions& o) {
 
 int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
   ib::SuiteSettings s;
+  s.simulators = ib::simulator_catalog();
   s.inputs = o.inputs.empty() ? std::vector<std::string>{std::string(IMPACTBENCH_SCENARIO_DIR) + "/paper"} : o.inputs;
   s.engines = split(o.engines, ',');
   for (const auto& e : s.engines) require_engine(e);
@@ -354,7 +352,11 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
     auto& target = engine == "reference" ? s.reference_options : s.engine_options[engine];
     target[pair.substr(dot + 1, eq - dot - 1)] = pair.substr(eq + 1);
   }
-  ib::reference_settings_from_options(s.reference_options);  // fail now, not in every job
+  for (const auto& engine : s.engines) {  // fail now, not in every job
+    ib::RunSettings run;
+    run.options = engine == "reference" ? s.reference_options : s.engine_options[engine];
+    ib::make_simulator(engine)->check_settings(run);
+  }
   s.output_rate_hz = o.rate_hz;
   if (o.max_duration_s < 0) throw std::invalid_argument("--duration: allowed: > 0 s");
   s.max_duration_s = o.max_duration_s;
@@ -391,25 +393,6 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
 }
 
-// The reference's modal model as JSON (reference/modal_model_json.h), for the run `run` would make
-// with the same scenario, law, options and --rate: for another solver to integrate the same equations.
-std::string reference_model_json(const ib::Scenario& scenario, const ib::RunSettings& settings) {
-  if (settings.time_step_s != 0)
-    throw std::invalid_argument("--dt " + std::to_string(settings.time_step_s) + ": the reference is adaptive; allowed: no --dt");
-  if (!(settings.output_rate_hz > 0))
-    throw std::invalid_argument("--rate " + std::to_string(settings.output_rate_hz) + ": allowed: > 0 Hz");
-  const ib::ReferenceSettings reference = ib::reference_settings_from_options(settings.options);
-  const ib::ModalModel model = ib::build_modal_model(scenario, settings.law, reference.modes);
-  ib::ModelRunInfo run;
-  run.scenario_name = scenario.name;
-  run.scenario_file = scenario.source_path;
-  run.duration_s = scenario.duration_s;
-  run.scoring_window_start_s = run.series_start_s = scenario.scoring_start_s();  // as `run` samples it
-  run.scoring_window_end_s = scenario.duration_s;
-  run.output_rate_hz = settings.output_rate_hz;
-  return ib::modal_model_json(model, ib::initial_state(scenario, model), run, reference);
-}
-
 // The model an engine builds for a run, in the engine's own format, for a person to open in the
 // engine's tools (MuJoCo: MJCF for its viewer; the reference: its modal model as JSON).
 int command_export(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
@@ -420,13 +403,14 @@ int command_export(const std::string& path, const std::string& engine, const std
   settings.time_step_s = time_step_s;
   settings.output_rate_hz = rate_hz;
   settings.options = parse_options(option_pairs);
-  std::string text;
-  if (engine == "reference") text = reference_model_json(scenario, settings);
-#if IMPACTBENCH_WITH_MUJOCO
-  if (engine == "mujoco") text = ib::mujoco_model_xml(scenario, settings);
-#endif
-  if (text.empty())
-    throw std::invalid_argument("--engine " + engine + ": no exportable model; allowed: reference, mujoco (when built)");
+  require_engine(engine);
+  const std::string text = ib::make_simulator(engine)->export_model(scenario, settings);
+  if (text.empty()) {
+    std::string exportable;
+    for (const auto& name : ib::simulator_names())
+      if (!ib::make_simulator(name)->export_model(scenario, settings).empty()) exportable += (exportable.empty() ? "" : ", ") + name;
+    throw std::invalid_argument("--engine " + engine + ": no exportable model; allowed: " + exportable);
+  }
   if (out.empty() || out == "-") {
     std::cout << text;
   } else {

@@ -1,4 +1,4 @@
-#include "beam_modes.h"
+#include "physics/beam_modes.h"
 
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/tools/toms748_solve.hpp>

@@ -1,6 +1,6 @@
 // Out-of-line members of the scenario model (scenario.h): derived section properties, the names of the
 // contact laws, and the default rig of rig.md section 1.
-#include "scenario.h"
+#include "model/scenario.h"
 
 namespace ib {
 

@@ -13,9 +13,9 @@
 #include <optional>
 #include <string>
 
-#include "contact_laws.h"
-#include "modal_basis.h"
-#include "scenario.h"
+#include "physics/contact_laws.h"
+#include "physics/modal_basis.h"
+#include "model/scenario.h"
 
 namespace ib {
 
@@ -40,6 +40,10 @@ struct MotorForce {
   double at(double t) const;
   double rate_at(double t) const;  // dF_m/dt [N/s]
 };
+
+// The unbalanced motor of a scenario as a force on frame 1's tip: m_u e_u Omega^2 at Omega = 2 pi
+// motor_frequency_hz. The one place that writes it; absent without a motor.
+std::optional<MotorForce> motor_force(const Scenario& scenario);
 
 struct ModalModel {
   std::array<ModalBasis, 2> frames;

@@ -12,8 +12,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "modal_basis.h"
-#include "scenario.h"
+#include "physics/modal_basis.h"
+#include "model/scenario.h"
 
 namespace ib {
 

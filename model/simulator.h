@@ -1,0 +1,76 @@
+// The one interface every simulator implements, the reference included: a scenario and run settings
+// in, a trajectory and its contact events out. Metrics are computed outside every simulator.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "model/scenario.h"
+#include "model/trajectory.h"
+
+namespace ib {
+
+// When a run is unstable: the one record that both the simulators' divergence guard (which stops a run
+// early) and the verdict (harness/verdict.h) read.
+struct StabilityBounds {
+  double displacement_bound_fraction_of_length = 0.1;  // |u| beyond this x frame length: unstable [-]
+  double penetration_bound_gaps = 10;                  // delta beyond this x gap (1 mm when the gap is 0) [-]
+  double energy_growth_tolerance = 1e-3;               // relative rise of energy allowed without a motor [-]
+};
+
+// How a run is carried out. Physics lives in the Scenario; this is numerics and bookkeeping.
+struct RunSettings {
+  ContactLaw law = ContactLaw::hertz;
+  double output_rate_hz = 4096;       // samples per second of the written series [Hz]
+  double series_start_s = -1;         // first sample time [s]; < 0: the scenario's scoring window start
+  double time_step_s = 0;             // fixed-step engines [s]; the adaptive reference ignores it
+  StabilityBounds stability;          // a fixed-step engine stops when a tip leaves these bounds
+  // Simulator-specific options as name=value text, each validated by the simulator that reads it
+  // (e.g. the reference's "modes", "rtol"; an engine's "integrator"). Unknown names are an error.
+  std::map<std::string, std::string> options;
+};
+
+// The first sample time of a run's series: settings.series_start_s, or the scenario's scoring window
+// start when that is < 0. The one place that resolves the default.
+double series_start_s(const RunSettings& settings, const Scenario& scenario);
+
+class Simulator {
+ public:
+  virtual ~Simulator() = default;
+  virtual std::string name() const = 0;          // e.g. "reference", "mujoco"
+  virtual std::string version() const = 0;       // library version, for reports
+  // The options this simulator accepts, with a one-line description each (for --help and errors).
+  virtual std::vector<std::pair<std::string, std::string>> option_help() const = 0;
+  // Runs one scenario. Throws std::invalid_argument for settings it cannot take (bad option, law
+  // without parameters in the scenario); instability is reported in the result, not thrown.
+  virtual RunResult run(const Scenario& scenario, const RunSettings& settings) = 0;
+  // The number of links K of the chain this simulator builds for a run, if it builds one: the suite
+  // then also scores it against the reference on exactly that chain.
+  virtual std::optional<int> chain_links(const Scenario&, const RunSettings&) const { return std::nullopt; }
+  // Checks a run's settings as run() would, without running: throws std::invalid_argument naming the
+  // option, the value and what is allowed (a suite refuses bad options before its first job).
+  virtual void check_settings(const RunSettings&) const {}
+  // The model this simulator builds for a run, in its own format, for a person to open in the
+  // simulator's own tools (MuJoCo: MJCF; the reference: its modal model as JSON); empty when it has none.
+  virtual std::string export_model(const Scenario&, const RunSettings&) const { return {}; }
+};
+
+// Makes simulators by name (nullptr when unknown): the catalog's, or a test's own.
+using SimulatorFactory = std::function<std::unique_ptr<Simulator>(const std::string& name)>;
+
+// What the layers above know of the simulators, handed to them by the caller: the harness runs
+// whatever a catalog makes and never names an engine. simulators/catalog.h makes the catalog of this
+// binary; a test may build its own.
+struct SimulatorCatalog {
+  std::vector<std::string> names;  // in the order reports list them, the reference first
+  SimulatorFactory make;
+  // The options that make the reference run on the K-link chain an engine builds, so that the engine
+  // is also scored against exactly the system it simulates (Simulator::chain_links).
+  std::function<std::map<std::string, std::string>(int links)> chain_reference_options;
+};
+
+}  // namespace ib

@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""The layering rule, checked on every #include of the sources (run by the test command).
+
+    model <- physics <- reference, adapters <- simulators <- harness <- cli
+
+A folder's files may include their own folder and the folders this table allows, nothing else; the
+harness is above the simulators in the chain of commands but links only the model and the physics: it
+receives the simulators through a catalog (model/simulator.h). Each engine's library headers are included
+only in its own adapter folder. Includes carry their folder ("model/scenario.h"), so a project header
+named without one is an error too. tests/, bench/ and fuzz/ may include anything.
+
+    scripts/check_layers.py [ROOT]     exit 0: every include follows the rule; 1: each breach listed
+"""
+import pathlib
+import re
+import sys
+
+ENGINES = ("mujoco", "ode", "bullet", "dart", "simbody")
+ALLOWED = {
+    "model": set(),
+    "physics": {"model"},
+    "reference": {"model", "physics"},
+    "adapters/common": {"model", "physics"},
+    **{f"adapters/{e}": {"model", "physics", "adapters/common"} for e in ENGINES},
+    "simulators": {"model", "physics", "reference", "adapters/common", *(f"adapters/{e}" for e in ENGINES)},
+    "harness": {"model", "physics"},
+    "cli": {"model", "physics", "reference", "harness", "simulators"},  # the reference for `modes` (its mode options)
+}
+# Angle-bracket includes that belong to one engine's adapter only.
+ENGINE_HEADERS = {
+    "mujoco": re.compile(r"^mujoco/"),
+    "ode": re.compile(r"^ode/"),
+    "bullet": re.compile(r"^(btBulletDynamicsCommon\.h|LinearMath/|BulletDynamics/|BulletCollision/)"),
+    "dart": re.compile(r"^dart/"),
+    "simbody": re.compile(r"^(Simbody\.h|simbody/|SimTKcommon|SimTKmath)"),
+}
+INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
+
+
+def layer_of(relative: pathlib.PurePosixPath):
+    parts = relative.parts
+    if parts[0] == "adapters" and len(parts) > 2:
+        return f"adapters/{parts[1]}"
+    return parts[0] if parts[0] in ALLOWED and len(parts) > 1 else None
+
+
+def breaches(root: pathlib.Path):
+    headers = {p.relative_to(root).as_posix() for p in root.rglob("*.h") if "build" not in p.relative_to(root).parts[0]}
+    for path in sorted(root.rglob("*")):
+        if path.suffix not in (".h", ".cpp") or path.relative_to(root).parts[0].startswith("build"):
+            continue
+        relative = pathlib.PurePosixPath(path.relative_to(root).as_posix())
+        layer = layer_of(relative)
+        if layer is None:
+            continue
+        for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+            m = INCLUDE.match(line)
+            if not m:
+                continue
+            quote, name = m.groups()
+            where = f"{relative}:{number}"
+            if quote == "<":
+                for engine, pattern in ENGINE_HEADERS.items():
+                    if pattern.match(name) and layer != f"adapters/{engine}":
+                        yield f"{where}: <{name}> is {engine}'s; only adapters/{engine} may include it"
+                continue
+            target = layer_of(pathlib.PurePosixPath(name))
+            if target is None:
+                if "/" not in name and any(h.endswith("/" + name) for h in headers):
+                    yield f'{where}: "{name}" names no folder; write it with its layer, e.g. "{next(h for h in headers if h.endswith("/" + name))}"'
+                continue
+            if name not in headers:
+                yield f'{where}: "{name}" is not a header of this tree'
+            elif target != layer and target not in ALLOWED[layer]:
+                allowed = ", ".join(sorted(ALLOWED[layer])) or "nothing below it"
+                yield f'{where}: {layer} includes "{name}" ({target}); {layer} may include {allowed}'
+
+
+def main():
+    root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent)
+    found = list(breaches(root))
+    for b in found:
+        print(b)
+    print(f"check_layers: {len(found)} include(s) against the layering rule in {root}" if found
+          else f"check_layers: every include in {root} follows model <- physics <- reference, adapters <- simulators <- harness <- cli")
+    return 1 if found else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
