@@ -189,6 +189,17 @@ void write_series_csv(const std::string& path, const Trajectory& t) {
   write_table(path, text);
 }
 
+void write_sensor_csv(const std::string& path, const std::vector<double>& time_s,
+                      const std::array<std::vector<double>, 2>& acceleration_m_s2) {
+  std::string text = "time_s,frame1_sensor_acceleration_m_s2,frame2_sensor_acceleration_m_s2\n";
+  for (std::size_t k = 0; k < time_s.size(); ++k) {
+    text += exact_number_text(time_s[k]);
+    for (int f = 0; f < 2; ++f) add_cell(text, number_text(acceleration_m_s2[f][k]), false);
+    text += '\n';
+  }
+  write_table(path, text);
+}
+
 void write_events_csv(const std::string& path, const Trajectory& t) {
   std::string text = std::string(kEventsHeader) + "\n";
   for (const ContactEvent& e : t.events) {

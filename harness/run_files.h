@@ -3,9 +3,11 @@
 // named in every column.
 #pragma once
 
+#include <array>
 #include <istream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "model/trajectory.h"
 
@@ -32,6 +34,11 @@ void replace_text_file(const std::string& path, const std::string& text);
 // .gz is written gzipped; the readers take either form (a plain series.csv from another solver, `score`).
 void write_series_csv(const std::string& path, const Trajectory& trajectory);
 void write_events_csv(const std::string& path, const Trajectory& trajectory);
+// sensor.csv.gz: the accelerometer's reading of both frames at its own rate (metrics.h
+// sensor_acceleration, the one computation of it): time_s (window centres, exact),
+// frame{1,2}_sensor_acceleration_m_s2. The report draws it instead of computing it again.
+void write_sensor_csv(const std::string& path, const std::vector<double>& time_s,
+                      const std::array<std::vector<double>, 2>& acceleration_m_s2);
 // Fills the series (and output rate, start time) or the events of `trajectory` from a file written above.
 void read_series_csv(const std::string& path, Trajectory& trajectory);
 void read_events_csv(const std::string& path, Trajectory& trajectory);

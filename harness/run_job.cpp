@@ -127,6 +127,16 @@ void compare_with_references(RunRecord& record, const Metrics& metrics, const Tr
 
 }  // namespace
 
+// The sensor's reading over the whole written series (its first window starts at the series' first
+// sample, the scoring window's start unless --series all or --series-start say otherwise).
+static void write_sensor_over_series(const std::string& path, const Trajectory& trajectory, double sensor_rate_hz) {
+  const double start_s = trajectory.size() > 0 ? trajectory.time_s.front() : 0.0;
+  const double end_s = trajectory.size() > 0 ? trajectory.time_s.back() : 0.0;
+  const SensorSeries frame1 = sensor_acceleration(trajectory, 0, start_s, end_s, sensor_rate_hz);
+  const SensorSeries frame2 = sensor_acceleration(trajectory, 1, start_s, end_s, sensor_rate_hz);
+  write_sensor_csv(path, frame1.time_s, {frame1.acceleration_m_s2, frame2.acceleration_m_s2});
+}
+
 RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measurement& measurement,
                   const ReferenceData* beam_reference, const ReferenceData* chain_reference,
                   const std::string& run_folder, ReferenceData* keep, const SimulatorFactory& factory) {
@@ -177,6 +187,7 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
     if (measurement.series != SeriesOutput::none) {
       write_series_csv(run_folder + "/series.csv.gz", result.trajectory);
       if (result.impact_zoom.size() > 0) write_series_csv(run_folder + "/impact.csv.gz", result.impact_zoom);
+      write_sensor_over_series(run_folder + "/sensor.csv.gz", result.trajectory, metrics_settings.sensor_rate_hz);
     }
     write_events_csv(run_folder + "/events.csv", result.trajectory);
   }
@@ -207,7 +218,7 @@ RunRecord score_for_law(const Scenario& scenario, const RunRecord& run, const Re
     std::filesystem::create_directories(run_folder, error);
     if (error) throw OutputError(output_error_text(run_folder, "create the run folder", error.value()));
     // The same files, linked (no second copy on disk; copied where links are not possible).
-    for (const char* name : {"series.csv.gz", "events.csv", "impact.csv.gz"}) {
+    for (const char* name : {"series.csv.gz", "sensor.csv.gz", "events.csv", "impact.csv.gz"}) {
       const std::string from = source_folder + "/" + name, to = run_folder + "/" + name;
       if (!std::filesystem::exists(from, error)) continue;
       std::filesystem::remove(to, error);

@@ -165,24 +165,6 @@ def read_series(path):
     return columns
 
 
-def sensor_acceleration(series, frame, sensor_rate_hz=2048.0):
-    """The accelerometer's reading (rig.md section 5) from the sampled tip velocity: the velocity change
-    over each sensor window of 1/f_s divided by 1/f_s, at the window centres. The series is sampled at
-    a multiple of 2 f_s in the suite's default settings, so no interpolation is needed."""
-    time = series["time_s"]
-    velocity = series[f"frame{frame}_velocity_m_s"]
-    if len(time) < 2:
-        return [], []
-    rate = (len(time) - 1) / (time[-1] - time[0])
-    stride = max(1, round(rate / sensor_rate_hz))
-    window = stride / rate
-    t_out, a_out = [], []
-    for k in range(0, len(time) - stride, stride):
-        t_out.append(time[k] + window / 2)
-        a_out.append((velocity[k + stride] - velocity[k]) / window / G)
-    return t_out, a_out
-
-
 def read_experiment(path):
     with open(path, "rb") as f:
         return tomllib.load(f)

@@ -66,14 +66,18 @@ _CACHE = {}  # (folder, job id) -> series: every figure of a case reads the same
 
 
 def series_of(suite, run):
-    """A run's series.csv as numpy arrays plus its events under "events"; None when it kept no series."""
+    """A run's series.csv as numpy arrays plus its events under "events" and the accelerometer's reading the
+    harness wrote (sensor.csv) under "sensor"; None when it kept no series."""
     key = (suite.folder, run["job_id"])
     if key not in _CACHE:
         if len(_CACHE) > 24:
             _CACHE.clear()
         raw = suite.series(run)
+        sensor = None if raw is None else suite.series(run, "sensor.csv")
         _CACHE[key] = None if raw is None else {**{k: np.asarray(v, float) for k, v in raw.items()},
-                                                "events": suite.events(run)}
+                                                "events": suite.events(run),
+                                                "sensor": None if sensor is None else
+                                                {k: np.asarray(v, float) for k, v in sensor.items()}}
     return _CACHE[key]
 
 
@@ -114,8 +118,12 @@ def gap_of(run):
 
 
 def sensor(series, frame, start, end):
-    times, values = data.sensor_acceleration(series, frame)
-    times, values = np.asarray(times), np.asarray(values)
+    """The accelerometer's reading [g] of a frame between two times, as the harness computed and wrote it
+    (sensor.csv: the one computation of rig.md section 5's sensor); empty for results without that file."""
+    reading = series.get("sensor")
+    if reading is None:
+        return np.array([]), np.array([])
+    times, values = reading["time_s"], reading[f"frame{frame}_sensor_acceleration_m_s2"] / data.G
     keep = (times >= start) & (times <= end)
     return times[keep], values[keep]
 

@@ -160,6 +160,14 @@ class Figures(unittest.TestCase):
             "time_s": t, "frame1_displacement_m": u1, "frame1_velocity_m_s": v1, "frame1_acceleration_m_s2": a1,
             "frame2_displacement_m": u2, "frame2_velocity_m_s": v2, "frame2_acceleration_m_s2": a2,
             "contact_force_n": zero})
+        # the accelerometer's reading as the harness writes it (harness/metrics.h): the velocity change over
+        # each 1/2048 s window divided by the window, at the window centres
+        stride = round(SERIES_RATE_HZ / 2048)
+        window = stride / SERIES_RATE_HZ
+        write_csv(os.path.join(folder, "sensor.csv.gz"), {
+            "time_s": t[:-stride:stride] + window / 2,
+            "frame1_sensor_acceleration_m_s2": (v1[stride::stride] - v1[:-stride:stride]) / window,
+            "frame2_sensor_acceleration_m_s2": (v2[stride::stride] - v2[:-stride:stride]) / window})
         count = len(onsets)
         write_csv(os.path.join(folder, "events.csv"), {
             "onset_time_s": onsets, "end_time_s": onsets + 2e-4, "duration_s": [2e-4] * count,
