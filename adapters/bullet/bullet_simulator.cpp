@@ -6,9 +6,7 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -19,10 +17,9 @@
 #include "adapters/bullet/bullet_chain.h"
 #include "adapters/bullet/bullet_contact.h"
 #include "adapters/bullet/bullet_world.h"
-#include "adapters/common/injected_contact.h"
+#include "adapters/common/fixed_step_loop.h"
 #include "physics/link_chain.h"
 #include "adapters/common/rig.h"
-#include "adapters/common/step_recorder.h"
 
 // Bullet's single-precision build would keep a 40 um indentation at 0.3 m from the origin to a few
 // hundred float ulps; CMake refuses it too (adapters/bullet/CMakeLists.txt).
@@ -86,6 +83,73 @@ std::string format(double value) {
   return out.str();
 }
 
+// The Bullet side of the shared fixed-step loop (adapters/common/fixed_step_loop.h).
+class BulletStepper final : public FixedStepEngine {
+ public:
+  BulletStepper(const RigSpec& rig, BulletRig& bullet, bool injected)
+      : rig_(rig), bullet_(bullet), injected_(injected), energy_(rig), instantaneous_(is_instantaneous(rig.law)) {}
+
+  bool injects_contact() const override { return injected_; }
+
+  std::optional<std::string> read_tips(double t_s, TipState& tips) override {
+    for (int f = 0; f < 2; ++f) {
+      BulletChain& chain = bullet_.chain(f);
+      const BulletChain::TipMotion tip = chain.tip_motion();
+      tips.displacement_m[f] = tip.x_m - rig_.frames[f].base_x_m;
+      tips.velocity_m_s[f] = tip.velocity_x_m_s;
+      chain.joint_state(angles_[f], rates_[f]);
+    }
+    for (int f = 0; f < 2; ++f)  // non-finite tips: the loop says so itself
+      if (std::isfinite(tips.displacement_m[f] + tips.velocity_m_s[f]) && !(angles_[f].allFinite() && rates_[f].allFinite()))
+        return "Bullet's state became non-finite (frame " + std::to_string(f + 1) + " hinges) at t = " + format(t_s) + " s";
+    return std::nullopt;
+  }
+
+  double energy_j(double indentation_m) override {
+    return energy_(angles_, rates_, instantaneous_ ? 0.0 : indentation_m);
+  }
+
+  void apply_loads(const StepLoads& loads) override {
+    for (int f = 0; f < 2; ++f) bullet_.chain(f).add_joint_spring_torques();
+    if (loads.motor_force_n) bullet_.chain(0).add_tip_force_x(*loads.motor_force_n);
+    injected_force_n_ = loads.injected_contact_force_n.value_or(0.0);
+    if (loads.injected_contact_force_n) {
+      bullet_.chain(0).add_tip_force_x(-injected_force_n_);
+      bullet_.chain(1).add_tip_force_x(injected_force_n_);
+    }
+  }
+
+  std::optional<std::string> step(double step_s) override {
+    bullet_.step(step_s);
+    double force = injected_force_n_;
+    if (!injected_) {
+      const auto [impulse, points] = bullet_.tip_contact_impulse();
+      force = contact_force_n_ = impulse / step_s;
+      max_points_ = std::max(max_points_, points);
+    }
+    // The published spring-dashpot may pull (injected: applied and recorded as computed); Bullet's own
+    // contact impulses are never negative.
+    contact_steps_ += force != 0;
+    return std::nullopt;
+  }
+
+  double contact_force_n() override { return contact_force_n_; }
+
+  long long contact_steps() const { return contact_steps_; }
+  int max_contact_points() const { return max_points_; }
+
+ private:
+  const RigSpec& rig_;
+  BulletRig& bullet_;
+  const bool injected_;
+  const RigEnergy energy_;
+  const bool instantaneous_;
+  std::array<Eigen::VectorXd, 2> angles_, rates_;
+  double injected_force_n_ = 0, contact_force_n_ = 0;
+  long long contact_steps_ = 0;
+  int max_points_ = 0;
+};
+
 class BulletSimulator final : public Simulator {
  public:
   std::string name() const override { return "bullet"; }
@@ -136,87 +200,10 @@ class BulletSimulator final : public Simulator {
     d.emplace_back("restitution_velocity_threshold_m_s", info.m_restitutionVelocityThreshold);
     d.emplace_back("contact_erp2", info.m_erp2);
 
-    RigEnergy energy(rig);
-    std::optional<InjectedContact> injector;
-    if (injected) injector.emplace(rig);
-    const bool instantaneous = is_instantaneous(rig.law);
-    const double series_start = series_start_s(settings, scenario);
-    StepRecorder recorder(series_start, scenario.duration_s, settings.output_rate_hz);
-    std::array<Eigen::VectorXd, 2> angles, rates;
-
-    // The state after a step, as the recorder wants it; false (with the reason) when it is unstable.
-    auto observe = [&](double t, double contact_force, StepState& s) {
-      for (int f = 0; f < 2; ++f) {
-        BulletChain& chain = bullet.chain(f);
-        const BulletChain::TipMotion tip = chain.tip_motion();
-        s.displacement_m[f] = tip.x_m - rig.frames[f].base_x_m;
-        s.velocity_m_s[f] = tip.velocity_x_m_s;
-        chain.joint_state(angles[f], rates[f]);
-      }
-      s.t = t;
-      s.contact_force_n = contact_force;
-      s.indentation_m = s.displacement_m[0] - s.displacement_m[1] - rig.gap_m;
-      s.energy_j = recorder.energy_where_needed(
-          t, h, [&] { return energy(angles, rates, instantaneous ? 0.0 : s.indentation_m); });
-      auto frame_name = [](int f) { return "frame " + std::to_string(f + 1); };  // spelt out only on failure
-      for (int f = 0; f < 2; ++f) {
-        const double limit = 0.1 * rig.frames[f].tip_z_m;
-        if (!std::isfinite(s.displacement_m[f]) || !std::isfinite(s.velocity_m_s[f]) || !angles[f].allFinite() ||
-            !rates[f].allFinite()) {
-          result.reason = "Bullet's state became non-finite (" + frame_name(f) + " tip) at t = " + format(t) + " s";
-          return false;
-        }
-        if (std::abs(s.displacement_m[f]) > limit) {
-          result.reason = frame_name(f) + " tip displacement " + format(s.displacement_m[f]) + " m beyond 0.1 L = " +
-                          format(limit) + " m at t = " + format(t) + " s";
-          return false;
-        }
-      }
-      return true;
-    };
-
-    StepState state;
-    observe(0.0, 0.0, state);
-    recorder.record(state);
-    const long long steps = static_cast<long long>(std::ceil(scenario.duration_s / h - 1e-9));
-    long long contact_steps = 0;
-    int max_points = 0;
-    const auto wall_start = std::chrono::steady_clock::now();
-    const std::clock_t cpu_start = std::clock();
-    for (long long n = 0; n < steps; ++n) {
-      const double t = static_cast<double>(n) * h;
-      for (int f = 0; f < 2; ++f) bullet.chain(f).add_joint_spring_torques();
-      if (rig.motor) bullet.chain(0).add_tip_force_x(rig.motor->at(t));
-      double force = 0;
-      if (injector) {
-        force = injector->force(state.displacement_m[0], state.velocity_m_s[0], state.displacement_m[1],
-                                state.velocity_m_s[1], h);
-        bullet.chain(0).add_tip_force_x(-force);
-        bullet.chain(1).add_tip_force_x(force);
-      }
-      bullet.step(h);
-      if (!injector) {
-        const auto [impulse, points] = bullet.tip_contact_impulse();
-        force = impulse / h;
-        max_points = std::max(max_points, points);
-      }
-      // The published spring-dashpot may pull (injected: applied and recorded as computed); Bullet's own
-      // contact impulses are never negative.
-      contact_steps += force != 0;
-      const bool stable = observe(static_cast<double>(n + 1) * h, force, state);
-      recorder.record(state);
-      if (!stable) {
-        result.status = RunStatus::unstable;
-        break;
-      }
-    }
-    result.cost.cpu_time_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    result.cost.steps = recorder.steps();
-    d.emplace_back("contact_steps", static_cast<double>(contact_steps));
-    d.emplace_back("max_contact_points", max_points);
-    result.trajectory = recorder.finish();
-    result.impact_zoom = recorder.impact_zoom();
+    BulletStepper stepper(rig, bullet, injected);
+    run_fixed_steps(stepper, rig, scenario, settings, h, result);
+    d.emplace_back("contact_steps", static_cast<double>(stepper.contact_steps()));
+    d.emplace_back("max_contact_points", stepper.max_contact_points());
     return result;
   }
 

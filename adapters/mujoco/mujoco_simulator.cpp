@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -12,11 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "adapters/common/injected_contact.h"
+#include "adapters/common/fixed_step_loop.h"
 #include "physics/link_chain.h"
 #include "adapters/mujoco/mujoco_engine.h"
 #include "adapters/mujoco/mujoco_model.h"
-#include "adapters/common/step_recorder.h"
 
 namespace ib {
 namespace {
@@ -159,6 +156,77 @@ std::vector<std::pair<std::string, double>> plan_diagnostics(const MujocoRunPlan
   return out;
 }
 
+// The MuJoCo side of the shared fixed-step loop (adapters/common/fixed_step_loop.h).
+class MujocoStepper final : public FixedStepEngine {
+ public:
+  MujocoStepper(const MujocoRunPlan& plan, MujocoRig& rig)
+      : plan_(plan), rig_(rig), energy_(plan.rig),
+        // a contact law's elastic energy belongs in the balance only where MuJoCo applies that law
+        law_energy_(plan.law != ContactLaw::newton && !plan.native_contact) {}
+
+  bool injects_contact() const override { return plan_.harness_contact_force; }
+
+  std::optional<std::string> read_tips(double t_s, TipState& tips) override {
+    try {
+      // MuJoCo's own checks (mj_step runs them too): a bad qpos/qvel resets the data and warns
+      mj_checkPos(rig_.model(), rig_.data());
+      mj_checkVel(rig_.model(), rig_.data());
+      if (std::string warning = rig_.new_warning(t_s); !warning.empty()) return warning;
+      rig_.compute_state();
+    } catch (const MujocoError& error) {
+      return std::string(error.what()) + " (at " + at_time(t_s) + ")";
+    }
+    for (int f = 0; f < 2; ++f) {
+      tips.displacement_m[f] = rig_.tip_displacement(f);
+      tips.velocity_m_s[f] = rig_.tip_velocity(f);
+    }
+    t_s_ = t_s;
+    return std::nullopt;
+  }
+
+  double energy_j(double indentation_m) override {
+    return energy_(rig_.angles(), rig_.rates(), law_energy_ ? indentation_m : 0.0);
+  }
+
+  // forces held over the step, from the state at its start
+  void apply_loads(const StepLoads& loads) override {
+    rig_.clear_applied_forces();
+    if (loads.motor_force_n) rig_.apply_tip_force(0, *loads.motor_force_n);
+    if (loads.injected_contact_force_n) {
+      rig_.apply_tip_force(0, -*loads.injected_contact_force_n);
+      rig_.apply_tip_force(1, *loads.injected_contact_force_n);
+    }
+  }
+
+  std::optional<std::string> step(double) override {
+    const mjModel* m = rig_.model();
+    mjData* d = rig_.data();
+    try {
+      mj_forwardSkip(m, d, mjSTAGE_VEL, 1);  // actuation, acceleration, constraint solve
+      mj_checkAcc(m, d);
+      if (std::string warning = rig_.new_warning(t_s_); !warning.empty()) return warning;
+      if (!plan_.harness_contact_force) contact_force_n_ = rig_.contact_normal_force();
+      if (plan_.integrator == MujocoIntegrator::rk4)
+        mj_RungeKutta(m, d, 4);
+      else
+        mj_Euler(m, d);
+    } catch (const MujocoError& error) {
+      return std::string(error.what()) + " (at " + at_time(t_s_) + ")";
+    }
+    return std::nullopt;
+  }
+
+  double contact_force_n() override { return contact_force_n_; }
+
+ private:
+  const MujocoRunPlan& plan_;
+  MujocoRig& rig_;
+  const RigEnergy energy_;
+  const bool law_energy_;
+  double t_s_ = 0;             // the time of the state last read: the step's start
+  double contact_force_n_ = 0;
+};
+
 class MujocoSimulator final : public Simulator {
  public:
   MujocoSimulator() { install_mujoco_handlers(); }
@@ -187,109 +255,9 @@ class MujocoSimulator final : public Simulator {
       return result;
     }
     result.diagnostics = plan_diagnostics(*plan, rig->model());
-    step(*plan, scenario, settings, *rig, result);
+    MujocoStepper stepper(*plan, *rig);
+    run_fixed_steps(stepper, plan->rig, scenario, settings, plan->time_step_s, result);
     return result;
-  }
-
- private:
-  // The stepping loop: fixed step h, one record per step; stops on the first sign of instability.
-  static void step(const MujocoRunPlan& plan, const Scenario& scenario, const RunSettings& settings, MujocoRig& rig,
-                   RunResult& result) {
-    const mjModel* m = rig.model();
-    mjData* d = rig.data();
-    const double h = plan.time_step_s;
-    const long long steps = static_cast<long long>(std::ceil(scenario.duration_s / h - 1e-9));
-    const double series_start = series_start_s(settings, scenario);
-    StepRecorder recorder(series_start, scenario.duration_s, settings.output_rate_hz);
-    const RigEnergy energy(plan.rig);
-    InjectedContact injected(plan.rig);
-    const bool newton = plan.law == ContactLaw::newton;
-    // a contact law's elastic energy belongs in the balance only where MuJoCo applies that law
-    const bool law_energy = !newton && !plan.native_contact;
-    double step_contact_force = 0;  // the force between the tips during the step that ends at the state recorded
-
-    auto stop = [&](const std::string& reason) {
-      result.status = RunStatus::unstable;
-      result.reason = reason;
-    };
-    const auto wall_start = std::chrono::steady_clock::now();
-    const std::clock_t cpu_start = std::clock();
-    double t = 0;
-    try {
-      for (long long n = 0;; ++n) {
-        t = static_cast<double>(n) * h;
-        // MuJoCo's own checks (mj_step runs them too): a bad qpos/qvel resets the data and warns
-        mj_checkPos(m, d);
-        mj_checkVel(m, d);
-        if (const std::string warning = rig.new_warning(t); !warning.empty()) {
-          stop(warning);
-          break;
-        }
-        rig.compute_state();
-        const std::array<double, 2> u = {rig.tip_displacement(0), rig.tip_displacement(1)};
-        const std::array<double, 2> v = {rig.tip_velocity(0), rig.tip_velocity(1)};
-        if (!std::isfinite(u[0] + u[1] + v[0] + v[1])) {
-          stop("non-finite tip state at " + at_time(t));
-          break;
-        }
-        const double indentation = u[0] - u[1] - plan.rig.gap_m;
-        StepState state;
-        state.t = t;
-        state.displacement_m = u;
-        state.velocity_m_s = v;
-        state.contact_force_n = step_contact_force;
-        state.indentation_m = indentation;
-        state.energy_j = recorder.energy_where_needed(
-            t, h, [&] { return energy(rig.angles(), rig.rates(), law_energy ? indentation : 0.0); });
-        recorder.record(state);
-        if (const std::string why = beyond_bound(plan, u, t); !why.empty()) {
-          stop(why);
-          break;
-        }
-        if (n == steps) break;
-
-        // forces held over the step, from the state at its start
-        rig.clear_applied_forces();
-        if (plan.rig.motor) rig.apply_tip_force(0, plan.rig.motor->at(t));
-        if (plan.harness_contact_force) {
-          step_contact_force = injected.force(u[0], v[0], u[1], v[1], h);
-          rig.apply_tip_force(0, -step_contact_force);
-          rig.apply_tip_force(1, step_contact_force);
-        }
-        mj_forwardSkip(m, d, mjSTAGE_VEL, 1);  // actuation, acceleration, constraint solve
-        mj_checkAcc(m, d);
-        if (const std::string warning = rig.new_warning(t); !warning.empty()) {
-          stop(warning);
-          break;
-        }
-        if (!plan.harness_contact_force) step_contact_force = rig.contact_normal_force();
-        if (plan.integrator == MujocoIntegrator::rk4)
-          mj_RungeKutta(m, d, 4);
-        else
-          mj_Euler(m, d);
-      }
-    } catch (const MujocoError& error) {
-      stop(std::string(error.what()) + " (at " + at_time(t) + ")");
-    }
-    result.cost.cpu_time_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    result.cost.steps = recorder.steps();
-    result.trajectory = recorder.finish();
-    result.impact_zoom = recorder.impact_zoom();
-  }
-
-  // The harness's bound on a tip's displacement: beyond 0.1 L the run has left the physics.
-  static std::string beyond_bound(const MujocoRunPlan& plan, const std::array<double, 2>& u, double t) {
-    for (int f = 0; f < 2; ++f) {
-      const double bound = 0.1 * plan.rig.frames[f].tip_z_m;
-      if (std::abs(u[f]) > bound) {
-        std::ostringstream out;
-        out << "frame " << f + 1 << " tip displacement |u| = " << std::abs(u[f]) << " m beyond 0.1 L = " << bound
-            << " m at " << at_time(t);
-        return out.str();
-      }
-    }
-    return {};
   }
 };
 

@@ -1,8 +1,6 @@
 #include "adapters/ode/ode_simulator.h"
 
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -10,12 +8,11 @@
 #include <string>
 
 #include "model/simulator_options.h"
-#include "adapters/common/injected_contact.h"
+#include "adapters/common/fixed_step_loop.h"
 #include "adapters/ode/ode_contact.h"
 #include "adapters/ode/ode_library.h"
 #include "adapters/ode/ode_rig.h"
 #include "adapters/common/rig.h"
-#include "adapters/common/step_recorder.h"
 
 namespace ib {
 namespace {
@@ -82,145 +79,82 @@ double explicit_spring_step_limit(const RigSpec& rig) {
   return limit;
 }
 
-// Reads the state of the ODE rig into the harness's terms after a step.
-class Observer {
+// The ODE side of the shared fixed-step loop (adapters/common/fixed_step_loop.h): the ODE rig and how its
+// tips touch.
+class OdeStepper final : public FixedStepEngine {
  public:
-  explicit Observer(const RigSpec& rig) : energy_(rig), newton_(is_instantaneous(rig.law)), gap_m_(rig.gap_m) {
-    for (int f = 0; f < 2; ++f) {
-      angles_[f] = Eigen::VectorXd::Zero(rig.frames[f].chain.links);
-      rates_[f] = Eigen::VectorXd::Zero(rig.frames[f].chain.links);
-    }
-  }
-
-  // The state at t after a step of step_s; its energy where the recorder reads it.
-  StepState observe(const OdeRig& ode_rig, double t, double step_s, double contact_force_n,
-                    const StepRecorder& recorder) {
-    StepState s;
-    s.t = t;
-    for (int f = 0; f < 2; ++f) {
-      const ode::TipState tip = ode_rig.tip(f);
-      s.displacement_m[f] = tip.displacement_m;
-      s.velocity_m_s[f] = tip.velocity_m_s;
-      ode_rig.hinge_state(f, angles_[f], rates_[f]);
-    }
-    s.contact_force_n = contact_force_n;
-    s.indentation_m = s.displacement_m[0] - s.displacement_m[1] - gap_m_;
-    // Newton's contact stores no energy (RigEnergy takes 0 indentation for it)
-    s.energy_j = recorder.energy_where_needed(
-        t, step_s, [&] { return energy_(angles_, rates_, newton_ ? 0.0 : s.indentation_m); });
-    return s;
-  }
-
-  bool hinges_finite() const { return angles_[0].allFinite() && angles_[1].allFinite() && rates_[0].allFinite() && rates_[1].allFinite(); }
-
- private:
-  RigEnergy energy_;
-  bool newton_;
-  double gap_m_;
-  std::array<Eigen::VectorXd, 2> angles_, rates_;
-};
-
-// Why the state after a step ends the run (before ODE would be handed a state it aborts on), or nothing.
-// Runs every step: the message's stream is made only when there is something to say.
-std::optional<std::string> divergence(const StepState& s, const Observer& observer, const RigSpec& rig) {
-  auto say = [](auto&&... parts) {
-    std::ostringstream why;
-    why.precision(6);
-    (why << ... << parts);
-    return why.str();
-  };
-  for (int f = 0; f < 2; ++f) {
-    if (!std::isfinite(s.displacement_m[f]) || !std::isfinite(s.velocity_m_s[f]))
-      return say("non-finite state of frame ", f + 1, " at t = ", s.t, " s (tip u = ", s.displacement_m[f],
-                 " m, v = ", s.velocity_m_s[f], " m/s)");
-    const double bound = 0.1 * rig.frames[f].tip_z_m;
-    if (std::abs(s.displacement_m[f]) > bound)
-      return say("frame ", f + 1, " tip displacement |u| = ", std::abs(s.displacement_m[f]), " m at t = ", s.t,
-                 " s, beyond 0.1 L = ", bound, " m");
-  }
-  if (!observer.hinges_finite()) return say("non-finite hinge angle or rate at t = ", s.t, " s");
-  return std::nullopt;
-}
-
-// One run: the ODE rig, how its tips touch, and the recorder, stepped with a fixed step to the end of
-// the scenario or to the step after which the state diverged.
-class RigRun {
- public:
-  RigRun(const Scenario& scenario, const RunSettings& settings, const RunPlan& plan)
+  OdeStepper(const Scenario& scenario, const RunSettings& settings, const RunPlan& plan)
       : rig_(build_rig(scenario, settings.law, plan.links)),
         contact_(ode::contact_setup(plan.contact, rig_.law, plan.model.time_step_s)),
         model_(with_spheres(plan.model, contact_.ode_collision)),
         ode_rig_(rig_, model_),
-        law_force_(rig_),
-        observer_(rig_),
-        recorder_(series_start_s(settings, scenario), scenario.duration_s,
-                  settings.output_rate_hz),
-        steps_(static_cast<long long>(std::ceil(scenario.duration_s / plan.model.time_step_s - 1e-9))),
-        step_limit_s_(explicit_spring_step_limit(rig_)) {}
-
-  RunResult run(const ode::MessageLog& messages) {
-    RunResult result;
-    const auto wall_start = std::chrono::steady_clock::now();
-    const std::clock_t cpu_start = std::clock();
-    StepState state = observer_.observe(ode_rig_, 0, model_.time_step_s, 0, recorder_);
-    recorder_.record(state);
-    for (long long n = 0; n < steps_; ++n) {
-      const double h = model_.time_step_s;
-      const double law_force = apply_loads(static_cast<double>(n) * h, state);
-      ode_rig_.step();
-      // a tensile law force (the unclipped spring-dashpot near separation) is applied and recorded as it is
-      const double contact_force = contact_.ode_collision ? ode_rig_.tip_contact_force() : law_force;
-      state = observer_.observe(ode_rig_, static_cast<double>(n + 1) * h, h, contact_force, recorder_);
-      if (const auto why = divergence(state, observer_, rig_)) {
-        result.status = RunStatus::unstable;
-        result.reason = *why + explain(messages);
-        if (std::isfinite(state.displacement_m[0]) && std::isfinite(state.displacement_m[1])) recorder_.record(state);
-        break;
-      }
-      recorder_.record(state);
+        energy_(rig_),
+        newton_(is_instantaneous(rig_.law)),
+        step_limit_s_(explicit_spring_step_limit(rig_)) {
+    for (int f = 0; f < 2; ++f) {
+      angles_[f] = Eigen::VectorXd::Zero(rig_.frames[f].chain.links);
+      rates_[f] = Eigen::VectorXd::Zero(rig_.frames[f].chain.links);
     }
-    result.cost.cpu_time_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    result.cost.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    result.cost.steps = recorder_.steps();
-    result.trajectory = recorder_.finish();
-    result.impact_zoom = recorder_.impact_zoom();
-    result.diagnostics = diagnostics(messages);
-    return result;
   }
 
- private:
-  static OdeModelSettings with_spheres(OdeModelSettings model, bool spheres) {
-    model.tip_spheres = spheres;  // only what the run needs
-    return model;
+  const RigSpec& rig() const { return rig_; }
+  double time_step_s() const { return model_.time_step_s; }
+
+  bool injects_contact() const override { return contact_.force_from_tip_states; }
+
+  std::optional<std::string> read_tips(double t_s, TipState& tips) override {
+    for (int f = 0; f < 2; ++f) {
+      const ode::TipState tip = ode_rig_.tip(f);
+      tips.displacement_m[f] = tip.displacement_m;
+      tips.velocity_m_s[f] = tip.velocity_m_s;
+      ode_rig_.hinge_state(f, angles_[f], rates_[f]);
+    }
+    // before ODE would be handed a state it aborts on (non-finite tips: the loop says so itself)
+    const bool tips_finite = std::isfinite(tips.displacement_m[0] + tips.displacement_m[1] + tips.velocity_m_s[0] +
+                                           tips.velocity_m_s[1]);
+    if (tips_finite && !(angles_[0].allFinite() && angles_[1].allFinite() && rates_[0].allFinite() &&
+                         rates_[1].allFinite())) {
+      std::ostringstream why;
+      why << "non-finite hinge angle or rate at t = " << t_s << " s" << explain_instability();
+      return why.str();
+    }
+    return std::nullopt;
   }
 
-  // The loads of the coming step, from the state at its start; returns the law's force when the
-  // adapter applies it (-F on frame 1's tip, +F on frame 2's, along x), else 0.
-  double apply_loads(double t, const StepState& state) {
-    double law_force = 0;
-    if (contact_.force_from_tip_states) {
-      law_force = law_force_.force(state.displacement_m[0], state.velocity_m_s[0], state.displacement_m[1],
-                                   state.velocity_m_s[1], model_.time_step_s);
-      ode_rig_.add_tip_force(0, -law_force);
-      ode_rig_.add_tip_force(1, law_force);
+  // Newton's contact stores no energy (RigEnergy takes 0 indentation for it)
+  double energy_j(double indentation_m) override { return energy_(angles_, rates_, newton_ ? 0.0 : indentation_m); }
+
+  // The loads of the coming step: the law's force when the adapter applies it (-F on frame 1's tip, +F
+  // on frame 2's, along x), the contact joint, the motor, the explicit springs.
+  void apply_loads(const StepLoads& loads) override {
+    if (loads.injected_contact_force_n) {
+      ode_rig_.add_tip_force(0, -*loads.injected_contact_force_n);
+      ode_rig_.add_tip_force(1, *loads.injected_contact_force_n);
     }
     if (contact_.ode_collision && ode_rig_.make_tip_contact(contact_.surface)) ++contact_joint_steps_;
-    if (rig_.motor) ode_rig_.add_tip_force(0, rig_.motor->at(t));
+    if (loads.motor_force_n) ode_rig_.add_tip_force(0, *loads.motor_force_n);
     if (model_.springs == SpringPath::explicit_torques) ode_rig_.add_explicit_spring_torques();
-    return law_force;
   }
 
+  std::optional<std::string> step(double) override {
+    ode_rig_.step();
+    return std::nullopt;
+  }
+
+  double contact_force_n() override { return contact_.ode_collision ? ode_rig_.tip_contact_force() : 0.0; }
+
   // What a person needs to see why a run diverged: the explicit springs' step limit, ODE's own words.
-  std::string explain(const ode::MessageLog& messages) const {
+  std::string explain_instability() const override {
     std::ostringstream why;
     why.precision(3);
     if (model_.springs == SpringPath::explicit_torques && model_.time_step_s > step_limit_s_)
       why << "; explicit hinge springs are stable only below a step of " << step_limit_s_
           << " s (the chain's fastest modes), the step is " << model_.time_step_s << " s";
-    if (!messages.messages().empty())
-      why << "; ODE said (" << messages.count() << " messages): " << messages.messages().front();
+    if (messages_ && !messages_->messages().empty())
+      why << "; ODE said (" << messages_->count() << " messages): " << messages_->messages().front();
     return why.str();
   }
+  void listen(const ode::MessageLog& messages) { messages_ = &messages; }
 
   // The mapping's figures, named with units.
   std::vector<std::pair<std::string, double>> diagnostics(const ode::MessageLog& messages) const {
@@ -256,15 +190,21 @@ class RigRun {
     return d;
   }
 
+ private:
+  static OdeModelSettings with_spheres(OdeModelSettings model, bool spheres) {
+    model.tip_spheres = spheres;  // only what the run needs
+    return model;
+  }
+
   const RigSpec rig_;
   const ContactSetup contact_;
   const OdeModelSettings model_;
   OdeRig ode_rig_;
-  InjectedContact law_force_;
-  Observer observer_;
-  StepRecorder recorder_;
-  const long long steps_;
+  const RigEnergy energy_;
+  const bool newton_;
   const double step_limit_s_;
+  std::array<Eigen::VectorXd, 2> angles_, rates_;
+  const ode::MessageLog* messages_ = nullptr;
   long long contact_joint_steps_ = 0;
 };
 
@@ -281,8 +221,12 @@ class OdeSimulator final : public Simulator {
     const RunPlan plan = plan_run(scenario, settings);
     ode::ensure_initialised();
     ode::MessageLog messages;  // what ODE warns about during this run (filled by its message handler)
-    RigRun run(scenario, settings, plan);
-    return run.run(messages);
+    OdeStepper stepper(scenario, settings, plan);
+    stepper.listen(messages);
+    RunResult result;
+    run_fixed_steps(stepper, stepper.rig(), scenario, settings, stepper.time_step_s(), result);
+    result.diagnostics = stepper.diagnostics(messages);
+    return result;
   }
 };
 

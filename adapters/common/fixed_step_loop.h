@@ -1,0 +1,68 @@
+// The one fixed-step loop every engine runs (docs/adding-an-engine.md): it steps an engine from t = 0 to
+// the scenario's end with the run's step, applies the motor force and, on the injected path, the
+// harness's contact force at the tips, stops the run at the divergence bound of the run's settings
+// (RunSettings::stability, the record the verdict reads too), records every state through the
+// StepRecorder from the run's series start on, and times the stepping with the one RunClock. An engine
+// supplies only what is its own, through FixedStepEngine.
+//
+// Within a step, in this order: read the tips at t (the state the last step ended in, or the initial one)
+// -> stop when the engine reported trouble (nothing recorded) or a tip is not finite (nothing recorded)
+// -> record the state, with the contact force of the step that led to it -> stop when a tip is beyond
+// the bound (its state is recorded: it happened) -> at the end, stop -> the loads of the coming step from
+// the state at its start (motor at t, the injected contact force) -> step -> the contact force of that
+// step (the injected one, or the engine's own).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include "adapters/common/rig.h"
+#include "model/simulator.h"
+
+namespace ib {
+
+// The two tips as an engine reads them, along x from rest, positive toward frame 2.
+struct TipState {
+  std::array<double, 2> displacement_m{};
+  std::array<double, 2> velocity_m_s{};
+};
+
+// The loads of the coming step, held over it, computed by the loop from the state at the step's start.
+struct StepLoads {
+  double t_s = 0;                                       // the step's start [s]
+  std::optional<double> motor_force_n;                  // on frame 1's tip along +x; absent without a motor
+  std::optional<double> injected_contact_force_n;       // the harness's law: -F on frame 1's tip, +F on
+                                                        // frame 2's; absent when the engine makes the contact
+};
+
+// What an engine implements for the loop (its rig built, its contact configured, beforehand).
+class FixedStepEngine {
+ public:
+  virtual ~FixedStepEngine() = default;
+  // True when the harness's contact law is applied as tip forces (the injected path, or a law the engine
+  // has no form for); the engine then makes no contact of its own.
+  virtual bool injects_contact() const = 0;
+  // The tips now into `tips`. A reason instead when the engine cannot give a state to trust (its own
+  // checks failed, an internal state is not finite): the run stops without recording it.
+  virtual std::optional<std::string> read_tips(double t_s, TipState& tips) = 0;
+  // The mechanical energy of the state just read [J], with the contact's elastic energy at this
+  // indentation where the engine's contact stores one (RigEnergy); called only where the recorder reads it.
+  virtual double energy_j(double indentation_m) = 0;
+  // Applies the loads of the coming step, in the engine's own order, plus whatever the engine adds
+  // itself (explicit hinge springs, a contact joint).
+  virtual void apply_loads(const StepLoads& loads) = 0;
+  // One step. A reason instead when the engine reported trouble during it (the run stops there).
+  virtual std::optional<std::string> step(double step_s) = 0;
+  // The force between the tips during the last step [N], > 0 compressive (when it makes the contact).
+  virtual double contact_force_n() = 0;
+  // Appended to the reason of a run that left the bound (e.g. a step limit, the engine's own messages).
+  virtual std::string explain_instability() const { return {}; }
+};
+
+// Runs the engine over the scenario with a fixed step: fills the result's trajectory, impact zoom,
+// status and reason (unstable, with the time and the bound) and cost. The diagnostics are the engine's.
+void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario& scenario,
+                     const RunSettings& settings, double step_s, RunResult& result);
+
+}  // namespace ib
