@@ -72,14 +72,14 @@ void record_command(const std::string& out, const ib::VerdictSettings& v) {
       {"command", typed},
       {"started_utc", started},
       {"verdict_tolerances",
-       {{"sensor_peak_relative_error", v.sensor_peak_tolerance},
-        {"contact_duration_relative_error", v.contact_duration_tolerance},
-        {"impacts_per_cycle_difference", v.impacts_per_cycle_tolerance},
-        {"log_decrement_relative_error", v.log_decrement_tolerance}}},
+       {{"sensor_peak_relative_error", v.accuracy.sensor_peak_relative},
+        {"contact_duration_relative_error", v.accuracy.contact_duration_relative},
+        {"impacts_per_cycle_difference", v.accuracy.impacts_per_cycle_difference},
+        {"log_decrement_relative_error", v.accuracy.log_decrement_relative}}},
       {"stability_bounds",
-       {{"displacement_fraction_of_length", v.displacement_bound_fraction_of_length},
-        {"penetration_gaps", v.penetration_bound_gaps},
-        {"energy_growth_relative", v.energy_growth_tolerance}}}};
+       {{"displacement_fraction_of_length", v.stability.displacement_bound_fraction_of_length},
+        {"penetration_gaps", v.stability.penetration_bound_gaps},
+        {"energy_growth_relative", v.stability.energy_growth_tolerance}}}};
   std::error_code error;
   std::filesystem::create_directories(out, error);  // when it cannot, the suite reports why (exit 3)
   if (!error) ib::append_text_file(out + "/commands.jsonl", line.dump() + "\n");
@@ -288,8 +288,9 @@ double parse_positive(const std::string& text, const std::string& option) {
   return value;
 }
 
-// --find-steps with --step-range MIN,MAX and --tolerance metric=value,...
-ib::StepSearchSettings parse_step_search(const SuiteOptions& o) {
+// --find-steps with --step-range MIN,MAX and --tolerance metric=value,... (the tolerances are the verdicts': the
+// search finds the largest step the verdict calls accurate)
+ib::StepSearchSettings parse_step_search(const SuiteOptions& o, ib::VerdictSettings& verdicts) {
   ib::StepSearchSettings s;
   if (o.steps_per_octave < 1 || o.steps_per_octave > 64)
     throw std::invalid_argument("--steps-per-octave " + std::to_string(o.steps_per_octave) + ": allowed: 1 to 64");
@@ -305,7 +306,10 @@ ib::StepSearchSettings parse_step_search(const SuiteOptions& o) {
     bool known = false;
     for (ib::HeadlineMetric m : ib::kHeadlineMetrics) {
       if (eq == std::string::npos || name != ib::to_string(m)) continue;
-      s.tolerance[m] = parse_positive(pair.substr(eq + 1), "--tolerance " + name + "=");
+      const double value = parse_positive(pair.substr(eq + 1), "--tolerance " + name + "=");
+      if (m == ib::HeadlineMetric::frame1_sensor_peak) verdicts.accuracy.sensor_peak_relative = value;
+      if (m == ib::HeadlineMetric::contact_duration) verdicts.accuracy.contact_duration_relative = value;
+      if (m == ib::HeadlineMetric::impacts_per_cycle) verdicts.accuracy.impacts_per_cycle_difference = value;
       known = true;
     }
     if (!known)
@@ -369,7 +373,7 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   s.resume_command = resume_command(g_argc, g_argv);
   if (o.find_steps) {
     if (!s.time_steps_s.empty()) throw std::invalid_argument("--dt cannot be combined with --find-steps (the search chooses the steps)");
-    s.step_search = parse_step_search(o);
+    s.step_search = parse_step_search(o, s.measurement.verdicts);
     s.keep_probe_series = o.keep_series;
   } else if (o.step_range != SuiteOptions{}.step_range || !o.tolerances.empty() ||
              o.steps_per_octave != SuiteOptions{}.steps_per_octave || o.keep_series) {

@@ -76,7 +76,7 @@ std::vector<StepField> step_fields(const StepRow& row) {
   for (HeadlineMetric m : kHeadlineMetrics) {
     const std::string name = to_string(m), error = error_name(m);
     const auto a = search ? search->accuracy(m) : StepSearch::Outcome{"", kNaN, kNaN, kNaN, kNaN};
-    out.push_back({error + "_tolerance", s.tolerance.at(m), true});
+    out.push_back({error + "_tolerance", tolerance_of(s.tolerance, m), true});
     out.push_back({name + "_largest_step_within_tolerance_s", a.largest_pass_step_s, true});
     out.push_back({name + "_smallest_step_beyond_tolerance_s", a.smallest_fail_step_s, true});
     out.push_back({error + "_at_largest_step", a.error_at_largest_pass});
@@ -111,6 +111,15 @@ std::string key_text(const std::string& group_id, double min_s, double max_s, do
 }
 
 }  // namespace
+
+double tolerance_of(const AccuracyTolerances& tolerances, HeadlineMetric metric) {
+  switch (metric) {
+    case HeadlineMetric::frame1_sensor_peak: return tolerances.sensor_peak_relative;
+    case HeadlineMetric::contact_duration: return tolerances.contact_duration_relative;
+    case HeadlineMetric::impacts_per_cycle: return tolerances.impacts_per_cycle_difference;
+  }
+  return kNaN;
+}
 
 const char* to_string(HeadlineMetric metric) {
   switch (metric) {
@@ -176,7 +185,6 @@ StepSearch::StepSearch(const StepSearchSettings& settings, const ReferenceFacts&
     : settings_(settings), grid_(step_grid(settings)) {
   for (HeadlineMetric m : kHeadlineMetrics) {
     const int p = static_cast<int>(m);
-    if (!settings_.tolerance.count(m)) settings_.tolerance[m] = StepSearchSettings{}.tolerance.at(m);
     if (!reference.finished) {
       not_applicable_[p] = "the " + reference_name + " did not finish";
       continue;
@@ -209,7 +217,7 @@ StepSearch::Outcome3 StepSearch::judge(int predicate, const ProbeResult& r) cons
   const HeadlineMetric m = static_cast<HeadlineMetric>(predicate);
   const double error = r.error.count(m) ? r.error.at(m) : kNaN;
   // NaN while the reference has the metric: the run lacks it (e.g. no impacts), which is a failure
-  return std::abs(error) <= settings_.tolerance.at(m) ? Outcome3::pass : Outcome3::fail;
+  return std::abs(error) <= tolerance_of(settings_.tolerance, m) ? Outcome3::pass : Outcome3::fail;
 }
 
 Bracket StepSearch::bracket(int predicate) const {
@@ -404,7 +412,7 @@ void append_step_row(const std::string& folder, const StepRow& row) {
 
 std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
   std::vector<double> tolerances;
-  for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(s.tolerance.count(m) ? s.tolerance.at(m) : kNaN);
+  for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(tolerance_of(s.tolerance, m));
   return key_text(group.group_id, s.min_step_s, s.max_step_s, s.points_per_octave, tolerances);
 }
 

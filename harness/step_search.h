@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "harness/verdict.h"
+
 namespace ib {
 
 // A job stopped at the suite's time limit has a reason beginning with this: the search treats such a
@@ -32,12 +34,13 @@ struct StepSearchSettings {
   double min_step_s = 1e-6;   // the grid's smallest step is the last one >= this [s]
   double max_step_s = 1e-3;   // the grid's largest step [s]
   int points_per_octave = 4;  // grid steps per halving of the step (ratio 2^(1/4) = 1.19)
-  // |error| against the reference allowed for "within tolerance": relative for the sensor peak and the
-  // mean contact duration, absolute (impacts per cycle) for impacts per cycle.
-  std::map<HeadlineMetric, double> tolerance = {{HeadlineMetric::frame1_sensor_peak, 0.05},
-                                                {HeadlineMetric::contact_duration, 0.10},
-                                                {HeadlineMetric::impacts_per_cycle, 0.05}};
+  // "Within tolerance" is what the verdict calls accurate: the suite's verdict tolerances
+  // (Measurement::verdicts.accuracy, set by --tolerance), which run_suite copies here.
+  AccuracyTolerances tolerance;
 };
+// A headline metric's tolerance: relative for the sensor peak and the mean contact duration, absolute
+// for impacts per cycle.
+double tolerance_of(const AccuracyTolerances& tolerances, HeadlineMetric metric);
 
 // The grid, largest step first. Throws std::invalid_argument unless 0 < min <= max and points >= 1.
 std::vector<double> step_grid(const StepSearchSettings& settings);

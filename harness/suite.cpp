@@ -176,9 +176,15 @@ struct ScoredFrom {
   const ReferenceData* chain;
 };
 
+// The step search judges "within tolerance" with the verdicts' own tolerances: one record.
+SuiteSettings with_one_tolerance_record(SuiteSettings settings) {
+  if (settings.step_search) settings.step_search->tolerance = settings.measurement.verdicts.accuracy;
+  return settings;
+}
+
 class SuiteRunner {
  public:
-  explicit SuiteRunner(const SuiteSettings& settings) : settings_(settings) {}
+  explicit SuiteRunner(const SuiteSettings& settings) : settings_(with_one_tolerance_record(settings)) {}
   // On an exception (a result that cannot be written), no worker outlives the runner.
   ~SuiteRunner() { stop_workers(/*collect_finished=*/false); }
   SuiteRunner(const SuiteRunner&) = delete;
@@ -867,7 +873,7 @@ class SuiteRunner {
     }
   }
 
-  const SuiteSettings& settings_;
+  const SuiteSettings settings_;  // a copy: the tolerance record is set in it (with_one_tolerance_record)
   std::vector<Scenario> scenarios_;
   std::vector<PlannedJob> jobs_;
   std::vector<PlannedJob> step_groups_;  // --find-steps: one job (dt = 0) per group, not run itself

@@ -36,7 +36,7 @@ Judgement judge_stability(const Scenario& scenario, const RunResult& result, con
   if (result.status == RunStatus::failed) return {Verdict::failed, result.reason};
   if (result.status == RunStatus::unstable) return {Verdict::unstable, result.reason};
   const Trajectory& t = result.trajectory;
-  const double penetration_bound = settings.penetration_bound_gaps * (scenario.gap_m > 0 ? scenario.gap_m : 1e-3);
+  const double penetration_bound = settings.stability.penetration_bound_gaps * (scenario.gap_m > 0 ? scenario.gap_m : 1e-3);
   for (std::size_t k = 0; k < t.size(); ++k) {
     for (int f = 0; f < 2; ++f) {
       const double u = t.displacement_m[f][k], v = t.velocity_m_s[f][k], a = t.acceleration_m_s2[f][k];
@@ -46,7 +46,7 @@ Judgement judge_stability(const Scenario& scenario, const RunResult& result, con
             << " m/s, a = " << a << " m/s^2)";
         return {Verdict::unstable, why.str()};
       }
-      const double bound = settings.displacement_bound_fraction_of_length * scenario.frames[f].length_m;
+      const double bound = settings.stability.displacement_bound_fraction_of_length * scenario.frames[f].length_m;
       if (std::abs(u) > bound)
         return {Verdict::unstable, describe(f == 0 ? "frame 1 tip displacement |u|" : "frame 2 tip displacement |u|",
                                             std::abs(u), "m", t.time_s[k]) +
@@ -73,7 +73,7 @@ Judgement judge_stability(const Scenario& scenario, const RunResult& result, con
       const double e = t.mechanical_energy_j[k];
       const bool apart = t.contact_force_n[k] == 0 && t.displacement_m[0][k] - t.displacement_m[1][k] < scenario.gap_m;
       if (!apart) continue;
-      if (e > initial * (1 + settings.energy_growth_tolerance) + 1e-12) {
+      if (e > initial * (1 + settings.stability.energy_growth_tolerance) + 1e-12) {
         std::ostringstream why;
         why.precision(6);
         why << "energy grew without input from " << initial << " J to " << e << " J at t = " << t.time_s[k] << " s";
@@ -94,13 +94,13 @@ Judgement judge_accuracy(const MetricErrors& e, const VerdictSettings& s, const 
         << std::noshowpos << " (tolerance " << (relative ? 100 * tolerance : tolerance) << (relative ? " %)" : ")")
         << std::showpos;
   };
-  beyond("frame 1 sensor peak", e.sensor_peak_relative_error[0], s.sensor_peak_tolerance, true);
-  beyond("frame 2 sensor peak", e.sensor_peak_relative_error[1], s.sensor_peak_tolerance, true);
-  beyond("mean contact duration", e.contact_duration_relative_error, s.contact_duration_tolerance, true);
-  beyond("impacts per cycle", e.impacts_per_cycle_difference, s.impacts_per_cycle_tolerance, false);
+  beyond("frame 1 sensor peak", e.sensor_peak_relative_error[0], s.accuracy.sensor_peak_relative, true);
+  beyond("frame 2 sensor peak", e.sensor_peak_relative_error[1], s.accuracy.sensor_peak_relative, true);
+  beyond("mean contact duration", e.contact_duration_relative_error, s.accuracy.contact_duration_relative, true);
+  beyond("impacts per cycle", e.impacts_per_cycle_difference, s.accuracy.impacts_per_cycle_difference, false);
   // Frame 1's decay only: frame 1 is released and its envelope decays throughout, while frame 2 starts at
   // rest and first gains from the impacts, so a fitted decrement of its peaks is not a decay rate.
-  beyond("frame 1 log decrement", e.log_decrement_relative_error[0], s.log_decrement_tolerance, true);
+  beyond("frame 1 log decrement", e.log_decrement_relative_error[0], s.accuracy.log_decrement_relative, true);
   const std::string reason = why.str();
   if (reason.empty()) return {};
   return {Verdict::inaccurate, "vs " + against + ": " + reason};

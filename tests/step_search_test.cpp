@@ -301,7 +301,7 @@ TEST_F(StepSearchSuite, FindsTheKnownStepsAndResumesWithoutRepeating) {
   EXPECT_EQ(after[0], row);
   EXPECT_EQ(test::json_lines(settings_.out + "/runs.jsonl").size(), runs.size());
   // other tolerances are another search: a second row, reusing the probes it shares with the first
-  settings_.step_search->tolerance[HeadlineMetric::frame1_sensor_peak] = 0.3;
+  settings_.measurement.verdicts.accuracy.sensor_peak_relative = 0.3;  // the one tolerance record
   const SuiteOutcome looser = run_suite(settings_);
   const auto both = test::json_lines(settings_.out + "/steps.jsonl");
   ASSERT_EQ(both.size(), 2u);
