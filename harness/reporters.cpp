@@ -25,6 +25,7 @@ Json to_json(const RunRecord& record) {
       j[f.name] = json_number(std::get<double>(f.value), f.exact);
     }
   }
+  j["timed_out"] = record.timed_out;
   Json diagnostics = Json::object();
   for (const auto& [name, value] : record.diagnostics) diagnostics[name] = json_number(value);
   j["diagnostics"] = diagnostics;

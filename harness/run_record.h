@@ -25,6 +25,8 @@ struct RunRecord {
   std::string same_run_as;
   Verdict verdict = Verdict::ok;
   std::string reason;                  // why the verdict is not ok
+  bool timed_out = false;              // failed because the suite stopped it at its time limit (runs.jsonl
+                                       // "timed_out"): it decided nothing about the engine
   double duration_s = 0;               // simulated time [s]
   double window_start_s = 0, window_end_s = 0;  // the scoring window the metrics cover [s]
   double output_rate_hz = 0;

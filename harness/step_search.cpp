@@ -1,5 +1,7 @@
 #include "harness/step_search.h"
 
+#include "harness/recorded_run.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -147,34 +149,43 @@ std::vector<double> step_grid(const StepSearchSettings& s) {
   return grid;
 }
 
+namespace {
+double error_of(const HeadlineErrors& e, HeadlineMetric m) {
+  switch (m) {
+    case HeadlineMetric::frame1_sensor_peak: return e.frame1_sensor_peak_relative;
+    case HeadlineMetric::contact_duration: return e.contact_duration_relative;
+    case HeadlineMetric::impacts_per_cycle: return e.impacts_per_cycle_difference;
+  }
+  return kNaN;
+}
+}  // namespace
+
 ProbeResult probe_from_json(const std::string& json_line, bool with_chain) {
-  const Json j = Json::parse(json_line, nullptr, false);
+  const RecordedRun recorded = read_recorded_run(json_line);
   ProbeResult r;
-  if (!j.is_object()) {
-    r.verdict = "failed";
+  if (!recorded.readable) {
     r.reason = "unreadable record";
     return r;
   }
-  r.verdict = text_or_empty(j, "verdict");
-  r.reason = text_or_empty(j, "reason");
-  r.timed_out = r.verdict == "failed" && r.reason.rfind(kTimeLimitReason, 0) == 0;
-  r.wall_time_s = number_or_nan(j, "wall_time_s");
-  const std::string prefix = with_chain ? "vs_chain_reference_" : "vs_reference_";
+  r.verdict = recorded.verdict;
+  r.reason = recorded.reason;
+  r.timed_out = recorded.timed_out;
+  r.wall_time_s = recorded.wall_time_s;
   for (HeadlineMetric m : kHeadlineMetrics) {
-    r.error[m] = number_or_nan(j, prefix + error_name(m));
-    r.beam_error[m] = number_or_nan(j, std::string("vs_reference_") + error_name(m));
+    r.error[m] = error_of(with_chain ? recorded.vs_chain_reference : recorded.vs_reference, m);
+    r.beam_error[m] = error_of(recorded.vs_reference, m);
   }
   return r;
 }
 
 ReferenceFacts reference_from_json(const std::string& json_line) {
-  const Json j = Json::parse(json_line, nullptr, false);
+  const RecordedRun recorded = read_recorded_run(json_line);
   ReferenceFacts f;
-  if (!j.is_object()) return f;
-  f.finished = text_or_empty(j, "verdict") == "ok" || text_or_empty(j, "verdict") == "inaccurate";
-  f.frame1_sensor_peak_g = number_or_nan(j, "frame1_sensor_peak_acceleration_g");
-  f.contact_duration_mean_s = number_or_nan(j, "contact_duration_mean_s");
-  f.impacts_per_cycle = number_or_nan(j, "impacts_per_cycle");
+  if (!recorded.readable) return f;
+  f.finished = recorded.verdict == Verdict::ok || recorded.verdict == Verdict::inaccurate;
+  f.frame1_sensor_peak_g = recorded.frame1_sensor_peak_g;
+  f.contact_duration_mean_s = recorded.contact_duration_mean_s;
+  f.impacts_per_cycle = recorded.impacts_per_cycle;
   return f;
 }
 
@@ -211,7 +222,7 @@ StepSearch::Outcome3 StepSearch::judge(int predicate, const ProbeResult& r) cons
   if (r.timed_out) return Outcome3::undecided;
   // stable: the run's verdict is ok or inaccurate; unstable and failed (the simulator's error, a crash)
   // runs gave no usable trajectory at that step
-  const bool stable = r.verdict == "ok" || r.verdict == "inaccurate";
+  const bool stable = r.verdict == Verdict::ok || r.verdict == Verdict::inaccurate;
   if (predicate == kStability) return stable ? Outcome3::pass : Outcome3::fail;
   if (!stable) return Outcome3::fail;
   const HeadlineMetric m = static_cast<HeadlineMetric>(predicate);
@@ -357,7 +368,7 @@ std::vector<std::string> StepSearch::notes() const {
   for (const auto& [index, result] : results_) {
     if (result.timed_out)
       notes.push_back("not decided at " + step_text(grid_[index]) + " s: the probe reached the time limit (smaller steps not tried)");
-    else if (result.verdict == "failed") {
+    else if (result.verdict == Verdict::failed) {
       const std::string reason = result.reason.size() > 160 ? result.reason.substr(0, 160) + "..." : result.reason;
       notes.push_back("failed at " + step_text(grid_[index]) + " s (counted as not stable): " + reason);
     }
@@ -375,7 +386,7 @@ double StepSearch::probes_wall_time_s() const {
 std::string StepSearch::probe_list() const {
   std::string list;
   for (const auto& [index, result] : results_)
-    list += (list.empty() ? "" : ";") + step_text(grid_[index]) + ":" + (result.timed_out ? "timed_out" : result.verdict);
+    list += (list.empty() ? "" : ";") + step_text(grid_[index]) + ":" + (result.timed_out ? "timed_out" : to_string(result.verdict));
   return list;
 }
 

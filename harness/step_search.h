@@ -19,8 +19,7 @@
 
 namespace ib {
 
-// A job stopped at the suite's time limit has a reason beginning with this: the search treats such a
-// probe as not decided (neither stable nor unstable).
+// The reason of a job stopped at the suite's time limit begins with this (its record's timed_out is set).
 constexpr const char* kTimeLimitReason = "stopped after the time limit";
 
 // The headline metrics whose largest accurate step is searched, in column order.
@@ -47,7 +46,7 @@ std::vector<double> step_grid(const StepSearchSettings& settings);
 
 // One probe as the search sees it, read from its runs.jsonl record.
 struct ProbeResult {
-  std::string verdict;                  // ok, inaccurate, unstable, failed
+  Verdict verdict = Verdict::failed;
   std::string reason;
   bool timed_out = false;               // stopped at the time limit: not decided
   double wall_time_s = 0;               // the simulator's cost [s]

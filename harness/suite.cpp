@@ -23,6 +23,7 @@
 
 #include "harness/number_text.h"
 #include "harness/progress.h"
+#include "harness/recorded_run.h"
 #include "harness/reporters.h"
 #include "harness/run_files.h"
 #include "model/scenario_toml.h"
@@ -80,24 +81,6 @@ std::string last_line(const std::string& path) {
   while (std::getline(in, line))
     if (!line.empty()) last = line;
   return last.size() > 300 ? last.substr(0, 300) + "..." : last;
-}
-
-// The verdict written in a runs.jsonl line.
-// What the suite reads back of a job's runs.jsonl line: its verdict, and for the remaining-time estimate
-// the steps it took (fewer than planned when it stopped unstable) and its simulator's own time.
-struct RowFacts {
-  std::string verdict;
-  double steps = -1, wall_time_s = -1;  // -1: not recorded
-};
-
-RowFacts facts_of(const std::string& json_line) {
-  const auto j = nlohmann::json::parse(json_line, nullptr, false);
-  RowFacts facts;
-  if (!j.is_object()) return facts;
-  if (j.contains("verdict") && j["verdict"].is_string()) facts.verdict = j["verdict"].get<std::string>();
-  for (const auto& [name, value] : {std::pair{"steps", &facts.steps}, std::pair{"wall_time_s", &facts.wall_time_s}})
-    if (j.contains(name) && j[name].is_number()) *value = j[name].get<double>();
-  return facts;
 }
 
 std::string read_file(const std::string& path) {
@@ -726,6 +709,7 @@ class SuiteRunner {
     record.options = options_text(job.spec.settings.options);
     record.chain_links = job.chain_links;
     record.duration_s = s.duration_s;
+    record.timed_out = timed_out;
     const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
     if (!recorded_.count(job.id)) finish(record);
     for (const PlannedJob* other : scored) {  // scored from a run that did not end: failed alike
@@ -756,11 +740,13 @@ class SuiteRunner {
     const std::string json = read_file(folder + "/row.jsonl"), csv = read_file(folder + "/row.csv");
     append_rows(settings_.out, csv, json);
     recorded_.insert(job.id);
-    const RowFacts facts = facts_of(json);
+    // what the progress estimate reads back: the steps taken (fewer than planned when it stopped
+    // unstable) and the simulator's own time
+    const RecordedRun recorded = read_recorded_run(json);
     const bool own_run = job.same_run_as.empty();
-    const double steps = own_run && job.spec.settings.time_step_s > 0 && facts.steps > 0 ? facts.steps : -1;
-    count_and_show(job.id, verdict_from_string(facts.verdict).value_or(Verdict::failed), own_run ? steps : 0,
-                   own_run ? facts.wall_time_s : -1);
+    const double steps = own_run && job.spec.settings.time_step_s > 0 && recorded.steps > 0 ? recorded.steps : -1;
+    const double wall_time_s = std::isnan(recorded.wall_time_s) ? -1 : recorded.wall_time_s;
+    count_and_show(job.id, recorded.verdict, own_run ? steps : 0, own_run ? wall_time_s : -1);
     remove_row_files(folder);
     return json;
   }

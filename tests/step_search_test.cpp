@@ -39,7 +39,7 @@ constexpr double kDurationOffAbove_s = 1e-5;      // contact durations 30 % long
 
 ProbeResult synthetic(double dt) {
   ProbeResult r;
-  r.verdict = dt > kUnstableAbove_s ? "unstable" : "ok";
+  r.verdict = dt > kUnstableAbove_s ? Verdict::unstable : Verdict::ok;
   r.error[HeadlineMetric::frame1_sensor_peak] = dt > kSensorPeakOffAbove_s ? 0.2 : 0.01;
   r.error[HeadlineMetric::contact_duration] = dt > kDurationOffAbove_s ? 0.3 : 0.02;
   r.error[HeadlineMetric::impacts_per_cycle] = 0;
@@ -109,7 +109,7 @@ TEST(StepSearchLogic, OneProbeUpdatesEveryBracket) {
   const int first = *search.next_probe();
   EXPECT_EQ(first, 19);  // the middle of the whole grid (indices 0 .. 39, with -1 and 40 as open ends)
   ProbeResult good;
-  good.verdict = "ok";
+  good.verdict = Verdict::ok;
   for (HeadlineMetric m : kHeadlineMetrics) good.error[m] = 0;
   search.add(first, good);
   EXPECT_EQ(search.stability().largest_pass_step_s, search.grid()[first]);
@@ -118,7 +118,7 @@ TEST(StepSearchLogic, OneProbeUpdatesEveryBracket) {
   EXPECT_EQ(*search.next_probe(), 9);
   // an unstable probe fails every predicate at once
   ProbeResult bad;
-  bad.verdict = "unstable";
+  bad.verdict = Verdict::unstable;
   search.add(10, bad);
   EXPECT_EQ(search.stability().smallest_fail_step_s, search.grid()[10]);
   for (HeadlineMetric m : kHeadlineMetrics) EXPECT_EQ(search.accuracy(m).smallest_fail_step_s, search.grid()[10]);
@@ -131,7 +131,7 @@ TEST(StepSearchLogic, NonMonotoneOutcomesAreNoted) {
   // stable probes at larger steps are reported
   const auto glitch = [&](double dt) {
     ProbeResult r = synthetic(dt);
-    if (std::abs(dt / search.grid()[30] - 1) < 1e-9) r.verdict = "unstable";
+    if (std::abs(dt / search.grid()[30] - 1) < 1e-9) r.verdict = Verdict::unstable;
     return r;
   };
   for (int k : {5, 30, 19}) search.add(k, glitch(search.grid()[k]));
@@ -157,7 +157,7 @@ TEST(StepSearchLogic, AProbeAtTheTimeLimitDecidesNothing) {
     ProbeResult r = synthetic(dt);
     if (dt < 3e-5) {
       r = ProbeResult{};
-      r.verdict = "failed";
+      r.verdict = Verdict::failed;
       r.reason = std::string(kTimeLimitReason) + " of 600 s";
       r.timed_out = true;
     }
