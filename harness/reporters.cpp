@@ -1,5 +1,8 @@
 #include "harness/reporters.h"
 
+#include "harness/jsonl_table.h"
+#include "harness/recorded_run.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -75,40 +78,13 @@ void append_run(const std::string& folder, const RunRecord& record) {
 }
 
 std::set<std::string> repair_and_list_runs(const std::string& folder) {
-  std::set<std::string> ids;
-  errno = 0;
-  std::ifstream in(folder + "/runs.jsonl", std::ios::binary);
-  if (!in) {
-    if (errno == ENOENT) return ids;
-    throw std::runtime_error(folder + "/runs.jsonl: cannot read: " + std::strerror(errno));
-  }
-  // runs.csv is laid out by the header's names, whatever the order or the gaps of a line's keys.
-  const std::vector<Field> columns = fields(RunRecord{});
-  std::string jsonl, csv = csv_header(RunRecord{});
-  for (std::string line; std::getline(in, line);) {
-    const Json j = Json::parse(line, nullptr, /*allow_exceptions=*/false);
-    // A line a kill cut short, or one that is not a run's record, is dropped: its job runs again.
-    if (!j.is_object() || !j.contains("job_id") || !j["job_id"].is_string() || !j.contains("verdict") ||
-        !j["verdict"].is_string())
-      continue;
-    ids.insert(j["job_id"].get<std::string>());
-    jsonl += line + "\n";
-    std::string row;
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (c) row += ",";
-      const auto value = j.find(columns[c].name);
-      if (value == j.end()) continue;
-      if (value->is_string()) row += csv_escape(value->get<std::string>());
-      // The record's numbers already hold the digits they should: each as the shortest exact text.
-      else if (value->is_number()) row += exact_number_text(value->get<double>());
-    }
-    csv += row + "\n";
-  }
-  if (in.bad()) throw std::runtime_error(folder + "/runs.jsonl: read error");
-  in.close();
-  replace_text_file(folder + "/runs.jsonl", jsonl);
-  replace_text_file(folder + "/runs.csv", csv);
-  return ids;
+  // A line that is not a run's record (cut short by a kill) is dropped: its job runs again.
+  std::vector<std::string> columns;
+  for (const Field& f : fields(RunRecord{})) columns.push_back(f.name);
+  return repair_jsonl_table(folder + "/runs.jsonl", folder + "/runs.csv", columns, [](const std::string& line) {
+    const RecordedRun run = read_recorded_run(line);
+    return run.readable ? run.job_id : std::string();
+  });
 }
 
 }  // namespace ib

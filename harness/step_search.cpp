@@ -1,5 +1,6 @@
 #include "harness/step_search.h"
 
+#include "harness/jsonl_table.h"
 #include "harness/recorded_run.h"
 
 #include <algorithm>
@@ -443,38 +444,16 @@ std::string step_row_key_of_line(const std::string& json_line) {
 }
 
 std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
-  std::set<std::string> keys;
-  std::ifstream in(folder + "/steps.jsonl");
-  if (!in) return keys;
-  std::string jsonl, csv = steps_csv_header();
-  for (std::string line; std::getline(in, line);) {
-    const Json j = Json::parse(line, nullptr, false);
-    const std::string key = step_row_key_of(j);
-    if (key.empty()) continue;  // cut short by a kill
-    keys.insert(key);
-    jsonl += line + "\n";
-    std::string row;
-    for (const auto& [name, value] : j.items()) {
-      row += row.empty() ? "" : ",";
-      if (value.is_string()) row += csv_escape(value.get<std::string>());
-      // The record's numbers already hold the digits they should: each as the shortest exact text.
-      else if (value.is_number()) row += exact_number_text(value.get<double>());
-    }
-    csv += row + "\n";
-  }
-  in.close();
-  replace_text_file(folder + "/steps.jsonl", jsonl);
-  replace_text_file(folder + "/steps.csv", csv);
-  return keys;
+  std::vector<std::string> columns;
+  for (const StepField& field : step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr})) columns.push_back(field.name);
+  return repair_jsonl_table(folder + "/steps.jsonl", folder + "/steps.csv", columns, step_row_key_of_line);
 }
 
 std::map<std::string, std::string> recorded_run_lines(const std::string& folder) {
   std::map<std::string, std::string> lines;
   std::ifstream in(folder + "/runs.jsonl");
-  for (std::string line; std::getline(in, line);) {
-    const Json j = Json::parse(line, nullptr, false);
-    if (j.is_object() && j.contains("job_id") && j["job_id"].is_string()) lines[j["job_id"].get<std::string>()] = line;
-  }
+  for (std::string line; std::getline(in, line);)
+    if (const RecordedRun run = read_recorded_run(line); run.readable) lines[run.job_id] = line;
   return lines;
 }
 
