@@ -14,6 +14,18 @@ const char* to_string(ContactPath path) {
   return "?";
 }
 
+std::optional<ContactPath> contact_path_from_string(const std::string& name) {
+  for (ContactPath p : kContactPaths)
+    if (name == to_string(p)) return p;
+  return std::nullopt;
+}
+
+std::string contact_path_names() {
+  std::string names;
+  for (ContactPath p : kContactPaths) names += (names.empty() ? "" : ", ") + std::string(to_string(p));
+  return names;
+}
+
 OptionReader::OptionReader(std::string engine, const std::map<std::string, std::string>& options,
                            const std::vector<std::pair<std::string, std::string>>& allowed)
     : engine_(std::move(engine)), options_(options) {
@@ -71,8 +83,9 @@ int OptionReader::integer(const std::string& name, int fallback, int low, int hi
 }
 
 ContactPath OptionReader::contact_path() const {
-  const std::string path = choice("contact", "matched", {"matched", "injected", "native"});
-  return path == "injected" ? ContactPath::injected : path == "native" ? ContactPath::native : ContactPath::matched;
+  std::vector<std::string> names;
+  for (ContactPath p : kContactPaths) names.push_back(to_string(p));
+  return *contact_path_from_string(choice("contact", "matched", names));
 }
 
 }  // namespace ib

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,11 @@ namespace ib {
 //  native   - the engine's own recommended contact settings, as its users would leave them.
 enum class ContactPath { matched, injected, native };
 const char* to_string(ContactPath path);
+// Every path by name, in the order above ("matched", "injected", "native"), and a name read back.
+constexpr ContactPath kContactPaths[] = {ContactPath::matched, ContactPath::injected, ContactPath::native};
+std::optional<ContactPath> contact_path_from_string(const std::string& name);
+// "matched, injected, native": what an option naming a path allows.
+std::string contact_path_names();
 
 class OptionReader {
  public:

@@ -1,0 +1,97 @@
+#include "cli/arguments.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "simulators/catalog.h"
+
+namespace cli {
+
+int g_argc = 0;
+char** g_argv = nullptr;
+
+// The command line as typed, with --resume added when missing: what continues an interrupted suite.
+std::string resume_command(int argc, char** argv) {
+  std::string command = "impactbench";
+  bool resume = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    resume = resume || arg == "--resume";
+    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789-_=.,/:+@%") == std::string::npos;
+    std::string quoted = "'";
+    for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    command += " " + (plain ? arg : quoted + "'");
+  }
+  return command + (resume ? "" : " --resume");
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, separator);)
+    if (!part.empty()) parts.push_back(part);
+  return parts;
+}
+
+// "name=value" pairs from --option.
+std::map<std::string, std::string> parse_options(const std::vector<std::string>& pairs) {
+  std::map<std::string, std::string> options;
+  for (const std::string& pair : pairs) {
+    const auto eq = pair.find('=');
+    if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--option " + pair + ": expected name=value");
+    options[pair.substr(0, eq)] = pair.substr(eq + 1);
+  }
+  return options;
+}
+
+ib::ContactLaw parse_law(const std::string& name) {
+  const auto law = ib::contact_law_from_string(name);
+  if (!law)
+    throw std::invalid_argument("law '" + name + "': unknown; allowed: hertz, viscoelastic, newton (spring-dashpot: "
+                                "another name for viscoelastic)");
+  return *law;
+}
+
+void require_engine(const std::string& engine) {
+  for (const auto& n : ib::simulator_names())
+    if (n == engine) return;
+  std::string names;
+  for (const auto& n : ib::simulator_names()) names += (names.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("engine '" + engine + "': not in this build; allowed: " + names);
+}
+
+double parse_positive(const std::string& text, const std::string& option) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+  }
+  if (used != text.size() || !(value > 0) || !std::isfinite(value))
+    throw std::invalid_argument(option + " " + text + ": allowed: a number > 0");
+  return value;
+}
+
+ib::Measurement MeasurementOptions::build() const {
+  if (!(sensor_rate_hz > 0)) throw std::invalid_argument("--sensor-rate " + std::to_string(sensor_rate_hz) + ": allowed: > 0 Hz");
+  if (!(merge_window_s >= 0)) throw std::invalid_argument("--merge-window " + std::to_string(merge_window_s) + ": allowed: >= 0 s");
+  ib::Measurement m;
+  if (window_s >= 0) {
+    if (!(window_s > 0)) throw std::invalid_argument("--window " + std::to_string(window_s) + ": allowed: > 0 s");
+    m.window_s = window_s;
+  }
+  m.sensor_rate_hz = sensor_rate_hz;
+  m.merge_window_s = merge_window_s;
+  if (timed_repeats < 0 || timed_repeats > 100)
+    throw std::invalid_argument("--repeat " + std::to_string(timed_repeats) + ": allowed: 0 to 100 timed runs");
+  m.timed_repeats = timed_repeats;
+  if (series == "window") m.series = ib::SeriesOutput::window;
+  else if (series == "all") m.series = ib::SeriesOutput::all;
+  else if (series == "none") m.series = ib::SeriesOutput::none;
+  else throw std::invalid_argument("--series " + series + ": allowed: window, all, none");
+  return m;
+}
+
+}  // namespace cli

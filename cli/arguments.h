@@ -1,0 +1,60 @@
+// What every command shares: the exit codes, the command line as typed, and the parsing of arguments
+// into the libraries' terms (each throws std::invalid_argument naming the option, the value and what
+// is allowed; main turns that into exit 2).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "harness/run_job.h"
+#include "physics/contact_laws.h"
+
+namespace cli {
+
+constexpr int kExitOk = 0, kExitRunNotOk = 1, kExitBadInput = 2, kExitOutputError = 3, kExitIncompleteMerge = 4;
+constexpr int kExitInterrupted = 128;  // + the signal's number, as a shell reports a process it stopped
+
+// The command line as typed (main keeps it here first).
+extern int g_argc;
+extern char** g_argv;
+
+// The command line as typed, with --resume added when missing: what continues an interrupted suite.
+std::string resume_command(int argc, char** argv);
+
+std::vector<std::string> split(const std::string& text, char separator);
+
+// "name=value" pairs from --option.
+std::map<std::string, std::string> parse_options(const std::vector<std::string>& pairs);
+
+ib::ContactLaw parse_law(const std::string& name);
+
+void require_engine(const std::string& engine);
+
+double parse_positive(const std::string& text, const std::string& option);
+
+// How runs are measured; shared by `run` and `suite`.
+struct MeasurementOptions {
+  double window_s = -1, sensor_rate_hz = 2048, merge_window_s = 0.002;
+  int timed_repeats = 0;  // timed runs after the logged one (0: the logged run's own time is the cost)
+  std::string series = "window";
+  // with_timing: the command runs simulators (run, suite), so --repeat and --series apply; score measures files only
+  void add_to(CLI::App* app, bool with_timing) {
+    app->add_option("--window", window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's");
+    app->add_option("--sensor-rate", sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]")->capture_default_str();
+    app->add_option("--merge-window", merge_window_s, "onsets closer than this are one impact [s]")->capture_default_str();
+    if (with_timing)
+      app->add_option("--repeat", timed_repeats,
+                      "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's own)")
+          ->capture_default_str();
+    if (with_timing)
+      app->add_option("--series", series,
+                      "what a run's folder keeps of its series (series.csv.gz): window (the scoring window), all "
+                      "(the whole run) or none (a suite's references keep their window)")
+          ->capture_default_str();
+  }
+  ib::Measurement build() const;  // throws std::invalid_argument naming the option, the value and what is allowed
+};
+
+}  // namespace cli

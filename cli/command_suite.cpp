@@ -1,0 +1,160 @@
+// `suite`: the matrix of scenarios, laws, engines and steps (harness/suite.h), or its step search.
+#include "cli/commands.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "harness/run_files.h"
+#include "harness/suite.h"
+#include "model/simulator_options.h"
+#include "simulators/catalog.h"
+
+namespace cli {
+
+namespace {
+
+// Appends the suite's command, when it started, and the verdicts' tolerances to OUT/commands.jsonl
+// before the suite runs: the report names the commands that produced its folder (a study runs several
+// into one folder) and states the tolerances its verdicts used.
+void record_command(const std::string& out, const ib::VerdictSettings& v) {
+  std::string typed = resume_command(g_argc, g_argv);
+  if (std::find(g_argv, g_argv + g_argc, std::string("--resume")) == g_argv + g_argc)
+    typed.resize(typed.size() - std::string(" --resume").size());
+  char started[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(started, sizeof started, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  const nlohmann::json line = {
+      {"command", typed},
+      {"started_utc", started},
+      {"verdict_tolerances",
+       {{"sensor_peak_relative_error", v.accuracy.sensor_peak_relative},
+        {"contact_duration_relative_error", v.accuracy.contact_duration_relative},
+        {"impacts_per_cycle_difference", v.accuracy.impacts_per_cycle_difference},
+        {"log_decrement_relative_error", v.accuracy.log_decrement_relative}}},
+      {"stability_bounds",
+       {{"displacement_fraction_of_length", v.stability.displacement_bound_fraction_of_length},
+        {"penetration_gaps", v.stability.penetration_bound_gaps},
+        {"energy_growth_relative", v.stability.energy_growth_tolerance}}}};
+  std::error_code error;
+  std::filesystem::create_directories(out, error);  // when it cannot, the suite reports why (exit 3)
+  if (!error) ib::append_text_file(out + "/commands.jsonl", line.dump() + "\n");
+}
+
+// --find-steps with --step-range MIN,MAX and --tolerance metric=value,... (the tolerances are the verdicts': the
+// search finds the largest step the verdict calls accurate)
+ib::StepSearchSettings parse_step_search(const SuiteOptions& o, ib::VerdictSettings& verdicts) {
+  ib::StepSearchSettings s;
+  if (o.steps_per_octave < 1 || o.steps_per_octave > 64)
+    throw std::invalid_argument("--steps-per-octave " + std::to_string(o.steps_per_octave) + ": allowed: 1 to 64");
+  s.points_per_octave = o.steps_per_octave;
+  const auto range = split(o.step_range, ',');
+  if (range.size() != 2) throw std::invalid_argument("--step-range " + o.step_range + ": expected MIN,MAX in seconds, e.g. 1e-6,1e-3");
+  s.min_step_s = parse_positive(range[0], "--step-range");
+  s.max_step_s = parse_positive(range[1], "--step-range");
+  if (s.min_step_s > s.max_step_s) throw std::invalid_argument("--step-range " + o.step_range + ": allowed: MIN <= MAX");
+  for (const auto& pair : split(o.tolerances, ',')) {
+    const auto eq = pair.find('=');
+    const std::string name = pair.substr(0, eq);
+    bool known = false;
+    for (ib::HeadlineMetric m : ib::kHeadlineMetrics) {
+      if (eq == std::string::npos || name != ib::to_string(m)) continue;
+      const double value = parse_positive(pair.substr(eq + 1), "--tolerance " + name + "=");
+      if (m == ib::HeadlineMetric::frame1_sensor_peak) verdicts.accuracy.sensor_peak_relative = value;
+      if (m == ib::HeadlineMetric::contact_duration) verdicts.accuracy.contact_duration_relative = value;
+      if (m == ib::HeadlineMetric::impacts_per_cycle) verdicts.accuracy.impacts_per_cycle_difference = value;
+      known = true;
+    }
+    if (!known)
+      throw std::invalid_argument("--tolerance " + pair +
+                                  ": expected metric=value with metric frame1_sensor_peak (relative), contact_duration "
+                                  "(relative) or impacts_per_cycle (absolute)");
+  }
+  ib::step_grid(s);  // fail now on a range the grid cannot take
+  return s;
+}
+
+}  // namespace
+
+int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
+  ib::SuiteSettings s;
+  s.simulators = ib::simulator_catalog();
+  s.inputs = o.inputs.empty() ? std::vector<std::string>{std::string(IMPACTBENCH_SCENARIO_DIR) + "/paper"} : o.inputs;
+  s.engines = split(o.engines, ',');
+  for (const auto& e : s.engines) require_engine(e);
+  s.laws.clear();
+  for (const auto& l : split(o.laws, ',')) s.laws.push_back(parse_law(l));
+  for (const auto& dt : split(o.time_steps, ',')) {
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(dt, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != dt.size() || !(value > 0)) throw std::invalid_argument("--dt " + dt + ": allowed: time steps > 0 s, comma-separated");
+    s.time_steps_s.push_back(value);
+  }
+  for (const auto& path : split(o.paths, ',')) {
+    if (!ib::contact_path_from_string(path))
+      throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
+    s.contact_paths.push_back(path);
+  }
+  if (o.jobs < 1) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: >= 1");
+  if (!(o.time_limit_s > 0)) throw std::invalid_argument("--time-limit: allowed: > 0 s");
+  // --option ENGINE.NAME=VALUE
+  for (const auto& pair : o.options) {
+    const auto dot = pair.find('.'), eq = pair.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || dot > eq)
+      throw std::invalid_argument("--option " + pair + ": expected engine.name=value, e.g. reference.n=5");
+    const std::string engine = pair.substr(0, dot);
+    require_engine(engine);
+    auto& target = engine == "reference" ? s.reference_options : s.engine_options[engine];
+    target[pair.substr(dot + 1, eq - dot - 1)] = pair.substr(eq + 1);
+  }
+  for (const auto& engine : s.engines) {  // fail now, not in every job
+    ib::RunSettings run;
+    run.options = engine == "reference" ? s.reference_options : s.engine_options[engine];
+    ib::make_simulator(engine)->check_settings(run);
+  }
+  s.output_rate_hz = o.rate_hz;
+  if (o.max_duration_s < 0) throw std::invalid_argument("--duration: allowed: > 0 s");
+  s.max_duration_s = o.max_duration_s;
+  s.jobs = o.jobs;
+  s.time_limit_s = o.time_limit_s;
+  s.out = o.out;
+  s.resume = o.resume;
+  s.measurement = measurement_options.build();
+  if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
+  s.resume_command = resume_command(g_argc, g_argv);
+  if (o.find_steps) {
+    if (!s.time_steps_s.empty()) throw std::invalid_argument("--dt cannot be combined with --find-steps (the search chooses the steps)");
+    s.step_search = parse_step_search(o, s.measurement.verdicts);
+    s.keep_probe_series = o.keep_series;
+  } else if (o.step_range != SuiteOptions{}.step_range || !o.tolerances.empty() ||
+             o.steps_per_octave != SuiteOptions{}.steps_per_octave || o.keep_series) {
+    throw std::invalid_argument("--step-range, --steps-per-octave, --tolerance and --keep-series need --find-steps");
+  }
+  record_command(o.out, s.measurement.verdicts);
+  const ib::SuiteOutcome outcome = ib::run_suite(s);
+  if (outcome.interrupted_by != 0) {
+    // A step search plans its probes as they end, so its total is not known in advance.
+    const std::string total = s.step_search ? "" : " of " + std::to_string(outcome.jobs_total);
+    std::fprintf(stderr, "\nimpactbench: interrupted after %d%s jobs; continue with: %s\n",
+                 outcome.jobs_skipped + outcome.jobs_run, total.c_str(), resume_command(g_argc, g_argv).c_str());
+    return kExitInterrupted + outcome.interrupted_by;
+  }
+  std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed\n",
+              outcome.jobs_run, o.out.c_str(), outcome.jobs_skipped, outcome.not_ok);
+  if (o.find_steps)
+    std::printf("suite: %d step searches recorded in %s/steps.csv\n", outcome.step_searches, o.out.c_str());
+  if (s.shard)
+    std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", o.shard.c_str());
+  return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
+}
+
+}  // namespace cli
