@@ -1,0 +1,323 @@
+// The reference's event-driven solver, internal to the reference (reference_solver.h is its interface): the
+// state of one solution in one class whose phases live in their own files:
+//   reference_solver.cpp   the phase machine (free flight -> contact or impact -> free flight), the chatter guard
+//   free_flight_phase.cpp  closed-form free flight, scanned for the next contact onset
+//   contact_phase.cpp      compliant contact and sticking, integrated with Dormand-Prince
+//   newton_impact.cpp      an instantaneous impact with restitution
+// The kinematics, energy and sampling every phase calls in its inner loops stay inline here, so that the
+// split costs no speed (bench/reference_benchmark, before and after: docs/layout.md).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <boost/numeric/odeint.hpp>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+#include "reference/free_flight.h"
+
+#include "reference/free_flight.h"
+#include "reference/reference_solver.h"
+#include "reference/series_sampler.h"
+
+namespace ib::reference_internal {
+
+namespace odeint = boost::numeric::odeint;
+using OdeState = std::vector<double>;  // [q (M), v (M), motor work, structural dissipation, contact dissipation, impulse]
+using Dopri = odeint::runge_kutta_dopri5<OdeState>;
+
+constexpr double kTwoPi = 6.28318530717958647692;
+
+// What force acts between the tips in the current phase.
+enum class Phase { free, compliant, sticking };
+
+// First root of f on [a, b] given f(a), f(b) of opposite signs (or one of them zero), to `bits` bits.
+// Event times need full precision; the location of an extremum much less, as the value there is
+// flat in it (a relative location error e changes the value by order e^2).
+constexpr int kEventBits = 50, kExtremumBits = 26;
+template <class F>
+double find_root(F&& f, double a, double b, double fa, double fb, int bits = kEventBits) {
+  if (fa == 0) return a;
+  if (fb == 0) return b;
+  if ((fa > 0) == (fb > 0)) return std::abs(fa) < std::abs(fb) ? a : b;  // no sign change: nearest end
+  std::uintmax_t iterations = 60;
+  const auto bracket =
+      boost::math::tools::toms748_solve(f, a, b, fa, fb, boost::math::tools::eps_tolerance<double>(bits), iterations);
+  return 0.5 * (bracket.first + bracket.second);
+}
+
+
+class Solver {
+ public:
+  Solver(const ModalModel& model, const OutputWindow& output, const ReferenceSettings& settings,
+         ReferenceSolution& solution)
+      : model_(model),
+        settings_(settings),
+        solution_(solution),
+        flight_(model),
+        recorder_(output, solution.trajectory),
+        m_(model.mode_count()),
+        n1_(model.frame_mode_count(0)) {
+    omega2_ = model.omega_rad_s.array().square();
+    two_zeta_omega_ = 2 * model.zeta.array() * model.omega_rad_s.array();
+    lever_norm2_ = model.contact_lever.squaredNorm();
+    // Scan grid and the integrator's largest step: a fraction of the fastest period (the motor's too).
+    double fastest = model.omega_rad_s.maxCoeff();
+    if (model.motor) fastest = std::max(fastest, model.motor->omega_rad_s);
+    grid_step_ = std::min(kTwoPi / fastest / settings.grid_points_per_period, settings.max_grid_step_s);
+    solution.grid_step_s = grid_step_;
+    grid_transition_ = flight_.transition(grid_step_);
+    if (output.rate_hz > 0) sample_transition_ = flight_.transition(recorder_.sample_interval_s());
+    if (settings.track_energy) grid_energy_ = flight_.energy_forms(grid_step_);
+    // The coarse step resolves the slow modes only; the rest is bounded (see free_flight).
+    const int n2 = m_ - n1_, slow = settings.slow_modes_per_frame;
+    if (slow > 0 && (slow < n1_ || slow < n2)) {
+      slow_lever_ = fast_lever_ = model.contact_lever;
+      double slow_fastest = model.motor ? model.motor->omega_rad_s : 0;
+      for (int m = 0; m < m_; ++m) {
+        const bool is_slow = (m < n1_ ? m : m - n1_) < slow;
+        (is_slow ? fast_lever_ : slow_lever_)[m] = 0;
+        if (is_slow) slow_fastest = std::max(slow_fastest, model.omega_rad_s[m]);
+      }
+      coarse_step_ = std::min(kTwoPi / slow_fastest / settings.grid_points_per_period, settings.max_grid_step_s);
+      if (coarse_step_ > 2 * grid_step_) {
+        coarse_transition_ = flight_.transition(coarse_step_);
+        if (settings.track_energy) coarse_energy_ = flight_.energy_forms(coarse_step_);
+      } else {
+        coarse_step_ = 0;  // nothing to gain
+      }
+    }
+  }
+
+  void run(const ModalState& initial, double duration);
+
+ private:
+  void fail(RunStatus status, const std::string& reason) {
+    solution_.status = status;
+    solution_.reason = reason;
+  }
+
+  // Stops a run whose contact episodes pile up without time advancing (a guard; physics never needs it).
+  bool chatter_guard(double t);
+
+  // ---- kinematics -------------------------------------------------------------------------
+  TipState tip_state(const double* q, const double* v, double t, Phase phase) const {
+    TipState s;
+    s.t = t;
+    const double motor = model_.motor ? model_.motor->at(t) : 0;
+    const double motor_rate = model_.motor ? model_.motor->rate_at(t) : 0;
+    const double* b = model_.contact_lever.data();
+    const double* p = model_.motor_lever.data();
+    const double* w2 = omega2_.data();
+    const double* c = two_zeta_omega_.data();
+    // Plain loops without temporaries: this runs at every sample and in every root search.
+    double delta = -model_.gap_m, rate = 0, lever_driven = 0, twice_energy = 0;
+    for (int m = 0; m < m_; ++m) {
+      delta += b[m] * q[m];
+      rate += b[m] * v[m];
+      lever_driven += b[m] * (p[m] * motor - c[m] * v[m] - w2[m] * q[m]);
+      twice_energy += v[m] * v[m] + w2[m] * q[m] * q[m];
+    }
+    s.indentation = delta;
+    s.indentation_rate = rate;
+    s.energy = 0.5 * twice_energy + (phase == Phase::compliant ? elastic_contact_energy(model_.contact, delta) : 0);
+    if (phase == Phase::compliant) s.force = contact_force_continued(model_.contact, delta, rate);
+    else if (phase == Phase::sticking) s.force = lever_driven / lever_norm2_;
+    // delta'' = b . (driven - b F) and the jerk without the force rate, b . (p F_m' - c a - w^2 v)
+    const double indentation_acc = lever_driven - lever_norm2_ * s.force;
+    if (phase == Phase::compliant) {
+      s.force_rate = contact_force_rate(model_.contact, delta, rate, indentation_acc);
+    } else if (phase == Phase::sticking) {  // a pass of its own, needed only while sticking
+      double lever_jerk_free = 0;
+      for (int m = 0; m < m_; ++m) {
+        const double acc = p[m] * motor - c[m] * v[m] - w2[m] * q[m] - b[m] * s.force;
+        lever_jerk_free += b[m] * (p[m] * motor_rate - c[m] * acc - w2[m] * v[m]);
+      }
+      s.force_rate = lever_jerk_free / lever_norm2_;
+    }
+    for (int f = 0; f < 2; ++f) {
+      const int first = f == 0 ? 0 : n1_, last = f == 0 ? n1_ : m_;
+      const Eigen::VectorXd& tip_of_mode = model_.frames[f].tip;
+      double u = 0, du = 0, acc_sum = 0, jerk_sum = 0;
+      for (int m = first; m < last; ++m) {
+        const double tip_m = tip_of_mode[m - first];
+        const double acc = p[m] * motor - c[m] * v[m] - w2[m] * q[m] - b[m] * s.force;
+        const double jerk = p[m] * motor_rate - c[m] * acc - w2[m] * v[m] - b[m] * s.force_rate;
+        u += tip_m * q[m];
+        du += tip_m * v[m];
+        acc_sum += tip_m * acc;
+        jerk_sum += tip_m * jerk;
+      }
+      s.displacement[f] = u;
+      s.velocity[f] = du;
+      s.acceleration[f] = acc_sum;
+      s.jerk[f] = jerk_sum;
+    }
+    return s;
+  }
+
+  double mechanical_energy(const double* qp, const double* vp, double indentation) const {
+    const Eigen::Map<const Eigen::ArrayXd> q(qp, m_), v(vp, m_);
+    return 0.5 * (v.square() + omega2_ * q.square()).sum() + elastic_contact_energy(model_.contact, indentation);
+  }
+
+  // Power of the motor on frame 1's tip and of the structural damping [W].
+  double motor_power(const double* vp, double t) const {
+    if (!model_.motor) return 0;
+    const Eigen::Map<const Eigen::VectorXd> v(vp, m_);
+    return model_.motor->at(t) * model_.motor_lever.dot(v);
+  }
+  double structural_power(const double* vp) const {
+    const Eigen::Map<const Eigen::ArrayXd> v(vp, m_);
+    return (two_zeta_omega_ * v.square()).sum();
+  }
+
+  // ---- series and peaks ---------------------------------------------------------------------
+  // Feeds the recorder everything of [a, b] in time order: interior extrema of both tip
+  // accelerations and of the force, the samples that fall in (a, b], and the value at b.
+  // eval(t) gives the state at any t in [a, b]; sample_at(t) the same at sample times, where the
+  // caller may have a cheaper way.
+  template <class Eval>
+  void record_interval(const TipState& sa, const TipState& sb, Eval&& eval) {
+    record_interval(sa, sb, eval, eval);
+  }
+  template <class Eval, class SampleAt>
+  void record_interval(const TipState& sa, const TipState& sb, Eval&& eval, SampleAt&& sample_at) {
+    if (!recorder_.wants(sb.t)) return;
+    std::array<TipState, 3> points;  // at most one extremum each of a1, a2 and F_c
+    int count = 0;
+    for (int f = 0; f < 2; ++f) {
+      if (sa.jerk[f] * sb.jerk[f] < 0) {
+        const double c =
+            find_root([&](double t) { return eval(t).jerk[f]; }, sa.t, sb.t, sa.jerk[f], sb.jerk[f], kExtremumBits);
+        points[count++] = eval(c);
+      }
+    }
+    if (sa.force_rate * sb.force_rate < 0) {
+      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
+                                 sb.force_rate, kExtremumBits);
+      points[count++] = eval(c);
+    }
+    for (int i = 1; i < count; ++i)  // insertion sort by time: at most three points
+      for (int j = i; j > 0 && points[j].t < points[j - 1].t; --j) std::swap(points[j], points[j - 1]);
+    int next = 0;
+    for (double ts = recorder_.next_sample_time(); ts <= sb.t; ts = recorder_.next_sample_time()) {
+      while (next < count && points[next].t <= ts) recorder_.feed(points[next++]);
+      recorder_.sample(ts == sb.t ? sb : sample_at(ts));
+    }
+    while (next < count) recorder_.feed(points[next++]);
+    recorder_.feed(sb);
+  }
+
+  // ---- free flight ----------------------------------------------------------------------------
+  // The indentation and its rate: all that onset detection needs.
+  struct Gap {
+    double t = 0, delta = 0, rate = 0;
+  };
+  Gap gap_of(const ModalState& x, double t) const {
+    return {t, model_.contact_lever.dot(x.q) - model_.gap_m, model_.contact_lever.dot(x.v)};
+  }
+
+  // Advances in closed form until a contact onset (returns true, t and x at the onset) or the end
+  // of the run (returns false). after_contact: t is where a contact ended, so delta(t) is zero and
+  // a re-contact counts only after the tips have really moved apart.
+  bool free_flight(double& t, ModalState& x, bool after_contact);
+
+  // Takes one coarse step if no contact can start within it: the slow modes' indentation (resolved by
+  // the coarse step, its interior maximum located) plus the bound on the fast modes stays negative.
+  bool coarse_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double* work,
+                                   double* dissipation);
+
+  // The contact onset in (a, b], or infinity. The grid is fine enough that delta' changes sign at
+  // most once per interval, so a crossing is either seen at b or hides behind one interior maximum.
+  template <class GapAt>
+  double find_onset(const Gap& a, const Gap& b, GapAt&& gap_at, bool starts_at_contact) {
+    auto delta = [&](double t) { return gap_at(t).delta; };
+    auto delta_rate = [&](double t) { return gap_at(t).rate; };
+    // At a contact end delta(a) is zero up to rounding: treat it as just negative.
+    const double delta_a = starts_at_contact ? -std::numeric_limits<double>::min() : a.delta;
+    if (b.delta >= 0) {
+      double lo = a.t, f_lo = delta_a;
+      if (a.rate < 0 && b.rate > 0) {  // a minimum inside: the crossing comes after it
+        const double c = find_root(delta_rate, a.t, b.t, a.rate, b.rate);
+        const double f_c = delta(c);
+        if (f_c < 0) lo = c, f_lo = f_c;
+      }
+      return find_root(delta, lo, b.t, f_lo, b.delta);
+    }
+    // Leaving a contact with (numerically) zero relative velocity: no maximum can follow at once.
+    if (starts_at_contact && a.rate <= 1e-12) return kInf;
+    if (a.rate > 0 && b.rate < 0) {  // a maximum inside: a grazing contact?
+      const double c = find_root(delta_rate, a.t, b.t, a.rate, b.rate);
+      const double f_c = delta(c);
+      if (f_c >= 0) return find_root(delta, a.t, c, delta_a, f_c);
+    }
+    return kInf;
+  }
+
+  // ---- Newton impacts ---------------------------------------------------------------------------
+  // Applies the impulse at an onset; returns true when the impacts accumulate and the tips stick.
+  bool newton_impact(double t, ModalState& x);
+
+  Eigen::VectorXd acceleration_without_contact(const ModalState& x, double t) const {
+    const double motor = model_.motor ? model_.motor->at(t) : 0;
+    return (model_.motor_lever.array() * motor - two_zeta_omega_ * x.v.array() - omega2_ * x.q.array()).matrix();
+  }
+
+  // ---- compliant contact and sticking -----------------------------------------------------------
+  // Integrates a contact phase with Dormand-Prince until it ends (separation, or release from
+  // sticking) or the run ends. Returns false when the run cannot go on (status set).
+  bool integrate_contact(double& t, ModalState& x, Phase phase);
+
+  // Keeps the sticking tips exactly on delta = 0, delta' = 0 (removes integration drift) with the
+  // smallest mass-weighted correction.
+  void project_onto_contact(ModalState& x) const {
+    const Eigen::VectorXd& b = model_.contact_lever;
+    x.q -= b * ((b.dot(x.q) - model_.gap_m) / lever_norm2_);
+    x.v -= b * (b.dot(x.v) / lever_norm2_);
+  }
+
+  // Peak force and maximum indentation of a contact episode, exact between steps.
+  template <class Eval>
+  void track_event(ContactEvent& event, const TipState& sa, const TipState& sb, Eval&& eval) const {
+    event.peak_force_n = std::max({event.peak_force_n, sa.force, sb.force});
+    event.max_indentation_m = std::max({event.max_indentation_m, sa.indentation, sb.indentation});
+    if (sa.force_rate > 0 && sb.force_rate < 0) {
+      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
+                                 sb.force_rate, kExtremumBits);
+      event.peak_force_n = std::max(event.peak_force_n, eval(c).force);
+    }
+    if (sa.indentation_rate > 0 && sb.indentation_rate < 0) {
+      const double c = find_root([&](double t) { return eval(t).indentation_rate; }, sa.t, sb.t, sa.indentation_rate,
+                                 sb.indentation_rate, kExtremumBits);
+      event.max_indentation_m = std::max(event.max_indentation_m, eval(c).indentation);
+    }
+  }
+
+  const ModalModel& model_;
+  const ReferenceSettings& settings_;
+  ReferenceSolution& solution_;
+  FreeFlight flight_;
+  SeriesRecorder recorder_;
+  int m_, n1_;
+  Eigen::ArrayXd omega2_, two_zeta_omega_;
+  double lever_norm2_ = 0;
+  double grid_step_ = 0;
+  double end_time_ = 0;
+  FreeFlight::Transition grid_transition_, coarse_transition_, sample_transition_;
+  FreeFlight::EnergyForms grid_energy_, coarse_energy_;
+  double coarse_step_ = 0;                   // 0: no coarse steps
+  Eigen::VectorXd slow_lever_, fast_lever_;  // the contact lever split into slow and fast modes
+  ModalState xb_, xs_, x_onset_, x_sample_;  // free-flight scratch states, kept to avoid allocation
+  double stick_impulse_ = 0;
+  std::optional<std::pair<double, double>> force_end_;  // (time, opening speed) where a clipped force ended
+  long long guard_impacts_ = 0;
+  double guard_time_ = 0;
+};
+
+}  // namespace ib::reference_internal
