@@ -1,116 +1,21 @@
 #include "harness/step_search.h"
 
-#include "harness/jsonl_table.h"
-#include "harness/recorded_run.h"
-
-#include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <limits>
-#include <nlohmann/json.hpp>
-#include <sstream>
-#include <stdexcept>
-#include <utility>
-#include <variant>
 
 #include "harness/number_text.h"
-#include "harness/run_files.h"
+#include "harness/recorded_run.h"
 
 namespace ib {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-using Json = nlohmann::ordered_json;
-
-// The runs.csv name of each metric's error against a reference (metrics.cpp flatten()).
-const char* error_name(HeadlineMetric m) {
-  switch (m) {
-    case HeadlineMetric::frame1_sensor_peak: return "frame1_sensor_peak_relative_error";
-    case HeadlineMetric::contact_duration: return "contact_duration_relative_error";
-    case HeadlineMetric::impacts_per_cycle: return "impacts_per_cycle_difference";
-  }
-  return "";
-}
-
-double number_or_nan(const Json& j, const std::string& name) {
-  return j.contains(name) && j[name].is_number() ? j[name].get<double>() : kNaN;
-}
-
-std::string text_or_empty(const Json& j, const std::string& name) {
-  return j.contains(name) && j[name].is_string() ? j[name].get<std::string>() : "";
-}
 
 std::string step_text(double dt) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", dt);
   return text;
-}
-
-
-struct StepField {
-  std::string name;
-  std::variant<std::string, double> value;
-  bool exact = false;  // a setting or a time step: written with every digit it has
-};
-
-std::vector<StepField> step_fields(const StepRow& row) {
-  const StepGroup& g = row.group;
-  const StepSearchSettings& s = row.settings;
-  std::vector<StepField> out = {
-      {"group_id", g.group_id},
-      {"scenario", g.scenario},
-      {"law", g.law},
-      {"engine", g.engine},
-      {"options", g.options},
-      {"chain_links", static_cast<double>(g.chain_links)},
-      {"accuracy_reference", g.accuracy_reference},
-      {"step_range_min_s", s.min_step_s, true},
-      {"step_range_max_s", s.max_step_s, true},
-      {"grid_points_per_octave", static_cast<double>(s.points_per_octave)},
-  };
-  const StepSearch* search = row.search;
-  const auto stability = search ? search->stability() : StepSearch::Outcome{"", kNaN, kNaN, kNaN, kNaN};
-  out.push_back({"largest_stable_step_s", stability.largest_pass_step_s, true});
-  out.push_back({"smallest_unstable_step_s", stability.smallest_fail_step_s, true});
-  out.push_back({"stability_status", stability.status});
-  for (HeadlineMetric m : kHeadlineMetrics) {
-    const std::string name = to_string(m), error = error_name(m);
-    const auto a = search ? search->accuracy(m) : StepSearch::Outcome{"", kNaN, kNaN, kNaN, kNaN};
-    out.push_back({error + "_tolerance", tolerance_of(s.tolerance, m), true});
-    out.push_back({name + "_largest_step_within_tolerance_s", a.largest_pass_step_s, true});
-    out.push_back({name + "_smallest_step_beyond_tolerance_s", a.smallest_fail_step_s, true});
-    out.push_back({error + "_at_largest_step", a.error_at_largest_pass});
-    out.push_back({error + "_vs_beam_reference_at_largest_step", a.beam_error_at_largest_pass});
-    out.push_back({name + "_status", a.status});
-  }
-  std::string notes;
-  if (search)
-    for (const std::string& n : search->notes()) notes += (notes.empty() ? "" : "; ") + n;
-  out.push_back({"probes", search ? static_cast<double>(search->probes()) : 0.0});
-  out.push_back({"probes_wall_time_s", search ? search->probes_wall_time_s() : 0.0});
-  out.push_back({"probe_outcomes", search ? search->probe_list() : ""});
-  out.push_back({"notes", notes});
-  return out;
-}
-
-Json step_json(const StepRow& row) {
-  Json j;
-  for (const auto& [name, value, exact] : step_fields(row)) {
-    if (const auto* text = std::get_if<std::string>(&value)) j[name] = *text;
-    else j[name] = json_number(std::get<double>(value), exact);
-  }
-  return j;
-}
-
-// The key's numbers exactly: a row is found again only under the same range and tolerances.
-std::string key_text(const std::string& group_id, double min_s, double max_s, double points,
-                     const std::vector<double>& tolerances) {
-  std::string key = group_id + "|" + exact_number_text(min_s) + "|" + exact_number_text(max_s) + "|" + exact_number_text(points);
-  for (double t : tolerances) key += "|" + exact_number_text(t);
-  return key;
 }
 
 }  // namespace
@@ -389,72 +294,6 @@ std::string StepSearch::probe_list() const {
   for (const auto& [index, result] : results_)
     list += (list.empty() ? "" : ";") + step_text(grid_[index]) + ":" + (result.timed_out ? "timed_out" : to_string(result.verdict));
   return list;
-}
-
-// ---- steps.csv and steps.jsonl ----------------------------------------------------------------------
-
-std::string steps_csv_header() {
-  std::string line;
-  for (const StepField& field : step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}))
-    line += (line.empty() ? "" : ",") + field.name;
-  return line + "\n";
-}
-
-std::string steps_csv_row(const StepRow& row) {
-  std::string line;
-  bool first = true;
-  for (const auto& [name, value, exact] : step_fields(row)) {
-    line += first ? "" : ",";
-    first = false;
-    if (const auto* text = std::get_if<std::string>(&value)) line += csv_escape(*text);
-    else line += exact ? exact_number_text(std::get<double>(value)) : number_text(std::get<double>(value));
-  }
-  return line + "\n";
-}
-
-std::string steps_json_line(const StepRow& row) { return step_json(row).dump() + "\n"; }
-
-void append_step_row(const std::string& folder, const StepRow& row) {
-  append_text_file(folder + "/steps.jsonl", steps_json_line(row));
-  const std::string csv = folder + "/steps.csv";
-  std::ifstream existing(csv);
-  const bool fresh = !existing.good() || existing.peek() == std::ifstream::traits_type::eof();
-  append_text_file(csv, (fresh ? steps_csv_header() : "") + steps_csv_row(row));
-}
-
-std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
-  std::vector<double> tolerances;
-  for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(tolerance_of(s.tolerance, m));
-  return key_text(group.group_id, s.min_step_s, s.max_step_s, s.points_per_octave, tolerances);
-}
-
-namespace {
-// The key of a parsed steps.jsonl line; "" when it is not a row (cut short by a kill).
-std::string step_row_key_of(const Json& j) {
-  if (!j.is_object() || !j.contains("notes")) return "";
-  std::vector<double> tolerances;
-  for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(number_or_nan(j, std::string(error_name(m)) + "_tolerance"));
-  return key_text(text_or_empty(j, "group_id"), number_or_nan(j, "step_range_min_s"), number_or_nan(j, "step_range_max_s"),
-                  number_or_nan(j, "grid_points_per_octave"), tolerances);
-}
-}  // namespace
-
-std::string step_row_key_of_line(const std::string& json_line) {
-  return step_row_key_of(Json::parse(json_line, nullptr, false));
-}
-
-std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
-  std::vector<std::string> columns;
-  for (const StepField& field : step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr})) columns.push_back(field.name);
-  return repair_jsonl_table(folder + "/steps.jsonl", folder + "/steps.csv", columns, step_row_key_of_line);
-}
-
-std::map<std::string, std::string> recorded_run_lines(const std::string& folder) {
-  std::map<std::string, std::string> lines;
-  std::ifstream in(folder + "/runs.jsonl");
-  for (std::string line; std::getline(in, line);)
-    if (const RecordedRun run = read_recorded_run(line); run.readable) lines[run.job_id] = line;
-  return lines;
 }
 
 }  // namespace ib

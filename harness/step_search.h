@@ -4,8 +4,9 @@
 // k = 0 .. K (K the last index with dt_k >= min), so that job ids are reproducible and --resume reuses
 // every probe already recorded. Each predicate (stable; each headline metric within its tolerance)
 // keeps a bracket between its largest passing and its smallest failing step; every probe updates all
-// brackets, and the next probe is the middle of the widest bracket still open. This module holds the
-// search logic and the steps.csv / steps.jsonl rows; the suite runner (suite.cpp) runs the probes.
+// brackets, and the next probe is the middle of the widest bracket still open. step_search.cpp holds the
+// search logic, steps_file.cpp the steps.csv / steps.jsonl rows, and the suite's step_search_driver.cpp
+// runs the probes.
 #pragma once
 
 #include <array>
