@@ -1,4 +1,6 @@
-// The metrics (rig.md section 5) on synthetic signals whose answers are known in closed form.
+// The metrics (rig.md section 5) on synthetic signals whose answers are known in closed form: impacts,
+// durations, peaks and impulses, beats, the merge window, the scoring window, RMS. The sensor reading and the
+// comparison with a reference have their own files (sensor_reading_test.cpp, metric_comparison_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,64 +11,12 @@
 #include <vector>
 
 #include "harness/metrics.h"
+#include "metric_signals.h"
 
 namespace ib {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double g = kStandardGravity_m_s2;
-
-// ---- building trajectories by hand ----------------------------------------------------------------
-
-// A tip motion as functions of time: displacement, velocity, acceleration.
-struct Motion {
-  std::function<double(double)> u = [](double) { return 0.0; };
-  std::function<double(double)> v = [](double) { return 0.0; };
-  std::function<double(double)> a = [](double) { return 0.0; };
-};
-
-// n samples at `rate` from t0 of both frames' motions. The peak columns hold the sampled |a|: a
-// test that needs peaks between samples overwrites them.
-Trajectory sampled(double rate, double t0, std::size_t n, const Motion& frame1, const Motion& frame2 = {}) {
-  Trajectory t;
-  t.output_rate_hz = rate;
-  t.start_time_s = t0;
-  t.reserve(n);
-  const Motion* frames[2] = {&frame1, &frame2};
-  for (std::size_t k = 0; k < n; ++k) {
-    const double time = t0 + static_cast<double>(k) / rate;
-    t.time_s.push_back(time);
-    for (int f = 0; f < 2; ++f) {
-      t.displacement_m[f].push_back(frames[f]->u(time));
-      t.velocity_m_s[f].push_back(frames[f]->v(time));
-      t.acceleration_m_s2[f].push_back(frames[f]->a(time));
-      t.peak_abs_acceleration_m_s2[f].push_back(std::abs(frames[f]->a(time)));
-    }
-    t.contact_force_n.push_back(0);
-    t.peak_contact_force_n.push_back(0);
-  }
-  return t;
-}
-
-ContactEvent episode(double onset, double end) {
-  ContactEvent e;
-  e.onset_time_s = onset;
-  e.end_time_s = end;
-  e.approach_velocity_m_s = 0.2;
-  e.rebound_velocity_m_s = 0.1;
-  e.restitution = 0.5;
-  e.peak_force_n = 100;
-  e.impulse_n_s = 0.01;
-  e.max_indentation_m = 1e-6;
-  return e;
-}
-
-MetricSettings window(double start, double end) {
-  MetricSettings s;
-  s.window_start_s = start;
-  s.window_end_s = end;
-  return s;
-}
+using namespace test;
 
 // ---- 1. half-sine pulse train ----------------------------------------------------------------------
 
@@ -139,88 +89,6 @@ TEST(Metrics, TruePeakFallsBackToTheSamplesWithoutPeakColumns) {
   for (double a : t.acceleration_m_s2[0]) sampled_peak = std::max(sampled_peak, std::abs(a));
   EXPECT_DOUBLE_EQ(without, sampled_peak / g);
   EXPECT_LT(without, with_columns);  // the crests lie between samples
-}
-
-// ---- 2. velocity jump (a Newton impact) ------------------------------------------------------------
-
-constexpr double kJump = 0.3;  // dv [m/s]
-
-Motion velocity_step_at(double t_jump) {
-  Motion m;
-  m.v = [t_jump](double t) { return t >= t_jump ? kJump : 0.0; };
-  return m;
-}
-
-// Series at 4096 Hz on the 2048 Hz sensor grid, starting at 0.1 s (not a binary fraction, so the
-// window edges land a rounding error off the samples). The jump, between series samples 1228 and 1229,
-// lies in sensor window 614: that window reads dv f_s and every other one reads exactly 0.
-TEST(Metrics, VelocityJumpOnTheSensorGridFillsExactlyOneSensorSample) {
-  const double t0 = 0.1, fs = 2048;
-  const double t_jump = t0 + 1228.5 / 4096;
-  const Trajectory t = sampled(4096, t0, 4097, velocity_step_at(t_jump));
-  const SensorSeries sensor = sensor_acceleration(t, 0, t0, t0 + 1, fs);
-
-  ASSERT_EQ(sensor.acceleration_m_s2.size(), 2048u);
-  for (std::size_t k = 0; k < sensor.acceleration_m_s2.size(); ++k) {
-    EXPECT_NEAR(sensor.time_s[k], t0 + (k + 0.5) / fs, 1e-12);
-    if (k == 614)
-      EXPECT_NEAR(sensor.acceleration_m_s2[k], kJump * fs, 1e-9);
-    else
-      EXPECT_EQ(sensor.acceleration_m_s2[k], 0.0) << "sensor sample " << k;
-  }
-  const Metrics m = compute_metrics(t, window(t0, t0 + 1));
-  EXPECT_NEAR(m.frames[0].sensor_peak_acceleration_g, kJump * fs / g, 1e-9);
-}
-
-// Series at 3000 Hz: the sampled step becomes a ramp between samples 1464 (0.488 s) and 1465, and the
-// sensor window edge 1000/2048 s = 0.48828125 s cuts that ramp at 0.84375 of its length (1464.84375
-// samples). So sensor window 999 reads 0.84375 dv f_s, window 1000 reads 0.15625 dv f_s, all others 0,
-// and the readings still add up to the velocity change: sum a_s T = dv.
-TEST(Metrics, VelocityJumpOffTheSensorGridIsSharedByTheTwoWindowsItsRampSpans) {
-  const double fs = 2048;
-  const Trajectory t = sampled(3000, 0, 3001, velocity_step_at(0.4882));
-  const SensorSeries sensor = sensor_acceleration(t, 0, 0, 1, fs);
-
-  ASSERT_EQ(sensor.acceleration_m_s2.size(), 2048u);
-  double velocity_change = 0;
-  for (std::size_t k = 0; k < sensor.acceleration_m_s2.size(); ++k) {
-    const double expected = k == 999 ? 0.84375 * kJump * fs : k == 1000 ? 0.15625 * kJump * fs : 0.0;
-    EXPECT_NEAR(sensor.acceleration_m_s2[k], expected, 1e-9) << "sensor sample " << k;
-    velocity_change += sensor.acceleration_m_s2[k] / fs;
-  }
-  EXPECT_NEAR(velocity_change, kJump, 1e-12);
-  EXPECT_NEAR(compute_metrics(t, window(0, 1)).frames[0].sensor_peak_acceleration_g, 0.84375 * kJump * fs / g,
-              1e-9);
-}
-
-// The window average of a = A sin(w t) over [t - T/2, t + T/2] is a(t) sin(w T/2) / (w T/2).
-TEST(Metrics, SensorReadsASineScaledByTheWindowAveragesSinc) {
-  const double A = 50, f = 200, w = 2 * kPi * f, fs = 2048, T = 1 / fs;
-  Motion m;
-  m.v = [=](double t) { return -A / w * std::cos(w * t); };
-  m.a = [=](double t) { return A * std::sin(w * t); };
-  const Trajectory t = sampled(8192, 0, 8193, m);
-  const SensorSeries sensor = sensor_acceleration(t, 0, 0, 1, fs);
-  ASSERT_EQ(sensor.acceleration_m_s2.size(), 2048u);
-  const double sinc = std::sin(w * T / 2) / (w * T / 2);
-  for (std::size_t k = 0; k < sensor.acceleration_m_s2.size(); ++k)
-    EXPECT_NEAR(sensor.acceleration_m_s2[k], sinc * m.a(sensor.time_s[k]), 1e-9);
-}
-
-TEST(Metrics, SensorWindowsStayInsideTheWindowAndTheSeries) {
-  const Trajectory t = sampled(4096, 0, 4097, velocity_step_at(0.5));  // series over [0, 1] s
-  // 0.25 s holds 512 whole windows; 0.2501 s still 512
-  EXPECT_EQ(sensor_acceleration(t, 0, 0.5, 0.75, 2048).time_s.size(), 512u);
-  EXPECT_EQ(sensor_acceleration(t, 0, 0.5, 0.7501, 2048).time_s.size(), 512u);
-  // a window reaching 0.5 s past the series' end keeps only the windows the series reaches
-  const SensorSeries past_end = sensor_acceleration(t, 0, 0.75, 1.5, 2048);
-  EXPECT_EQ(past_end.time_s.size(), 512u);
-  EXPECT_LE(past_end.time_s.back() + 0.5 / 2048, 1.0 + 1e-12);
-  // and one starting before the series drops the windows before its first sample
-  const Trajectory late = sampled(4096, 0.5, 2049, velocity_step_at(0.75));  // series over [0.5, 1] s
-  const SensorSeries early = sensor_acceleration(late, 0, 0, 1, 2048);
-  EXPECT_EQ(early.time_s.size(), 1024u);
-  EXPECT_NEAR(early.time_s.front(), 0.5 + 0.5 / 2048, 1e-12);
 }
 
 // ---- 3. beating ------------------------------------------------------------------------------------
@@ -388,91 +256,6 @@ TEST(Metrics, AnEmptyWindowMeasuresNothing) {
   EXPECT_TRUE(std::isnan(m.mean_approach_velocity_m_s));
   EXPECT_TRUE(std::isnan(m.mean_impulse_n_s));
   EXPECT_EQ(m.max_penetration_m, 0.0);
-}
-
-// ---- 6. comparison against a reference -------------------------------------------------------------
-
-// A 5 Hz oscillation of frame 1 (frame 2 moves at half the amplitude, in antiphase) over [0, 2] s,
-// scaled by `scale`, with a 1 ms impact every 0.1 s.
-Trajectory oscillation(double scale, double rate = 4096, double duration = 2, double contact_s = 0.001) {
-  const double w = 2 * kPi * 5;
-  Motion m1, m2;
-  m1.u = [=](double t) { return scale * 1e-3 * std::sin(w * t); };
-  m1.v = [=](double t) { return scale * 1e-3 * w * std::cos(w * t); };
-  m1.a = [=](double t) { return -scale * 1e-3 * w * w * std::sin(w * t); };
-  m2.u = [=](double t) { return -0.5 * m1.u(t); };
-  m2.v = [=](double t) { return -0.5 * m1.v(t); };
-  m2.a = [=](double t) { return -0.5 * m1.a(t); };
-  Trajectory t = sampled(rate, 0, static_cast<std::size_t>(duration * rate) + 1, m1, m2);
-  for (int i = 0; i < 20; ++i) t.events.push_back(episode(0.05 + 0.1 * i, 0.05 + 0.1 * i + contact_s));
-  return t;
-}
-
-MetricSettings forced(double start, double end) {
-  MetricSettings s = window(start, end);
-  s.excitation_frequency_hz = 5;
-  return s;
-}
-
-TEST(Metrics, IdenticalRunsHaveNoErrors) {
-  const Trajectory t = oscillation(1);
-  const MetricSettings s = forced(0, 2);
-  const Metrics m = compute_metrics(t, s);
-  const MetricErrors e = compare_metrics(m, t, m, t, s);
-  for (int f = 0; f < 2; ++f) {
-    EXPECT_EQ(e.sensor_peak_relative_error[f], 0.0);
-    EXPECT_EQ(e.displacement_relative_rms_error[f], 0.0);
-  }
-  EXPECT_EQ(e.contact_duration_relative_error, 0.0);
-  EXPECT_EQ(e.impacts_per_cycle_difference, 0.0);
-}
-
-TEST(Metrics, ScaledRunHasKnownErrors) {
-  const MetricSettings s = forced(0, 2);
-  const Trajectory reference = oscillation(1);
-  Trajectory run = oscillation(1.1, 4096, 2, 0.0012);   // 10 % larger motion, 20 % longer contacts
-  run.events.push_back(episode(1.999, 1.9992));         // and one impact more
-  const MetricErrors e = compare_metrics(compute_metrics(run, s), run, compute_metrics(reference, s), reference, s);
-  for (int f = 0; f < 2; ++f) {
-    EXPECT_NEAR(e.displacement_relative_rms_error[f], 0.1, 1e-12);
-    EXPECT_NEAR(e.sensor_peak_relative_error[f], 0.1, 1e-12);  // the sensor is linear in the motion
-  }
-  // 20 impacts of 1.2 ms and one of 0.2 ms against 20 of 1 ms
-  EXPECT_NEAR(e.contact_duration_relative_error, (20 * 0.0012 + 0.0002) / 21 / 0.001 - 1, 1e-9);
-  EXPECT_NEAR(e.impacts_per_cycle_difference, 1.0 / 10, 1e-12);  // one impact in 10 cycles
-}
-
-TEST(Metrics, DisplacementErrorReadsTheRunAtTheReferencesSampleTimes) {
-  // a displacement linear in time is interpolated exactly, whatever the run's rate
-  Motion ramp;
-  ramp.u = [](double t) { return 1e-3 * t; };
-  const Trajectory reference = sampled(4096, 0, 4097, ramp, ramp);
-  const Trajectory run = sampled(3000, 0, 3001, ramp, ramp);
-  const MetricSettings s = window(0.25, 1);
-  const MetricErrors e = compare_metrics(compute_metrics(run, s), run, compute_metrics(reference, s), reference, s);
-  EXPECT_NEAR(e.displacement_relative_rms_error[0], 0.0, 1e-12);
-  EXPECT_NEAR(e.displacement_relative_rms_error[1], 0.0, 1e-12);
-}
-
-TEST(Metrics, ComparisonIsNaNWhereItIsNotDefined) {
-  const Trajectory reference = oscillation(1);
-  // a run that stopped at 1 s does not cover the window [0, 2]
-  const Trajectory short_run = oscillation(1, 4096, 1);
-  MetricSettings s = window(0, 2);  // no excitation: impacts per cycle is NaN on both sides
-  MetricErrors e = compare_metrics(compute_metrics(short_run, s), short_run, compute_metrics(reference, s),
-                                   reference, s);
-  EXPECT_TRUE(std::isnan(e.displacement_relative_rms_error[0]));
-  EXPECT_TRUE(std::isnan(e.impacts_per_cycle_difference));
-
-  // a reference at rest, without impacts: every relative figure is undefined
-  Trajectory at_rest = sampled(4096, 0, 8193, Motion{});
-  const Trajectory run = oscillation(1);
-  s = forced(0, 2);
-  e = compare_metrics(compute_metrics(run, s), run, compute_metrics(at_rest, s), at_rest, s);
-  EXPECT_TRUE(std::isnan(e.sensor_peak_relative_error[0]));
-  EXPECT_TRUE(std::isnan(e.contact_duration_relative_error));
-  EXPECT_TRUE(std::isnan(e.displacement_relative_rms_error[0]));
-  EXPECT_DOUBLE_EQ(e.impacts_per_cycle_difference, 2.0);  // 20 impacts in 10 cycles against none
 }
 
 // ---- 7. RMS ----------------------------------------------------------------------------------------
