@@ -23,7 +23,7 @@ while [[ ${1:-} == --* ]]; do
 done
 out=${1:-results/performance}
 mkdir -p "$out"
-impactbench=build/harness/cli/impactbench
+impactbench=build/cli/impactbench
 csv="$out/scaling.csv"
 echo "workers,wall_time_s,jobs,sum_of_run_wall_times_s" >"$csv"
 IFS=, read -r -a counts <<<"$workers"

@@ -23,7 +23,7 @@ while [[ ${1:-} == --* ]]; do
 done
 out=${1:-results/performance}
 mkdir -p "$out"
-impactbench=build/harness/cli/impactbench
+impactbench=build/cli/impactbench
 work=$(mktemp -d "${TMPDIR:-/tmp}/impactbench-timing-XXXXXX")
 trap 'rm -rf "$work"' EXIT
 # The resonance case cut to the duration, scored over its second half (the window does not change the cost).

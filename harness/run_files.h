@@ -15,7 +15,7 @@ namespace ib {
 
 // A result file or folder that cannot be written (full disk, no permission, a path under a file). It
 // stops a suite: every later run would be lost the same way. what() names the file, the OS's reason and
-// what to do; the command exits with its own code (harness/cli/main.cpp).
+// what to do; the command exits with its own code (cli/main.cpp).
 class OutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

@@ -24,7 +24,7 @@ while [[ ${1:-} == --* ]]; do
 done
 scripts/build.sh
 out=${1:-results/$(date +%Y%m%d-%H%M%S)}
-impactbench=build/harness/cli/impactbench
+impactbench=build/cli/impactbench
 started=$(date +%s)
 echo "benchmark: the $study study into $out (scripts/default-suite.sh says what it runs)"
 status=0

@@ -1,18 +1,14 @@
-// The simulators built into this binary (catalog.h). Registering an engine is one line in kSimulators
-// (docs/adding-an-engine.md).
+// The simulators built into this binary (catalog.h): the reference, then the engines in the order of
+// IMPACTBENCH_ENGINES (adapters/CMakeLists.txt: registering an engine is adding its name there,
+// docs/adding-an-engine.md).
 #include "simulators/catalog.h"
 
 #include "reference/reference_simulator.h"
 
-#if IMPACTBENCH_WITH_MUJOCO
-#include "adapters/mujoco/mujoco_simulator.h"
-#endif
-#if IMPACTBENCH_WITH_ODE
-#include "adapters/ode/ode_simulator.h"
-#endif
-#if IMPACTBENCH_WITH_BULLET
-#include "adapters/bullet/bullet_simulator.h"
-#endif
+// the engines of this build (generated from IMPACTBENCH_ENGINES by simulators/CMakeLists.txt)
+#define IMPACTBENCH_ENGINE_INCLUDES
+#include "engines.inc"
+#undef IMPACTBENCH_ENGINE_INCLUDES
 
 namespace ib {
 
@@ -23,15 +19,7 @@ struct Entry {
 };
 const Entry kSimulators[] = {
     {"reference", make_reference_simulator},
-#if IMPACTBENCH_WITH_MUJOCO
-    {"mujoco", make_mujoco_simulator},
-#endif
-#if IMPACTBENCH_WITH_ODE
-    {"ode", make_ode_simulator},
-#endif
-#if IMPACTBENCH_WITH_BULLET
-    {"bullet", make_bullet_simulator},
-#endif
+#include "engines.inc"
 };
 }  // namespace
 

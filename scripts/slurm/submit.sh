@@ -16,7 +16,7 @@ suite_options=()
 while [[ $# -gt 0 && $1 != -- ]]; do suite_options+=("$1"); shift; done
 [[ ${1:-} == -- ]] && shift
 [[ $shards =~ ^[1-9][0-9]*$ ]] || { echo "submit.sh: SHARDS $shards: allowed: a whole number >= 1" >&2; exit 2; }
-[[ -x build/harness/cli/impactbench ]] || { echo "submit.sh: build/harness/cli/impactbench missing: run scripts/build.sh first" >&2; exit 2; }
+[[ -x build/cli/impactbench ]] || { echo "submit.sh: build/cli/impactbench missing: run scripts/build.sh first" >&2; exit 2; }
 array=$(sbatch --parsable "$@" --array="1-$shards" scripts/slurm/suite-array.sbatch "$name" "$shards" "${suite_options[@]}")
 array=${array%%;*}  # --parsable prints "id" or "id;cluster"
 merge=$(sbatch --parsable "$@" --dependency="afterany:$array" scripts/slurm/merge.sbatch "$name")
