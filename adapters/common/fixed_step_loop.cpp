@@ -11,13 +11,21 @@ namespace ib {
 
 namespace {
 
+// A step's time to 9 digits: a step of 1.5625e-05 s needs more than the stream's 6.
+std::string time_text(double t_s) {
+  std::ostringstream text;
+  text.precision(9);
+  text << t_s;
+  return text.str();
+}
+
 // Why a state ends the run, or nothing: a tip that is not finite, or one beyond the bound. Runs every
 // step: the message is written only when there is something to say.
 std::optional<std::string> non_finite(const TipState& tips, double t_s) {
   for (int f = 0; f < 2; ++f)
     if (!std::isfinite(tips.displacement_m[f]) || !std::isfinite(tips.velocity_m_s[f])) {
       std::ostringstream why;
-      why << "non-finite state of frame " << f + 1 << " at t = " << t_s << " s (tip u = " << tips.displacement_m[f]
+      why << "non-finite state of frame " << f + 1 << " at t = " << time_text(t_s) << " s (tip u = " << tips.displacement_m[f]
           << " m, v = " << tips.velocity_m_s[f] << " m/s)";
       return why.str();
     }
@@ -31,7 +39,7 @@ std::optional<std::string> beyond_bound(const TipState& tips, const RigSpec& rig
     if (std::abs(tips.displacement_m[f]) > bound_m) {
       std::ostringstream why;
       why << "frame " << f + 1 << " tip displacement |u| = " << std::abs(tips.displacement_m[f]) << " m beyond "
-          << bounds.displacement_bound_fraction_of_length << " L = " << bound_m << " m at t = " << t_s << " s";
+          << bounds.displacement_bound_fraction_of_length << " L = " << bound_m << " m at t = " << time_text(t_s) << " s";
       return why.str();
     }
   }
