@@ -146,6 +146,8 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   RunSettings settings = job.settings;
   if (settings.series_start_s < 0)
     settings.series_start_s = measurement.series == SeriesOutput::all ? 0.0 : metrics_settings.window_start_s;
+  // the engines' divergence guard stops a run at the bound the verdict then judges it by: one record
+  settings.stability = measurement.verdicts.stability;
 
   RunRecord record;
   record.job_id = job_id(scenario.name, job);
