@@ -1,5 +1,5 @@
 """What bench/scipy_reference.py records from solve_ivp's dense output, the way the reference records
-(reference/reference_solver.cpp, harness/trajectory.h):
+(reference/reference_solver.cpp, model/trajectory.h):
 
 - samples at the output rate: tip displacement, velocity and acceleration of both frames, contact force,
   mechanical energy;
@@ -138,7 +138,7 @@ class Segment:
 
 
 class SeriesRecorder:
-    """The output series of harness/trajectory.h: samples at rate_hz from start_s to end_s, and the exact
+    """The output series of model/trajectory.h: samples at rate_hz from start_s to end_s, and the exact
     maxima between them, fed one Segment at a time in time order."""
 
     COLUMNS = ("time_s,frame1_displacement_m,frame1_velocity_m_s,frame1_acceleration_m_s2,"
@@ -218,7 +218,7 @@ EVENT_COLUMNS = ("onset_time_s,end_time_s,duration_s,approach_velocity_m_s,rebou
 
 
 def write_events_csv(path, events):
-    """events: dicts with the ContactEvent fields of harness/trajectory.h."""
+    """events: dicts with the ContactEvent fields of model/trajectory.h."""
     with open(path, "w", encoding="utf-8") as out:
         out.write(EVENT_COLUMNS + "\n")
         for e in events:

@@ -44,7 +44,7 @@ def _vector(data, key, path, size, where=""):
 
 class ContactLaw:
     """F_c(delta, delta') of one law, continued smoothly to delta < 0 as the reference does inside a contact
-    phase (reference/contact_laws.h): the phase ends where delta returns to 0, so the continuation is never
+    phase (physics/contact_laws.h): the phase ends where delta returns to 0, so the continuation is never
     applied, but it keeps the right-hand side smooth across the step that crosses the separation."""
 
     def __init__(self, data, path):

@@ -1,7 +1,7 @@
 // The chain MuJoCo simulates is the chain the reference builds: frame 1 released from its static
 // tip-load shape with the frames far apart (no contact), its tip's free decay measured in MuJoCo, and
 // the first two natural frequencies and decay rates read off it compared with the reference's chain
-// modes (reference/link_chain.h). Both frames' chains (frame 2's by swapping the frames), both
+// modes (physics/link_chain.h). Both frames' chains (frame 2's by swapping the frames), both
 // integrators.
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The injected contact path: the harness computes the contact law's force from the tip states at the
 // start of each step and the adapter applies it (-F on frame 1's tip, +F on frame 2's, along x), so
 // that an engine's time stepping can be told apart from its contact model. The same code for every
-// engine; the law is the reference's own (reference/contact_laws.h).
+// engine; the law is the reference's own (physics/contact_laws.h).
 #pragma once
 
 #include "adapters/common/rig.h"

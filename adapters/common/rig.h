@@ -32,7 +32,7 @@ struct RigBody {
 };
 
 struct FrameRig {
-  LinkChain chain;                       // the physics (reference/link_chain.h)
+  LinkChain chain;                       // the physics (physics/link_chain.h)
   std::vector<RigBody> bodies;           // K bodies, in hinge order from the clamp
   double base_x_m = 0;                   // clamp position along x [m]
   double tip_z_m = 0;                    // the tip point (= beam length) [m]
