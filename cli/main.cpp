@@ -76,8 +76,9 @@ int main(int argc, char** argv) {
   suite->add_option("--step-range", suite_options.step_range, "with --find-steps: MIN,MAX step searched [s]")
       ->capture_default_str();
   suite->add_option("--tolerance", suite_options.tolerances,
-                    "with --find-steps: metric=value,... for frame1_sensor_peak (relative, default 0.05), "
-                    "contact_duration (relative, 0.10), impacts_per_cycle (absolute, 0.05)");
+                    "with --find-steps: metric=value,... for frame1_sensor_peak (relative, default 0.10), "
+                    "contact_duration (relative, 0.10), impacts_per_cycle (absolute, 0.10); the verdicts' tolerances, "
+                    "so they judge the probes' verdicts too");
   suite->add_option("--shard", suite_options.shard,
                     "K/N: run shard K of N (1 <= K <= N): every N-th engine job (with --find-steps: step search) "
                     "in planned order, and the references they need; join the shards with 'merge'");
