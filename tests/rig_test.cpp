@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "physics/beam_modes.h"
@@ -44,6 +45,19 @@ TEST(Rig, BodiesCarryTheBeamAndTheTipMass) {
   EXPECT_DOUBLE_EQ(rig.frame_spacing_m, s.gap_m + 2 * rig.sphere_radius_m);
   ASSERT_TRUE(rig.motor.has_value());
   EXPECT_NEAR(rig.motor->omega_rad_s, 2 * M_PI * 6.9498, 2e-3);
+}
+
+TEST(Rig, ExplicitHingeStepLimitIsSetByTheFastestChainMode) {
+  Scenario s = testing::paper_scenario("resonance");
+  const double damped_s = explicit_hinge_step_limit_s(build_rig(s, ContactLaw::hertz, 8));
+  EXPECT_NEAR(damped_s, 7.5e-5, 0.3e-5);  // the fastest mode: 1966 Hz, zeta 0.85
+  // without damping the limit is 2 / omega_max, which the damping only lowers
+  for (FrameSpec& frame : s.frames) frame.damping_ratio = 0;
+  const RigSpec undamped = build_rig(s, ContactLaw::hertz, 8);
+  double omega_max = 0;
+  for (const FrameRig& frame : undamped.frames) omega_max = std::max(omega_max, chain_modes(frame.chain).omega_rad_s.maxCoeff());
+  EXPECT_NEAR(explicit_hinge_step_limit_s(undamped), 2 / omega_max, 1e-15);
+  EXPECT_LT(damped_s, 2 / omega_max);
 }
 
 TEST(Rig, OnlyWhatTheScenarioNeeds) {

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -30,29 +29,15 @@ namespace {
 
 using namespace bullet;  // the adapter's own names: chains and contact mapping
 
-// The largest step at which the explicit hinge springs and dampers stay stable [s]. Stiffness-
-// proportional damping keeps the chain's modes apart, and for one mode symplectic Euler with an
-// explicit damper is stable while (omega h)^2 + 4 zeta omega h < 4, i.e. omega h < 2 (sqrt(1 + zeta^2) - zeta).
-// K = 8: 7.5e-5 s, set by the fastest mode (1966 Hz, zeta 0.85); seen: 7e-5 s stable, 8e-5 s not.
-double hinge_step_limit(const RigSpec& rig) {
-  double limit = std::numeric_limits<double>::infinity();
-  for (const FrameRig& frame : rig.frames) {
-    const ModalBasis modes = chain_modes(frame.chain);
-    for (Eigen::Index n = 0; n < modes.omega_rad_s.size(); ++n) {
-      const double zeta = modes.zeta[n];
-      limit = std::min(limit, 2 * (std::sqrt(1 + zeta * zeta) - zeta) / modes.omega_rad_s[n]);
-    }
-  }
-  return limit;
-}
-
 // The step when a run does not set one: the largest of 5e-5, 2e-5, 1e-5, 5e-6, ... s within 3/4 of
-// the hinge limit: 5e-5 s for the default K = 8 (and fewer links), 2e-6 s for K = 16. Never above
-// 5e-5 s: a sphere contact starts at the first step that begins overlapping, and the overlap gained
-// unresisted in that step adds up to (omega h)^2 of an impact's energy to the spring-dashpot
-// (omega = 5200 rad/s for the rig): 7 % at 5e-5 s, 27 % at 1e-4 s, enough to make energy grow.
+// the explicit hinge springs' limit (explicit_hinge_step_limit_s, adapters/common/rig.h; seen: 7e-5 s
+// stable, 8e-5 s not for K = 8): 5e-5 s for the default K = 8 (and fewer links), 2e-6 s for K = 16.
+// Never above 5e-5 s: a sphere contact starts at the first step that begins overlapping, and the
+// overlap gained unresisted in that step adds up to (omega h)^2 of an impact's energy to the
+// spring-dashpot (omega = 5200 rad/s for the rig): 7 % at 5e-5 s, 27 % at 1e-4 s, enough to make
+// energy grow.
 double default_time_step(const RigSpec& rig) {
-  const double allowed = 0.75 * hinge_step_limit(rig);
+  const double allowed = 0.75 * explicit_hinge_step_limit_s(rig);
   for (double step : {5e-5, 2e-5, 1e-5, 5e-6, 2e-6, 1e-6, 5e-7, 2e-7, 1e-7})
     if (step <= allowed) return step;
   return allowed;
@@ -182,7 +167,7 @@ class BulletSimulator final : public Simulator {
     RunResult result;
     auto& d = result.diagnostics;
     d.emplace_back("time_step_s", h);
-    d.emplace_back("hinge_step_limit_s", hinge_step_limit(rig));
+    d.emplace_back("hinge_step_limit_s", explicit_hinge_step_limit_s(rig));
     d.emplace_back("chain_links", links);
     d.emplace_back("articulation_multibody", articulation == Articulation::multibody ? 1 : 0);
     d.emplace_back("contact_injected", injected ? 1 : 0);

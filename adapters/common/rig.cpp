@@ -1,7 +1,9 @@
 #include "adapters/common/rig.h"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "physics/beam_modes.h"
@@ -78,6 +80,18 @@ RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links) {
 
 RigEnergy::RigEnergy(const RigSpec& rig) : law_(rig.law) {
   for (int f = 0; f < 2; ++f) matrices_[f] = linearise(rig.frames[f].chain);
+}
+
+double explicit_hinge_step_limit_s(const RigSpec& rig) {
+  double limit = std::numeric_limits<double>::infinity();
+  for (const FrameRig& frame : rig.frames) {
+    const ModalBasis modes = chain_modes(frame.chain);
+    for (Eigen::Index n = 0; n < modes.omega_rad_s.size(); ++n) {
+      const double omega = modes.omega_rad_s[n], zeta = modes.zeta[n];
+      limit = std::min(limit, 2 * (std::sqrt(1 + zeta * zeta) - zeta) / omega);
+    }
+  }
+  return limit;
 }
 
 namespace {

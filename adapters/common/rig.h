@@ -59,6 +59,14 @@ int default_links(const Scenario& scenario);
 
 RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links);
 
+// The longest step at which explicit hinge springs and dampers stay stable [s], for engines that apply
+// them as forces and integrate with semi-implicit (symplectic) Euler (ODE's springs=explicit, Bullet).
+// Stiffness-proportional damping keeps the chain's modes apart, and one mode (omega_n, zeta_n) is stable
+// while (omega h)^2 + 4 zeta omega h < 4, i.e. omega h < 2 (sqrt(1 + zeta^2) - zeta): 2 / omega without
+// damping. The fastest modes are heavily damped, so the limit is below 2 / omega_max; K = 8: 7.5e-5 s,
+// set by the fastest mode (1966 Hz, zeta 0.85).
+double explicit_hinge_step_limit_s(const RigSpec& rig);
+
 // Mechanical energy of the rig from its hinge angles and rates (linearised chain: kinetic
 // 1/2 w^T M w plus spring 1/2 q^T K q per frame) plus the contact law's elastic energy at the
 // indentation [J]. The same measure for every engine.

@@ -1,7 +1,6 @@
 #include "adapters/ode/ode_simulator.h"
 
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -63,22 +62,6 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   return plan;
 }
 
-// The longest step at which explicit hinge springs stay stable [s]. ODE integrates an explicit force
-// with semi-implicit Euler; a chain mode n (omega_n, zeta_n; the damping is stiffness-proportional, so
-// the modes stay uncoupled) is then stable for omega_n h < 2 (sqrt(1 + zeta_n^2) - zeta_n), which is
-// 2 / omega_n without damping. The fastest chain modes are heavily damped, so the limit is below 2 / omega_max.
-double explicit_spring_step_limit(const RigSpec& rig) {
-  double limit = std::numeric_limits<double>::infinity();
-  for (const FrameRig& frame : rig.frames) {
-    const ModalBasis modes = chain_modes(frame.chain);
-    for (Eigen::Index n = 0; n < modes.omega_rad_s.size(); ++n) {
-      const double omega = modes.omega_rad_s[n], zeta = modes.zeta[n];
-      limit = std::min(limit, 2 * (std::sqrt(1 + zeta * zeta) - zeta) / omega);
-    }
-  }
-  return limit;
-}
-
 // The ODE side of the shared fixed-step loop (adapters/common/fixed_step_loop.h): the ODE rig and how its
 // tips touch.
 class OdeStepper final : public FixedStepEngine {
@@ -90,7 +73,7 @@ class OdeStepper final : public FixedStepEngine {
         ode_rig_(rig_, model_),
         energy_(rig_),
         newton_(is_instantaneous(rig_.law)),
-        step_limit_s_(explicit_spring_step_limit(rig_)) {
+        step_limit_s_(explicit_hinge_step_limit_s(rig_)) {
     for (int f = 0; f < 2; ++f) {
       angles_[f] = Eigen::VectorXd::Zero(rig_.frames[f].chain.links);
       rates_[f] = Eigen::VectorXd::Zero(rig_.frames[f].chain.links);
