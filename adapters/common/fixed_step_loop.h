@@ -11,6 +11,13 @@
 // the bound (its state is recorded: it happened) -> at the end, stop -> the loads of the coming step from
 // the state at its start (motor at t, the injected contact force) -> step -> the contact force of that
 // step (the injected one, or the engine's own).
+//
+// What stays the engine's, in its Simulator::run around run_fixed_steps: its options, the rig
+// (build_rig, adapters/common/rig.h) translated into its own bodies and joints, its contact set up for
+// the law and path, the step (settings.time_step_s, or its own default when that is 0: passed as
+// step_s; explicit hinge springs bound it, explicit_hinge_step_limit_s), and its diagnostics, written
+// into the result. Accelerations are not asked for: the recorder takes a step's velocity change.
+// tests/fixed_step_loop_test.cpp pins this contract with a scripted engine.
 #pragma once
 
 #include <array>
