@@ -11,7 +11,6 @@
 
 #include "harness/jsonl_table.h"
 #include "harness/number_text.h"
-#include "harness/recorded_run.h"
 #include "harness/run_files.h"
 
 namespace ib {
@@ -142,33 +141,24 @@ std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
   return key_text(group.group_id, s.min_step_s, s.max_step_s, s.points_per_octave, tolerances);
 }
 
-namespace {
-// The key of a parsed steps.jsonl line; "" when it is not a row (cut short by a kill).
-std::string step_row_key_of(const Json& j) {
-  if (!j.is_object() || !j.contains("notes")) return "";
+RecordedStepRow read_step_row(const std::string& json_line) {
+  const Json j = Json::parse(json_line, nullptr, /*allow_exceptions=*/false);
+  RecordedStepRow row;
+  if (!j.is_object() || !j.contains("notes")) return row;  // "notes" is the last column: a whole row
   std::vector<double> tolerances;
   for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(number_or_nan(j, std::string(error_name(m)) + "_tolerance"));
-  return key_text(text_or_empty(j, "group_id"), number_or_nan(j, "step_range_min_s"), number_or_nan(j, "step_range_max_s"),
-                  number_or_nan(j, "grid_points_per_octave"), tolerances);
-}
-}  // namespace
-
-std::string step_row_key_of_line(const std::string& json_line) {
-  return step_row_key_of(Json::parse(json_line, nullptr, false));
+  row.readable = true;
+  row.group_id = text_or_empty(j, "group_id");
+  row.key = key_text(row.group_id, number_or_nan(j, "step_range_min_s"), number_or_nan(j, "step_range_max_s"),
+                     number_or_nan(j, "grid_points_per_octave"), tolerances);
+  return row;
 }
 
 std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
   std::vector<std::string> columns;
   for (const StepField& field : step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr})) columns.push_back(field.name);
-  return repair_jsonl_table(folder + "/steps.jsonl", folder + "/steps.csv", columns, step_row_key_of_line);
-}
-
-std::map<std::string, std::string> recorded_run_lines(const std::string& folder) {
-  std::map<std::string, std::string> lines;
-  std::ifstream in(folder + "/runs.jsonl");
-  for (std::string line; std::getline(in, line);)
-    if (const RecordedRun run = read_recorded_run(line); run.readable) lines[run.job_id] = line;
-  return lines;
+  const auto key_of = [](const std::string& line) { return read_step_row(line).key; };
+  return repair_jsonl_table(folder + "/steps.jsonl", folder + "/steps.csv", columns, key_of);
 }
 
 }  // namespace ib
