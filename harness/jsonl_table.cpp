@@ -12,6 +12,47 @@
 
 namespace ib {
 
+std::vector<std::string> column_names(const std::vector<Field>& row) {
+  std::vector<std::string> names;
+  for (const Field& f : row) names.push_back(f.name);
+  return names;
+}
+
+std::string csv_header_line(const std::vector<Field>& row) {
+  std::string line;
+  for (const Field& f : row) line += (line.empty() ? "" : ",") + f.name;
+  return line + "\n";
+}
+
+std::string csv_row_line(const std::vector<Field>& row) {
+  std::string line;
+  bool first = true;
+  for (const Field& f : row) {
+    line += first ? "" : ",";
+    first = false;
+    if (const auto* text = std::get_if<std::string>(&f.value)) line += csv_escape(*text);
+    else line += f.exact ? exact_number_text(std::get<double>(f.value)) : number_text(std::get<double>(f.value));
+  }
+  return line + "\n";
+}
+
+nlohmann::ordered_json json_object(const std::vector<Field>& row) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const Field& f : row) {
+    if (const auto* text = std::get_if<std::string>(&f.value)) j[f.name] = *text;
+    else j[f.name] = json_number(std::get<double>(f.value), f.exact);
+  }
+  return j;
+}
+
+void append_table_row(const std::string& jsonl_path, const std::string& csv_path, const std::string& csv_header,
+                      const std::string& csv_row, const std::string& json_line) {
+  append_text_file(jsonl_path, json_line);
+  std::ifstream existing(csv_path);
+  const bool fresh = !existing.good() || existing.peek() == std::ifstream::traits_type::eof();
+  append_text_file(csv_path, (fresh ? csv_header : "") + csv_row);
+}
+
 std::set<std::string> repair_jsonl_table(const std::string& jsonl_path, const std::string& csv_path,
                                          const std::vector<std::string>& columns,
                                          const std::function<std::string(const std::string& line)>& key_of) {

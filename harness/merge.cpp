@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "harness/recorded_run.h"
 #include "harness/reporters.h"
 #include "harness/run_files.h"
 #include "harness/run_record.h"
@@ -218,11 +219,10 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
     std::ifstream step_lines(folder + "/steps.jsonl");
     any_steps = any_steps || step_lines.is_open();
     for (std::string line; std::getline(step_lines, line);) {
-      const std::string key = step_row_key_of_line(line);
-      if (key.empty()) continue;  // cut short by a kill
-      in_folder.step_searches.insert(key);
-      join(steps, key, line, folder, "steps.jsonl", "step search " + Json::parse(line).value("group_id", key),
-           kStepTimingFields);
+      const RecordedStepRow row = read_step_row(line);
+      if (!row.readable) continue;  // cut short by a kill
+      in_folder.step_searches.insert(row.key);
+      join(steps, row.key, line, folder, "steps.jsonl", "step search " + row.group_id, kStepTimingFields);
     }
   }
   check_completeness(settings, recorded, outcome);

@@ -1,5 +1,6 @@
 #include "harness/recorded_run.h"
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 namespace ib {
@@ -48,6 +49,14 @@ RecordedRun read_recorded_run(const std::string& json_line) {
   r.vs_reference = errors(j, "vs_reference_");
   r.vs_chain_reference = errors(j, "vs_chain_reference_");
   return r;
+}
+
+std::map<std::string, std::string> recorded_run_lines(const std::string& folder) {
+  std::map<std::string, std::string> lines;
+  std::ifstream in(folder + "/runs.jsonl");
+  for (std::string line; std::getline(in, line);)
+    if (const RecordedRun run = read_recorded_run(line); run.readable) lines[run.job_id] = line;
+  return lines;
 }
 
 }  // namespace ib

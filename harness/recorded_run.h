@@ -4,6 +4,7 @@
 #pragma once
 
 #include <limits>
+#include <map>
 #include <string>
 
 #include "harness/verdict.h"
@@ -33,5 +34,9 @@ struct RecordedRun {
 };
 
 RecordedRun read_recorded_run(const std::string& json_line);
+
+// Every readable line of DIR/runs.jsonl by job id, as written (the last one of a job wins); empty
+// without the file. What --resume, the step search and merge start from.
+std::map<std::string, std::string> recorded_run_lines(const std::string& folder);
 
 }  // namespace ib

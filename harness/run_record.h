@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "harness/jsonl_table.h"
 #include "harness/metrics.h"
 #include "model/trajectory.h"
 #include "harness/verdict.h"
@@ -47,13 +48,7 @@ struct RunRecord {
   std::vector<std::pair<std::string, double>> diagnostics;  // simulator-specific, named with units
 };
 
-struct Field {
-  std::string name;                    // with its unit, e.g. "frame1_sensor_peak_acceleration_g"
-  std::variant<std::string, double> value;  // NaN: not applicable or not measured
-  bool exact = false;                  // a setting (a time step, a window): written with every digit it has
-};
-
-// Every record yields the same names in the same order (missing values are NaN), so that rows of
+// The record as a row of runs.csv / runs.jsonl (Field: jsonl_table.h). Every record yields the same names in the same order (missing values are NaN), so that rows of
 // different runs line up in one table.
 std::vector<Field> fields(const RunRecord& record);
 

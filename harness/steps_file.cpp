@@ -2,16 +2,13 @@
 // found again by its key on --resume, repaired after a kill through the one path of jsonl_table.h.
 #include "harness/step_search.h"
 
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "harness/jsonl_table.h"
 #include "harness/number_text.h"
-#include "harness/recorded_run.h"
 #include "harness/run_files.h"
 
 namespace ib {
@@ -38,18 +35,10 @@ std::string text_or_empty(const Json& j, const std::string& name) {
   return j.contains(name) && j[name].is_string() ? j[name].get<std::string>() : "";
 }
 
-
-
-struct StepField {
-  std::string name;
-  std::variant<std::string, double> value;
-  bool exact = false;  // a setting or a time step: written with every digit it has
-};
-
-std::vector<StepField> step_fields(const StepRow& row) {
+std::vector<Field> step_fields(const StepRow& row) {
   const StepGroup& g = row.group;
   const StepSearchSettings& s = row.settings;
-  std::vector<StepField> out = {
+  std::vector<Field> out = {
       {"group_id", g.group_id},
       {"scenario", g.scenario},
       {"law", g.law},
@@ -86,15 +75,6 @@ std::vector<StepField> step_fields(const StepRow& row) {
   return out;
 }
 
-Json step_json(const StepRow& row) {
-  Json j;
-  for (const auto& [name, value, exact] : step_fields(row)) {
-    if (const auto* text = std::get_if<std::string>(&value)) j[name] = *text;
-    else j[name] = json_number(std::get<double>(value), exact);
-  }
-  return j;
-}
-
 // The key's numbers exactly: a row is found again only under the same range and tolerances.
 std::string key_text(const std::string& group_id, double min_s, double max_s, double points,
                      const std::vector<double>& tolerances) {
@@ -107,33 +87,15 @@ std::string key_text(const std::string& group_id, double min_s, double max_s, do
 
 // ---- steps.csv and steps.jsonl ----------------------------------------------------------------------
 
-std::string steps_csv_header() {
-  std::string line;
-  for (const StepField& field : step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}))
-    line += (line.empty() ? "" : ",") + field.name;
-  return line + "\n";
-}
+std::string steps_csv_header() { return csv_header_line(step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr})); }
 
-std::string steps_csv_row(const StepRow& row) {
-  std::string line;
-  bool first = true;
-  for (const auto& [name, value, exact] : step_fields(row)) {
-    line += first ? "" : ",";
-    first = false;
-    if (const auto* text = std::get_if<std::string>(&value)) line += csv_escape(*text);
-    else line += exact ? exact_number_text(std::get<double>(value)) : number_text(std::get<double>(value));
-  }
-  return line + "\n";
-}
+std::string steps_csv_row(const StepRow& row) { return csv_row_line(step_fields(row)); }
 
-std::string steps_json_line(const StepRow& row) { return step_json(row).dump() + "\n"; }
+std::string steps_json_line(const StepRow& row) { return json_object(step_fields(row)).dump() + "\n"; }
 
 void append_step_row(const std::string& folder, const StepRow& row) {
-  append_text_file(folder + "/steps.jsonl", steps_json_line(row));
-  const std::string csv = folder + "/steps.csv";
-  std::ifstream existing(csv);
-  const bool fresh = !existing.good() || existing.peek() == std::ifstream::traits_type::eof();
-  append_text_file(csv, (fresh ? steps_csv_header() : "") + steps_csv_row(row));
+  append_table_row(folder + "/steps.jsonl", folder + "/steps.csv", steps_csv_header(), steps_csv_row(row),
+                   steps_json_line(row));
 }
 
 std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
@@ -142,33 +104,23 @@ std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
   return key_text(group.group_id, s.min_step_s, s.max_step_s, s.points_per_octave, tolerances);
 }
 
-namespace {
-// The key of a parsed steps.jsonl line; "" when it is not a row (cut short by a kill).
-std::string step_row_key_of(const Json& j) {
-  if (!j.is_object() || !j.contains("notes")) return "";
+RecordedStepRow read_step_row(const std::string& json_line) {
+  const Json j = Json::parse(json_line, nullptr, /*allow_exceptions=*/false);
+  RecordedStepRow row;
+  if (!j.is_object() || !j.contains("notes")) return row;  // "notes" is the last column: a whole row
   std::vector<double> tolerances;
   for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(number_or_nan(j, std::string(error_name(m)) + "_tolerance"));
-  return key_text(text_or_empty(j, "group_id"), number_or_nan(j, "step_range_min_s"), number_or_nan(j, "step_range_max_s"),
-                  number_or_nan(j, "grid_points_per_octave"), tolerances);
-}
-}  // namespace
-
-std::string step_row_key_of_line(const std::string& json_line) {
-  return step_row_key_of(Json::parse(json_line, nullptr, false));
+  row.readable = true;
+  row.group_id = text_or_empty(j, "group_id");
+  row.key = key_text(row.group_id, number_or_nan(j, "step_range_min_s"), number_or_nan(j, "step_range_max_s"),
+                     number_or_nan(j, "grid_points_per_octave"), tolerances);
+  return row;
 }
 
 std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
-  std::vector<std::string> columns;
-  for (const StepField& field : step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr})) columns.push_back(field.name);
-  return repair_jsonl_table(folder + "/steps.jsonl", folder + "/steps.csv", columns, step_row_key_of_line);
-}
-
-std::map<std::string, std::string> recorded_run_lines(const std::string& folder) {
-  std::map<std::string, std::string> lines;
-  std::ifstream in(folder + "/runs.jsonl");
-  for (std::string line; std::getline(in, line);)
-    if (const RecordedRun run = read_recorded_run(line); run.readable) lines[run.job_id] = line;
-  return lines;
+  const std::vector<std::string> columns = column_names(step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}));
+  const auto key_of = [](const std::string& line) { return read_step_row(line).key; };
+  return repair_jsonl_table(folder + "/steps.jsonl", folder + "/steps.csv", columns, key_of);
 }
 
 }  // namespace ib
