@@ -112,6 +112,7 @@ class SimbodyStepper final : public FixedStepEngine {
       return why.str();
     }
     closing_m_s_ = tips.velocity_m_s[0] - tips.velocity_m_s[1];
+    separation_m_ = rig_.gap_m - (tips.displacement_m[0] - tips.displacement_m[1]);
     return std::nullopt;
   }
 
@@ -135,10 +136,12 @@ class SimbodyStepper final : public FixedStepEngine {
     if (setup_.kind == ContactKind::rigid_newton) {
       // Simbody keeps the impact impulse to itself: the force the recorder needs is estimated from the
       // reversal of the closing speed over the step, m_eff (v_before - v_after) / h (rig.h's tip
-      // effective mass), on the steps that reversed it
+      // effective mass), on the steps that reversed it with the spheres within reach of each other (a
+      // closing speed also turns at every free oscillation's extreme)
       const SimTK::State& state = stepping_.state();
       const double closing_after_m_s = chain_.tip(state, 0).velocity_m_s - chain_.tip(state, 1).velocity_m_s;
-      if (closing_before_m_s > 0 && closing_after_m_s < 0) {
+      const double reach_m = closing_before_m_s * step_s + 10 * plan_.stepping.constraint_tolerance_m;
+      if (closing_before_m_s > 0 && closing_after_m_s < 0 && separation_m_ <= reach_m) {
         last_step_impulse_force_n_ = rig_.contact_effective_mass_kg * (closing_before_m_s - closing_after_m_s) / step_s;
         ++impacts_;
       }
@@ -174,7 +177,8 @@ class SimbodyStepper final : public FixedStepEngine {
   const bool newton_;
   const double step_limit_s_;
   std::array<Eigen::VectorXd, 2> angles_, rates_;
-  double closing_m_s_ = 0;
+  double closing_m_s_ = 0;    // tip 1 - tip 2 velocity at the last read [m/s]
+  double separation_m_ = 0;   // surface gap at the last read [m]
   double last_step_impulse_force_n_ = 0;
   long long impacts_ = 0;
 };
