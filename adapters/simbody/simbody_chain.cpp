@@ -64,6 +64,11 @@ State SimbodyChain::initial_state() {
   return state;
 }
 
+void SimbodyChain::set_hinge(State& state, int f, int j, double angle_rad, double rate_rad_s) {
+  frames_[f].links[j].setAngle(state, angle_rad);
+  frames_[f].links[j].setRate(state, rate_rad_s);
+}
+
 Vec3 SimbodyChain::tip_position_m(const State& state, int f) const {
   return tip_body(f).findStationLocationInGround(state, frames_[f].tip_station_m);
 }

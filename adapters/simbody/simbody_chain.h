@@ -64,6 +64,9 @@ class SimbodyChain {
   // Realises the topology and returns the initial state: the rig's initial hinge angles, at rest.
   SimTK::State initial_state();
 
+  // Sets one hinge's angle [rad] and rate [rad/s] (j from the clamp); for tests that pose the rig.
+  void set_hinge(SimTK::State& state, int f, int j, double angle_rad, double rate_rad_s);
+
   // Read from a state realised to Stage::Velocity.
   TipReading tip(const SimTK::State& state, int f) const;
   SimTK::Vec3 tip_position_m(const SimTK::State& state, int f) const;
