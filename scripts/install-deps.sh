@@ -14,6 +14,8 @@ packages=(
   libmujoco-dev libqhull-dev      # MuJoCo 2.2.2 (its CMake config names qhull's headers)
   libode-dev                     # ODE 0.16.2, double precision
   libbullet-dev                  # Bullet 3.24, linked as bullet-float64 (double precision)
+  libdart-dev                    # DART 6.12.1, its core component only (collision-bullet links float Bullet)
+  libsimbody-dev                 # Simbody 3.7 (Hunt-Crossley contact, rigid-contact stepper, CPodes)
   python3-matplotlib             # the report's figures (reports/, run with /usr/bin/python3)
   python3-scipy                  # bench/reference_vs_scipy.py: the reference against SciPy's solve_ivp
   libgtest-dev libgmock-dev      # tests

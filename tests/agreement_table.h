@@ -76,7 +76,7 @@ constexpr double na = kNotApplicable;
 //   contact time by 1 to 1.5 %); spring-dashpot plus 5 %, because the beam reference runs the published law,
 //   whose tensile tail makes its contacts 4 % (c/k = 24 us) longer than any engine's compressive contact.
 constexpr const char* kHertzStep =
-    "Hertz is a force from the tip states (no engine has a nonlinear contact), explicit: its 0.25 ms contact "
+    "Hertz is a force from the tip states (MuJoCo, ODE, Bullet and DART have no nonlinear contact), explicit: its 0.25 ms contact "
     "stiffens to 18000 rad/s and gains energy at 1e-4 s (e > 1), so 1e-5 s (25 steps per contact)";
 constexpr const char* kOdeHertzStep =
     "Hertz as a force from the tip states; ODE's implicit hinge springs keep 2e-5 s (12 steps per contact) within "
@@ -115,12 +115,29 @@ constexpr const char* kFreeVibrationSpringDashpot =
 
 constexpr const char* kDartSpringDashpot =
     "DART has no compliant rigid contact: the law's force from the tip states (matched = injected), explicit; at "
-    "5e-5 s (12 steps per 0.6 ms contact) the restitution is within 0.5 % of the law's, so 5 %";
+    "5e-5 s (12 steps per 0.6 ms contact) the restitution is within 0.5 % of the law's, so 5 %; the force is the "
+    "published law's, tensile tail included (the chain reference here clips it): contacts up to 3 % longer";
 constexpr const char* kDartNewton =
     "named configuration length_unit=cm: in metres DART's bounce threshold (no bounce when e v <= 0.1 m/s) makes "
     "every impact of the rig plastic (e = 0.003 at resonance: a finding, tests/dart_single_impact_test.cpp); in "
     "centimetres the same physics bounces with e within 0.3 %. Rigid contact found up to one step late (as ODE's), "
     "so 2e-5 s";
+
+constexpr const char* kSimbodyHertz =
+    "Simbody's own Hunt-Crossley contact with the mapped material (equal to the law to 1e-9 on the posed rig, "
+    "tests/simbody_contact_mapping_test.cpp), a force that semi-explicit Euler integrates explicitly like the "
+    "injected ones: 1e-5 s (25 steps per 0.25 ms contact), as for the other engines' Hertz";
+constexpr const char* kSimbodySpringDashpot =
+    "the law as a Simbody force element at the default 5e-5 s (12 steps per 0.6 ms contact, omega h = 0.26): "
+    "explicit, restitution within 1 % of the law's, so 5 %. The element is the scenario's published law, tensile "
+    "tail included, while the chain reference here runs it clipped: contacts 2 to 4 % longer than the chain's, "
+    "within 2 % of the beam's (unclipped) ones";
+constexpr const char* kSimbodyNewton =
+    "Simbody's rigid contact (SemiExplicitEulerTimeStepper, Newton restitution, constraint tolerance 1e-6 m): "
+    "the impact is found in the step that closes the gap, up to one step late (as ODE's), so 2e-5 s";
+constexpr const char* kSimbodyPostResonance =
+    "as kPostResonance at Simbody's default 5e-5 s: the hinge springs are explicit forces in Simbody and "
+    "semi-explicit Euler is stable only below 7.5e-5 s on the K = 8 chain, so 1e-4 s diverges (a finding)";
 
 // THE table: engine, case, law, step [s], contact path, tolerances {impacts per cycle, sensor peak, contact
 // duration} against the chain reference, then against the beam reference, and why.
@@ -177,6 +194,19 @@ constexpr AgreementRow kAgreement[] = {
     {"dart", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
     {"dart", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
     {"dart", "free_vibration", kNewton, 1e-5, "matched", "length_unit=cm", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
+    // ---------------------------------------------------------------- Simbody 3.7, semi-explicit Euler, explicit hinge springs
+    {"simbody", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kSimbodyHertz},
+    {"simbody", "resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kSimbodySpringDashpot},
+    {"simbody", "resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kSimbodyNewton},
+    {"simbody", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kSimbodyHertz},
+    {"simbody", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kSimbodySpringDashpot},
+    {"simbody", "pre_resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kSimbodyNewton},
+    {"simbody", "post_resonance", kHertz, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kSimbodyPostResonance},
+    {"simbody", "post_resonance", kSpringDashpot, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kSimbodyPostResonance},
+    {"simbody", "post_resonance", kNewton, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kSimbodyPostResonance},
+    {"simbody", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
+    {"simbody", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
+    {"simbody", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
 };
 
 }  // namespace ib
