@@ -14,7 +14,7 @@ function tp(x) { return sprintf("%g", 100 * x) }
   else cell = sprintf("%s / %s | %s / %s", tp(v["chain_tolerance"]), tp(v["beam_tolerance"]), pct(v["chain_error"]), pct(v["beam_error"]))
   c[k, m] = cell }
 END {
-  eo["mujoco"] = 1; eo["ode"] = 2; eo["bullet"] = 3; co["resonance"] = 1; co["pre_resonance"] = 2; co["post_resonance"] = 3; co["free_vibration"] = 4
+  eo["mujoco"] = 1; eo["ode"] = 2; eo["bullet"] = 3; eo["dart"] = 4; eo["simbody"] = 5; co["resonance"] = 1; co["pre_resonance"] = 2; co["post_resonance"] = 3; co["free_vibration"] = 4
   lo["hertz"] = 1; lo["viscoelastic"] = 2; lo["newton"] = 3
   for (i = 1; i <= n; ++i) { split(order[i], p, "|"); key[i] = eo[p[1]] * 100 + co[p[2]] * 10 + lo[p[3]] }
   for (i = 1; i <= n; ++i) for (j = i + 1; j <= n; ++j) if (key[j] < key[i]) { t = key[i]; key[i] = key[j]; key[j] = t; t = order[i]; order[i] = order[j]; order[j] = t }

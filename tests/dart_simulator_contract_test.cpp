@@ -34,7 +34,7 @@ double diagnostic(const RunResult& r, const std::string& name) {
 TEST(DartSimulator, NameVersionAndOptions) {
   const auto dart = make_dart_simulator();
   EXPECT_EQ(dart->name(), "dart");
-  EXPECT_EQ(dart->version(), "6.12.1");
+  EXPECT_EQ(dart->version(), "DART 6.12.1");
   const auto options = dart->option_help();
   const std::map<std::string, std::string> help(options.begin(), options.end());
   for (const char* option : {"contact", "length_unit", "lcp", "links"}) EXPECT_TRUE(help.count(option)) << option;

@@ -162,7 +162,7 @@ class DartStepper final : public FixedStepEngine {
 class DartSimulator final : public Simulator {
  public:
   std::string name() const override { return "dart"; }
-  std::string version() const override { return DART_VERSION; }
+  std::string version() const override { return std::string("DART ") + DART_VERSION; }
   std::vector<std::pair<std::string, std::string>> option_help() const override { return kOptions; }
   std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {
     return plan_run(scenario, settings).links;

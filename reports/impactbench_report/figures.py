@@ -30,8 +30,10 @@ REPOSITORY = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__f
 # a figure holds; none is a verdict's colour (green, orange, red, grey).
 ENGINE_COLOURS = {("bullet", "matched"): "#1f77b4", ("bullet", "native"): "#17becf", ("bullet", "injected"): "#0b3d91",
                   ("mujoco", "matched"): "#9467bd", ("mujoco", "native"): "#e377c2", ("mujoco", "injected"): "#5b2a86",
-                  ("ode", "matched"): "#8c564b", ("ode", "native"): "#bcbd22", ("ode", "injected"): "#4e2a1e"}
-SPARE_COLOURS = ["#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173", "#3182bd", "#31a354", "#756bb1"]
+                  ("ode", "matched"): "#8c564b", ("ode", "native"): "#bcbd22", ("ode", "injected"): "#4e2a1e",
+                  ("dart", "matched"): "#6b6ecf", ("dart", "native"): "#9c9ede", ("dart", "injected"): "#393b79",
+                  ("simbody", "matched"): "#8c6d31", ("simbody", "native"): "#e7cb94", ("simbody", "injected"): "#843c39"}
+SPARE_COLOURS = ["#637939", "#7b4173", "#3182bd", "#31a354", "#756bb1", "#b5cf6b", "#de9ed6", "#525252"]
 
 
 def colour_key(config):

@@ -17,7 +17,7 @@ import os
 from . import tables
 
 MACHINE_KEYS = ["cpu_model", "cpu_cores", "memory_gib", "os", "compiler", "libmujoco-dev", "libode-dev",
-                "libbullet-dev", "libbenchmark-dev", "python3-scipy", "impactbench_commit"]
+                "libbullet-dev", "libdart-dev", "libsimbody-dev", "libbenchmark-dev", "python3-scipy", "impactbench_commit"]
 
 
 def read_json(folder, name):

@@ -60,7 +60,47 @@ def _bullet(d):
     return items
 
 
-ENGINE_SETTINGS = {"mujoco": _mujoco, "ode": _ode, "bullet": _bullet}
+def _dart(d):
+    unit = {1: "m", 100: "cm", 1000: "mm"}.get(d.get("length_unit_per_m"), number(d.get("length_unit_per_m")) + " per m")
+    items = [("model length unit", unit),
+             ("LCP solver", "PGS" if d.get("lcp_pgs") == 1 else "Dantzig (DART's default)"),
+             ("joint springs", "DART's implicit joint springs and dampers")]
+    if d.get("contact_force_from_tip_states") == 1:
+        items.append(("contact", "the law's force from the tip states (DART has no compliant rigid contact)"))
+    if "restitution_of_pair" in d:
+        detector = "analytic sphere-sphere (DARTCollisionDetector)" if d.get("collision_detector_analytic") == 1 \
+            else "FCL (DART's default, spheres as meshes)"
+        items.append(("contact", f"{detector}, restitution {number(d['restitution_of_pair'])} for the pair, friction "
+                                 f"{number(d.get('friction_coefficient'))}; no bounce below "
+                                 f"{number(d.get('bounce_threshold_m_s'), 'm/s')} (e v), bounce capped at "
+                                 f"{number(d.get('max_bounce_velocity_m_s'), 'm/s')}"))
+    return items
+
+
+def _simbody(d):
+    if "rigid_constraint_tolerance_m" in d:
+        items = [("stepping", "SemiExplicitEulerTimeStepper (rigid contact)"),
+                 ("contact", f"rigid, Newton restitution {number(d.get('rigid_contact_newton_restitution'))}, "
+                             f"constraint tolerance {number(d['rigid_constraint_tolerance_m'], 'm')}, capture speed "
+                             f"{number(d.get('rigid_impact_capture_speed_m_s'), 'm/s')}")]
+    else:
+        integrator = next((k[len("integrator_"):] for k in d if k.startswith("integrator_") and k not in
+                           ("integrator_steps", "integrator_steps_attempted")), "?")
+        stepping = (f"error-controlled {integrator}, accuracy {number(d.get('accuracy'))}, steps "
+                    f"{number(d.get('smallest_step_s'), 's')} to {number(d.get('largest_step_s'), 's')}"
+                    if d.get("error_controlled") == 1 else f"fixed-step {integrator}")
+        items = [("stepping", stepping)]
+        if "hunt_crossley_material_stiffness_pa" in d:
+            items.append(("contact", f"Hunt-Crossley, material stiffness {number(d['hunt_crossley_material_stiffness_pa'], 'Pa')}, "
+                                     f"dissipation {number(d.get('hunt_crossley_dissipation_s_per_m'), 's/m')}"))
+        if d.get("spring_dashpot_force_element") == 1:
+            items.append(("contact", "the spring-dashpot law as a force element"))
+    items.append(("hinge springs", "explicit forces (mobility springs and dampers); stable below "
+                                   f"{number(d.get('explicit_spring_step_limit_s'), 's')} with semi-explicit Euler"))
+    return items
+
+
+ENGINE_SETTINGS = {"mujoco": _mujoco, "ode": _ode, "bullet": _bullet, "dart": _dart, "simbody": _simbody}
 
 
 def describe(engine, path, diagnostics):
