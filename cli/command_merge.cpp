@@ -1,6 +1,7 @@
 #include "cli/commands.h"
 
 #include <cstdio>
+#include <filesystem>
 
 #include "harness/merge.h"
 
@@ -9,7 +10,10 @@ namespace cli {
 // The shards' folders joined into one suite folder (harness/merge.h), then its report, made as `report` makes it.
 int command_merge(const std::string& out, const std::vector<std::string>& shards, bool no_report) {
   const ib::MergeOutcome outcome = ib::merge_suites(ib::MergeSettings{shards, out});
-  std::printf("merge: %d runs in %s/runs.csv from %zu folders (%d recorded in several, such as the references, kept once)\n",
+  if (std::filesystem::exists(out + "/sweep.json"))
+    std::printf("merge: %d sweep rows in %s/sweep.csv from %zu folders\n", outcome.runs, out.c_str(), shards.size());
+  else
+    std::printf("merge: %d runs in %s/runs.csv from %zu folders (%d recorded in several, such as the references, kept once)\n",
               outcome.runs, out.c_str(), shards.size(), outcome.runs_in_several);
   if (outcome.step_rows > 0) std::printf("merge: %d step searches in %s/steps.csv\n", outcome.step_rows, out.c_str());
   std::fflush(stdout);

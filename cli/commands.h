@@ -25,6 +25,15 @@ struct SuiteOptions {
   std::string shard;  // K/N, empty: the whole suite
 };
 
+struct SweepOptions {
+  std::string scenario, ratios = "0.85:1.25:0.01", start = "both", engines = "reference", laws = "hertz", paths, time_steps, out;
+  std::vector<std::string> options;
+  double duration_s = 30, rest_duration_s = -1, window_s = 10, rate_hz = 4096, time_limit_s = 600;
+  int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  std::string shard;
+  bool resume = false;
+};
+
 int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
                 double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
                 const MeasurementOptions& measurement_options);
@@ -52,5 +61,9 @@ int command_report(const std::string& suite_folder, const std::string& out);
 int command_merge(const std::string& out, const std::vector<std::string>& shards, bool no_report);
 
 int command_list(const std::string& folder);
+
+// `sweep` (harness/sweep.h): its options are registered by add_sweep_command, which sets `command`.
+void add_sweep_command(CLI::App& app, SweepOptions& options, MeasurementOptions& measurement, CLI::App*& command);
+int command_sweep(const SweepOptions& options, const MeasurementOptions& measurement_options);
 
 }  // namespace cli

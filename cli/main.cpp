@@ -119,6 +119,12 @@ int main(int argc, char** argv) {
   report->add_option("suite", report_folder, "a suite's output folder")->required();
   report->add_option("--out", report_out, "report folder; default: SUITE/report");
 
+  SweepOptions sweep_options;
+  MeasurementOptions sweep_measurement;
+  sweep_measurement.series = "none";  // a sweep's tables and Poincare samples are its results
+  CLI::App* sweep = nullptr;
+  add_sweep_command(app, sweep_options, sweep_measurement, sweep);
+
   CLI::App* list = app.add_subcommand("list", "the scenarios, engines, laws and simulator options of this build");
   list->add_option("folder", list_folder, "scenario folder")->capture_default_str();
 
@@ -133,6 +139,7 @@ int main(int argc, char** argv) {
     if (run->parsed())
       return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options, run_measurement);
     if (suite->parsed()) return command_suite(suite_options, suite_measurement);
+    if (sweep->parsed()) return command_sweep(sweep_options, sweep_measurement);
     if (report->parsed()) return command_report(report_folder, report_out);
     if (merge->parsed()) return command_merge(merge_out, merge_inputs, merge_no_report);
     if (export_model->parsed())

@@ -15,6 +15,7 @@
 #include "harness/run_files.h"
 #include "harness/run_record.h"
 #include "harness/step_search.h"
+#include "harness/sweep.h"
 
 namespace ib {
 namespace {
@@ -145,7 +146,7 @@ void check_inputs(const MergeSettings& settings) {
     if (!fs::is_directory(folder, error))
       throw std::runtime_error(folder + ": " + (fs::exists(folder, error) ? "not a folder" : "no such folder") +
                                "; expected a shard's folder (suite --shard K/N --out FOLDER)");
-    if (!fs::exists(folder + "/runs.jsonl") && !fs::exists(folder + "/shard.jsonl"))
+    if (!fs::exists(folder + "/runs.jsonl") && !fs::exists(folder + "/shard.jsonl") && !fs::exists(folder + "/sweep.json"))
       throw std::runtime_error(folder + ": holds no suite's results (no runs.jsonl); expected a shard's folder "
                                "(suite --shard K/N --out FOLDER)");
     const std::string canonical = fs::canonical(folder).string();
@@ -200,8 +201,55 @@ void check_completeness(const MergeSettings& settings, const std::map<std::strin
 
 }  // namespace
 
+// A sweep's shards (sweep --shard K/N): every folder must hold the same sweep (sweep.json, sweep_plan.txt);
+// the row folders are joined, a row in several folders kept once if its row.json agrees but for timing,
+// and the tables made from the plan's order, as the sweep itself makes them.
+static MergeOutcome merge_sweep_shards(const MergeSettings& settings) {
+  const std::string settings_text = read_whole_file(settings.inputs.front() + "/sweep.json");
+  const std::string plan_text = read_whole_file(settings.inputs.front() + "/sweep_plan.txt");
+  std::vector<std::string> plan;
+  std::istringstream plan_lines(plan_text);
+  for (std::string id; std::getline(plan_lines, id);)
+    if (!id.empty()) plan.push_back(id);
+  const std::set<std::string> timing = {"cpu_time_s", "wall_time_s", "load_average"};
+  std::map<std::string, Kept> rows;
+  std::map<std::string, Recorded> recorded;
+  for (const std::string& folder : settings.inputs) {
+    if (!fs::exists(folder + "/sweep.json"))
+      throw std::runtime_error(folder + ": holds no sweep (no sweep.json), unlike " + settings.inputs.front() +
+                               "; merge joins shards of one sweep or of one suite");
+    if (read_whole_file(folder + "/sweep.json") != settings_text || read_whole_file(folder + "/sweep_plan.txt") != plan_text)
+      throw std::runtime_error(folder + ": holds another sweep than " + settings.inputs.front() +
+                               " (their sweep.json or sweep_plan.txt differ); merge joins the shards of one sweep");
+    Recorded& in_folder = recorded[folder];
+    for (const std::string& id : plan) {
+      const std::string row_path = folder + "/runs/" + id + "/row.json";
+      if (!fs::exists(row_path)) continue;
+      const std::string row = read_whole_file(row_path);
+      std::string line = row;
+      while (!line.empty() && line.back() == '\n') line.pop_back();
+      join(rows, id, line, folder, "runs/" + id + "/row.json", "sweep row " + id, timing);
+      in_folder.jobs.insert(id);
+    }
+  }
+  MergeOutcome outcome;
+  check_completeness(settings, recorded, outcome);
+  std::error_code error;
+  fs::create_directories(settings.out, error);
+  if (error) throw OutputError(output_error_text(settings.out, "create the output folder", error.value()));
+  for (const auto& [id, kept] : rows) {
+    join_run_folder(kept.folder + "/runs/" + id, settings.out + "/runs/" + id);
+    outcome.runs_in_several += kept.folders > 1 ? 1 : 0;
+  }
+  write_text_file(settings.out + "/sweep.json", settings_text);
+  write_text_file(settings.out + "/sweep_plan.txt", plan_text);
+  outcome.runs = write_sweep_tables(settings.out, plan);
+  return outcome;
+}
+
 MergeOutcome merge_suites(const MergeSettings& settings) {
   check_inputs(settings);
+  if (fs::exists(settings.inputs.front() + "/sweep.json")) return merge_sweep_shards(settings);
   // Read and check everything before writing anything.
   MergeOutcome outcome;
   std::map<std::string, Kept> runs, steps;  // by job id; by step_row_key
@@ -244,6 +292,21 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
     for (const auto& [key, kept] : steps) step_jsonl += kept.line + "\n";
     write_text_file(settings.out + "/steps.jsonl", step_jsonl);
     outcome.step_rows = static_cast<int>(repair_and_list_step_rows(settings.out).size());
+  }
+  // A study's sweeps (scripts/default-suite.sh: DIR/sweeps/<name>/), each joined as a sweep.
+  std::set<std::string> sweeps;
+  for (const std::string& folder : settings.inputs)
+    if (fs::is_directory(folder + "/sweeps", error))
+      for (const fs::directory_entry& entry : fs::directory_iterator(folder + "/sweeps"))
+        if (fs::exists(entry.path() / "sweep.json")) sweeps.insert(entry.path().filename().string());
+  for (const std::string& name : sweeps) {
+    MergeSettings part{{}, settings.out + "/sweeps/" + name};
+    for (const std::string& folder : settings.inputs)
+      if (fs::exists(folder + "/sweeps/" + name + "/sweep.json")) part.inputs.push_back(folder + "/sweeps/" + name);
+    const MergeOutcome joined = merge_sweep_shards(part);
+    outcome.incomplete.insert(outcome.incomplete.end(), joined.incomplete.begin(), joined.incomplete.end());
+    outcome.absent.insert(outcome.absent.end(), joined.absent.begin(), joined.absent.end());
+    outcome.without_plan.insert(outcome.without_plan.end(), joined.without_plan.begin(), joined.without_plan.end());
   }
   return outcome;
 }

@@ -46,7 +46,8 @@ struct MergeOutcome {
   bool complete() const { return incomplete.empty() && absent.empty(); }
 };
 
-// Joins the folders into settings.out. Throws std::runtime_error before writing anything for bad input,
+// Joins the folders into settings.out. Shards of a sweep (sweep --shard K/N, sweep.h) are joined as a sweep:
+// their row folders, then sweep.jsonl, sweep.csv and poincare.csv in the plan's order (runs: its rows). Throws std::runtime_error before writing anything for bad input,
 // naming the folder or file: a folder that does not exist or holds no suite, one given twice, an OUT
 // that is not empty, a runs.csv or steps.csv header other than this build's, two records of one job
 // that differ in a field other than timing. Throws OutputError (run_files.h) when OUT cannot be written.

@@ -195,7 +195,7 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   }
   if (result.status != RunStatus::failed) time_runs(*simulator, scenario, settings, measurement.timed_repeats, record);
   if (!run_folder.empty()) write_summary_json(run_folder + "/summary.json", record);
-  if (keep) *keep = ReferenceData{metrics, std::move(result.trajectory)};
+  if (keep) *keep = ReferenceData{metrics, std::move(result.trajectory), std::move(result.final_state)};
   return record;
 }
 

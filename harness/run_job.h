@@ -42,6 +42,7 @@ struct Measurement {
 struct ReferenceData {
   Metrics metrics;
   Trajectory trajectory;
+  std::optional<SavedState> final_state;  // where the run ended, to continue from (a sweep's next ratio)
 };
 
 // The median of values (0 when there are none): what a run's timed runs give as its cost.

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "model/saved_state.h"
 #include "model/scenario.h"
 #include "model/trajectory.h"
 
@@ -32,6 +33,10 @@ struct RunSettings {
   // Simulator-specific options as name=value text, each validated by the simulator that reads it
   // (e.g. the reference's "modes", "rtol"; an engine's "integrator"). Unknown names are an error.
   std::map<std::string, std::string> options;
+  // Set: the run starts from this state (a previous run's RunResult::final_state, same simulator and
+  // rig) instead of the scenario's initial state, at t = 0 with the motor at phase 0. A sweep's
+  // continuation ends every run at a whole number of motor periods, so the forcing stays phase-continuous.
+  std::optional<SavedState> initial_state;
 };
 
 // The first sample time of a run's series: settings.series_start_s, or the scenario's scoring window

@@ -5,8 +5,11 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "model/saved_state.h"
 
 namespace ib {
 
@@ -68,6 +71,9 @@ struct RunResult {
   std::string reason;                 // why the run is not ok, in words a person can check
   RunCost cost;
   std::vector<std::pair<std::string, double>> diagnostics;  // simulator-specific figures (named, SI)
+  // The simulator's state at the run's end, to continue from (RunSettings::initial_state); empty when
+  // the run did not reach its end.
+  std::optional<SavedState> final_state;
 };
 
 }  // namespace ib

@@ -49,12 +49,32 @@ int parse_integer(const std::string& key, const std::string& text, int low, int 
   return static_cast<int>(value);
 }
 
+// What the reference's saved state holds: its modal coordinates, then their velocities.
+std::string state_layout(const ModalModel& model, const ModeSelection& modes) {
+  return "modal q then v of " + std::to_string(model.mode_count()) + " modes (" + to_string(modes.set) + ")";
+}
+
+// Where a run starts: the scenario's initial state, or the saved state it continues from.
+ModalState start_state(const Scenario& scenario, const ModalModel& model, const RunSettings& run,
+                       const ModeSelection& modes) {
+  if (!run.initial_state) return initial_state(scenario, model);
+  check_saved_state(*run.initial_state, "reference", state_layout(model, modes));
+  const int n = model.mode_count();
+  if (static_cast<int>(run.initial_state->values.size()) != 2 * n)
+    throw std::invalid_argument("a saved reference state of " + std::to_string(run.initial_state->values.size()) +
+                                " values for " + std::to_string(n) + " modes (needs " + std::to_string(2 * n) + ")");
+  ModalState x;
+  x.q = Eigen::Map<const Eigen::VectorXd>(run.initial_state->values.data(), n);
+  x.v = Eigen::Map<const Eigen::VectorXd>(run.initial_state->values.data() + n, n);
+  return x;
+}
+
 // The first impact in the series window (the one every simulator's zoom shows: step_recorder.h) sampled at
 // 1 MHz from 1 ms before its onset to 1 ms after its end: the run solved again up to there (the same
 // bits: the solver is deterministic), for the report's zoom. Empty when the window has no impact.
 Trajectory zoom_on_first_impact(const ModalModel& model, const Scenario& scenario,
                                  const std::vector<ContactEvent>& events, const OutputWindow& window,
-                                 const ReferenceSettings& settings) {
+                                 const ReferenceSettings& settings, const ModalState& start) {
   const ContactEvent* first = nullptr;
   for (const ContactEvent& e : events)
     if (e.onset_time_s >= window.start_s && (!first || e.onset_time_s < first->onset_time_s)) first = &e;
@@ -64,7 +84,7 @@ Trajectory zoom_on_first_impact(const ModalModel& model, const Scenario& scenari
                           std::min(scenario.duration_s, first->end_time_s + margin), 1e6};
   ReferenceSettings quiet = settings;
   quiet.track_energy = false;
-  return solve_reference(model, initial_state(scenario, model), zoom.end_s, zoom, quiet).trajectory;
+  return solve_reference(model, start, zoom.end_s, zoom, quiet).trajectory;
 }
 
 // The reference's modal model as JSON (reference/modal_model_json.h), for the run `run` would make
@@ -105,12 +125,19 @@ class ReferenceSimulator final : public Simulator {
     window.start_s = series_start_s(run, scenario);
     window.end_s = scenario.duration_s;
     window.rate_hz = run.output_rate_hz;
-    ReferenceSolution solution = solve_reference(model, initial_state(scenario, model), scenario.duration_s, window, settings);
+    const ModalState start = start_state(scenario, model, run, settings.modes);
+    ReferenceSolution solution = solve_reference(model, start, scenario.duration_s, window, settings);
     RunResult result;
     clock.stop_into(result.cost);
     result.cost.steps = solution.integrator_steps + solution.grid_intervals + solution.coarse_intervals;
     // after the cost is taken: the zoom is the report's, not the run's
-    result.impact_zoom = zoom_on_first_impact(model, scenario, solution.trajectory.events, window, settings);
+    result.impact_zoom = zoom_on_first_impact(model, scenario, solution.trajectory.events, window, settings, start);
+    if (solution.status == RunStatus::ok) {
+      SavedState end{"reference", state_layout(model, settings.modes), {}};
+      end.values.assign(solution.final_state.q.data(), solution.final_state.q.data() + model.mode_count());
+      end.values.insert(end.values.end(), solution.final_state.v.data(), solution.final_state.v.data() + model.mode_count());
+      result.final_state = std::move(end);
+    }
     result.trajectory = std::move(solution.trajectory);
     result.trajectory.initial_mechanical_energy_j = solution.energy.initial_energy_j;
     result.status = solution.status;

@@ -65,6 +65,7 @@ void Solver::run(const ModalState& initial, double duration) {
   }
   const TipState s = tip_state(x.q.data(), x.v.data(), t, phase == Phase::free ? Phase::free : phase);
   solution_.energy.final_energy_j = mechanical_energy(x.q.data(), x.v.data(), s.indentation);
+  solution_.final_state = x;
 }
 
 // Stops a run whose contact episodes pile up without time advancing (a guard; physics never needs it).

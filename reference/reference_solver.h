@@ -66,6 +66,7 @@ struct ReferenceSolution {
   long long impacts = 0;             // contact episodes (Newton: impulses)
   long long sticking_phases = 0;
   double grid_step_s = 0;
+  ModalState final_state;            // the state at duration_s (a run that ended early: where it stopped)
 };
 
 ReferenceSolution solve_reference(const ModalModel& model, const ModalState& initial, double duration_s,

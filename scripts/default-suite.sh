@@ -72,20 +72,39 @@ full_study_parts+=("scenarios/paper/resonance.toml scenarios/paper/free_vibratio
 full_search_args=(scenarios/stiff scenarios/extreme --engines reference,mujoco,ode,bullet,dart,simbody
                   --laws hertz,viscoelastic,newton --paths matched --find-steps --step-range 1e-5,1e-3 --duration 5)
 
+# The frequency sweeps (docs/sweeps.md), each "NAME SWEEP_ARGUMENTS" into OUT/sweeps/NAME (a folder per sweep:
+# its settings are one record). The default study's:
+#  - reference: the reference alone on the fine grid, 0.85 to 1.20 f_1 in steps of 0.01, from rest and
+#    continued up and down, Hertz and spring-dashpot: the bifurcation diagram every engine is read against
+#    (its regimes are stable under refinement of the run length and of the tolerances: docs/sweeps.md).
+#  - engines: every engine on its matched path at its default step with the reference beside it, Hertz,
+#    swept up over 0.90 to 1.15 f_1 in steps of 0.05 (the first ratio from rest over 40 s, each next one
+#    continued over 30 s): the regime agreement at a glance. The full study sweeps them on the fine grid.
+default_sweep_parts=(
+  "reference scenarios/paper/resonance.toml --ratios 0.85:1.20:0.01 --start rest,both --engines reference --laws hertz,viscoelastic"
+  "engines scenarios/paper/resonance.toml --ratios 0.90:1.15:0.05 --start up --engines reference,mujoco,ode,bullet,dart,simbody --laws hertz --paths matched --rest-duration 40 --duration 30"
+)
+# The full study's: the reference as in the default study, and every engine on the fine grid, up and down,
+# Hertz and spring-dashpot, on its matched path at its default step (each continued ratio over 60 s).
+full_sweep_parts=(
+  "${default_sweep_parts[0]}"
+  "engines scenarios/paper/resonance.toml --ratios 0.85:1.20:0.01 --start both --engines reference,mujoco,ode,bullet,dart,simbody --laws hertz,viscoelastic --paths matched"
+)
+
 # Runs a study into OUT:
 #   run_study OUT [SUITE_ARGUMENTS...]
 # each part of ${study} (default or full) as a suite into the same folder (the parts after the first
-# with --resume), then its step search unless search=0; SUITE_ARGUMENTS (e.g. --shard K/N, --jobs N,
-# --resume) go to every part. Needs impactbench (the executable), study and search set. Returns the worst
+# with --resume), then its step search unless search=0, then its sweeps (each into OUT/sweeps/NAME);
+# SUITE_ARGUMENTS (e.g. --shard K/N, --jobs N, --resume) go to every part and sweep. Needs impactbench (the executable), study and search set. Returns the worst
 # exit code: 0; 1 some run unstable or failed (a finding); 2 bad input; 3 a write error; 130/143
 # interrupted.
 run_study() {
-  local out=$1 status=0 part_status part resume=() parts search_args
+  local out=$1 status=0 part_status part resume=() parts search_args sweep_parts
   shift
   if [[ $study == full ]]; then
-    parts=("${full_study_parts[@]}"); search_args=("${full_search_args[@]}")
+    parts=("${full_study_parts[@]}"); search_args=("${full_search_args[@]}"); sweep_parts=("${full_sweep_parts[@]}")
   else
-    parts=("${default_study_parts[@]}"); search_args=("${default_search_args[@]}")
+    parts=("${default_study_parts[@]}"); search_args=("${default_search_args[@]}"); sweep_parts=("${default_sweep_parts[@]}")
   fi
   for part in "${parts[@]}"; do
     read -r -a part_args <<<"$part"
@@ -99,6 +118,14 @@ run_study() {
     part_status=0
     "$impactbench" suite "${search_args[@]}" "$@" "${resume[@]}" --out "$out" || part_status=$?
     (( part_status > status )) && status=$part_status
+    (( status == 2 || status >= 3 )) && return "$status"
   fi
+  for part in "${sweep_parts[@]}"; do
+    read -r -a part_args <<<"$part"
+    part_status=0
+    "$impactbench" sweep "${part_args[@]:1}" "$@" --out "$out/sweeps/${part_args[0]}" || part_status=$?
+    (( part_status > status )) && status=$part_status
+    (( status == 2 || status >= 3 )) && return "$status"
+  done
   return "$status"
 }

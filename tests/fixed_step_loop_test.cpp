@@ -54,6 +54,15 @@ class ScriptedEngine final : public FixedStepEngine {
     return engine_contact_force_n;
   }
   std::string explain_instability() const override { return "; the engine's words"; }
+  SavedState save_state() override {
+    calls.push_back("save");
+    return {"scripted", "step index", {static_cast<double>(n_)}};
+  }
+  void restore_state(const SavedState& state) override {
+    calls.push_back("restore");
+    check_saved_state(state, "scripted", "step index");
+    n_ = static_cast<long long>(state.values.at(0));
+  }
 
   std::vector<std::string> calls;
   std::vector<double> times_read_s;
@@ -109,9 +118,43 @@ TEST(FixedStepLoop, AStepReadsRecordsAppliesStepsThenReadsTheContactForce) {
   ScriptedEngine engine(at_rest);
   loop.run(engine);
   // the series starts at 0: every state is one the recorder keeps, so its energy is read too
+  // and at the end of a run that reached it, the state a later run may continue from
   const std::vector<std::string> expected = {"read", "energy", "apply", "step", "force", "read", "energy",
-                                             "apply", "step", "force", "read", "energy"};
+                                             "apply", "step", "force", "read", "energy", "save"};
   EXPECT_EQ(engine.calls, expected);
+}
+
+TEST(FixedStepLoop, AContinuedRunStartsWhereTheSavedStateEndedAndSavesItsOwnEnd) {
+  LoopRun first(0.005);
+  ScriptedEngine engine(drifting(1));
+  first.run(engine);
+  ASSERT_EQ(first.result.status, RunStatus::ok);
+  ASSERT_TRUE(first.result.final_state);
+  EXPECT_EQ(first.result.final_state->values, std::vector<double>{5});  // saved after the last of its 5 steps
+  EXPECT_EQ(engine.calls.back(), "save");
+
+  LoopRun second(0.003);
+  second.settings.initial_state = first.result.final_state;
+  ScriptedEngine continued(drifting(1));
+  second.run(continued);
+  EXPECT_EQ(continued.calls.front(), "restore");  // before the first state is read
+  ASSERT_GT(second.result.trajectory.size(), 0u);
+  EXPECT_DOUBLE_EQ(second.result.trajectory.displacement_m[1][0], 1e-3 * 5 + 5e-4);  // where the first run ended
+  EXPECT_EQ(second.result.trajectory.time_s[0], 0.0);  // its own clock starts at 0
+  EXPECT_EQ(second.result.final_state->values, std::vector<double>{8});
+}
+
+TEST(FixedStepLoop, AStateOfAnotherSimulatorIsRefusedAndARunThatStopsEarlySavesNothing) {
+  LoopRun loop(0.005);
+  loop.settings.initial_state = SavedState{"reference", "modal q then v", {0, 0}};
+  ScriptedEngine engine(at_rest);
+  EXPECT_THROW(loop.run(engine), std::invalid_argument);
+
+  LoopRun unstable(0.1);
+  ScriptedEngine drifting_away(drifting(0));  // beyond 0.1 L after about 30 steps
+  unstable.run(drifting_away);
+  EXPECT_EQ(unstable.result.status, RunStatus::unstable);
+  EXPECT_FALSE(unstable.result.final_state);
 }
 
 TEST(FixedStepLoop, TheMotorForceAtTheStepsStartOnFrameOne) {

@@ -158,6 +158,26 @@ class MultiBodyChain final : public BulletChain {
     }
   }
 
+  std::vector<double> state() const override {
+    std::vector<double> values;
+    for (int j = 0; j < body_->getNumLinks(); ++j) values.push_back(body_->getJointPos(j));
+    for (int j = 0; j < body_->getNumLinks(); ++j) values.push_back(body_->getJointVel(j));
+    return values;
+  }
+  void set_state(const double* values) override {
+    const int links = body_->getNumLinks();
+    for (int j = 0; j < links; ++j) {
+      body_->setJointPos(j, values[j]);
+      body_->setJointVel(j, values[links + j]);
+    }
+    // the links and the collider where the angles put them, before the next collision detection
+    btAlignedObjectArray<btQuaternion> world_to_local;
+    btAlignedObjectArray<btVector3> local_origin;
+    body_->forwardKinematics(world_to_local, local_origin);
+    body_->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
+  }
+  std::size_t state_size() const override { return static_cast<std::size_t>(2 * body_->getNumLinks()); }
+
   btCollisionObject* tip_collider() override { return collider_.get(); }
 
  private:
@@ -260,6 +280,29 @@ class ConstraintChain final : public BulletChain {
       parent_rate = rate;
     }
   }
+
+  std::vector<double> state() const override {
+    std::vector<double> values;
+    for (const auto& body : bodies_) {
+      const btTransform& pose = body->getCenterOfMassTransform();
+      const btVector3 p = pose.getOrigin(), v = body->getLinearVelocity(), w = body->getAngularVelocity();
+      const btQuaternion q = pose.getRotation();
+      values.insert(values.end(), {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()});
+    }
+    return values;
+  }
+  void set_state(const double* values) override {
+    for (const auto& body : bodies_) {
+      const double* x = values;
+      const btTransform pose(btQuaternion(x[3], x[4], x[5], x[6]), btVector3(x[0], x[1], x[2]));
+      body->setCenterOfMassTransform(pose);
+      body->setInterpolationWorldTransform(pose);
+      body->setLinearVelocity(btVector3(x[7], x[8], x[9]));
+      body->setAngularVelocity(btVector3(x[10], x[11], x[12]));
+      values += 13;
+    }
+  }
+  std::size_t state_size() const override { return 13 * bodies_.size(); }
 
   btCollisionObject* tip_collider() override { return tip_contact_ ? bodies_.back().get() : nullptr; }
 

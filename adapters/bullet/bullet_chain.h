@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "adapters/common/rig.h"
 
@@ -49,6 +50,12 @@ class BulletChain {
   virtual TipMotion tip_motion() const { return {tip_x_m(), tip_velocity_x_m_s()}; }
   // Relative hinge angles [rad] and their rates [rad/s], in hinge order from the clamp.
   virtual void joint_state(Eigen::VectorXd& angles_rad, Eigen::VectorXd& rates_rad_s) const = 0;
+  // The chain's own state, to continue a run from (FixedStepEngine::save_state): the multibody's hinge
+  // angles then rates [rad, rad/s]; the constraint chain's bodies, each its centre of mass [m], orientation
+  // quaternion (x, y, z, w), linear [m/s] and angular [rad/s] velocity. set_state takes state_size() values.
+  virtual std::vector<double> state() const = 0;
+  virtual void set_state(const double* values) = 0;
+  virtual std::size_t state_size() const = 0;
   // The tip sphere's collision object; nullptr when the chain was built without tip contact.
   virtual btCollisionObject* tip_collider() = 0;
 };

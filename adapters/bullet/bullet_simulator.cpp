@@ -120,10 +120,33 @@ class BulletStepper final : public FixedStepEngine {
 
   double contact_force_n() override { return contact_force_n_; }
 
+  SavedState save_state() override {
+    SavedState state{"bullet", state_layout(), {}};
+    for (int f = 0; f < 2; ++f) {
+      const std::vector<double> chain = bullet_.chain(f).state();
+      state.values.insert(state.values.end(), chain.begin(), chain.end());
+    }
+    return state;
+  }
+  void restore_state(const SavedState& state) override {
+    check_saved_state(state, "bullet", state_layout());
+    const std::size_t size = bullet_.chain(0).state_size() + bullet_.chain(1).state_size();
+    if (state.values.size() != size)
+      throw std::invalid_argument("a saved Bullet state of " + std::to_string(state.values.size()) + " values for " +
+                                  state_layout() + " (needs " + std::to_string(size) + ")");
+    bullet_.chain(0).set_state(state.values.data());
+    bullet_.chain(1).set_state(state.values.data() + bullet_.chain(0).state_size());
+  }
+
   long long contact_steps() const { return contact_steps_; }
   int max_contact_points() const { return max_points_; }
 
  private:
+  std::string state_layout() {
+    return "bullet " + std::to_string(bullet_.chain(0).state_size()) + " + " + std::to_string(bullet_.chain(1).state_size()) +
+           " values (multibody: hinge angles then rates; constraints: 13 per body)";
+  }
+
   const RigSpec& rig_;
   BulletRig& bullet_;
   const bool injected_;

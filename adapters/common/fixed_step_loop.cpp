@@ -58,6 +58,7 @@ void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario
     result.status = RunStatus::unstable;
     result.reason = reason;
   };
+  if (settings.initial_state) engine.restore_state(*settings.initial_state);
   const RunClock clock;
   double contact_force_n = 0;  // during the step that ends at the state read next
   for (long long n = 0;; ++n) {
@@ -100,6 +101,7 @@ void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario
     contact_force_n = injected ? *loads.injected_contact_force_n : engine.contact_force_n();
   }
   clock.stop_into(result.cost);
+  if (result.status == RunStatus::ok) result.final_state = engine.save_state();
   result.cost.steps = recorder.steps();
   result.trajectory = recorder.finish();
   result.impact_zoom = recorder.impact_zoom();

@@ -63,12 +63,20 @@ class FixedStepEngine {
   virtual std::optional<std::string> step(double step_s) = 0;
   // The force between the tips during the last step [N], > 0 compressive (when it makes the contact).
   virtual double contact_force_n() = 0;
+  // The engine's own state, for a later run to continue from (RunSettings::initial_state): what it needs
+  // to continue its bodies exactly (its joints' positions and velocities, or its bodies' poses and
+  // velocities), in SI units, with a layout that names what the values are and for which rig.
+  virtual SavedState save_state() = 0;
+  // Puts the engine into a state save_state wrote, before the first step (the loop calls it when the run
+  // continues). Throws std::invalid_argument for a state of another simulator, layout or size.
+  virtual void restore_state(const SavedState& state) = 0;
   // Appended to the reason of a run that left the bound (e.g. a step limit, the engine's own messages).
   virtual std::string explain_instability() const { return {}; }
 };
 
 // Runs the engine over the scenario with a fixed step: fills the result's trajectory, impact zoom,
-// status and reason (unstable, with the time and the bound) and cost. The diagnostics are the engine's.
+// status and reason (unstable, with the time and the bound), cost and, for a run that reached its end,
+// final state. Starts from settings.initial_state when set. The diagnostics are the engine's.
 void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario& scenario,
                      const RunSettings& settings, double step_s, RunResult& result);
 

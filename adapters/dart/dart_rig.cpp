@@ -119,4 +119,28 @@ double DartRig::tip_contact_force_n() const {
 
 std::size_t DartRig::contact_points() const { return world_->getLastCollisionResult().getNumContacts(); }
 
+std::vector<double> DartRig::joint_state() const {
+  std::vector<double> values;
+  for (const Frame& frame : frames_) {
+    const Eigen::VectorXd q = frame.skeleton->getPositions(), v = frame.skeleton->getVelocities();
+    values.insert(values.end(), q.data(), q.data() + q.size());
+    values.insert(values.end(), v.data(), v.data() + v.size());
+  }
+  return values;
+}
+
+void DartRig::set_joint_state(const std::vector<double>& values) {
+  std::size_t i = 0;
+  for (Frame& frame : frames_) {
+    const auto dofs = static_cast<Eigen::Index>(frame.skeleton->getNumDofs());
+    frame.skeleton->setPositions(Eigen::Map<const Eigen::VectorXd>(values.data() + i, dofs));
+    frame.skeleton->setVelocities(Eigen::Map<const Eigen::VectorXd>(values.data() + i + dofs, dofs));
+    i += 2 * static_cast<std::size_t>(dofs);
+  }
+}
+
+std::size_t DartRig::joint_state_size() const {
+  return 2 * (frames_[0].skeleton->getNumDofs() + frames_[1].skeleton->getNumDofs());
+}
+
 }  // namespace ib::dart_adapter

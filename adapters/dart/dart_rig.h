@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <vector>
 #include <memory>
 #include <optional>
 
@@ -57,6 +58,12 @@ class DartRig {
   std::size_t contact_points() const;
 
   const DartRigSettings& settings() const { return settings_; }
+
+  // Both skeletons' joint positions then velocities [rad, rad/s], frame 1 first: the state a run continues
+  // from (FixedStepEngine::save_state). set_joint_state takes joint_state_size() values.
+  std::vector<double> joint_state() const;
+  void set_joint_state(const std::vector<double>& values);
+  std::size_t joint_state_size() const;
 
  private:
   struct Frame {

@@ -122,6 +122,18 @@ class DartStepper final : public FixedStepEngine {
 
   double contact_force_n() override { return dart_rig_.tip_contact_force_n(); }
 
+  SavedState save_state() override { return {"dart", state_layout(), dart_rig_.joint_state()}; }
+  void restore_state(const SavedState& state) override {
+    check_saved_state(state, "dart", state_layout());
+    if (state.values.size() != dart_rig_.joint_state_size())
+      throw std::invalid_argument("a saved DART state of " + std::to_string(state.values.size()) + " values for " +
+                                  state_layout() + " (needs " + std::to_string(dart_rig_.joint_state_size()) + ")");
+    dart_rig_.set_joint_state(state.values);
+  }
+  std::string state_layout() const {
+    return "dart joint positions then velocities, frame 1 then frame 2 (" + std::to_string(dart_rig_.joint_state_size()) + " values)";
+  }
+
   std::vector<std::pair<std::string, double>> diagnostics() const {
     std::vector<std::pair<std::string, double>> d;
     d.emplace_back("time_step_s", plan_.time_step_s);

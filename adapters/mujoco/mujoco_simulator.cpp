@@ -218,7 +218,45 @@ class MujocoStepper final : public FixedStepEngine {
 
   double contact_force_n() override { return contact_force_n_; }
 
+  // mjData's evolving state: joint positions and velocities, actuator activations, and the constraint
+  // solver's warm start (without it a continued run's first contact solve starts cold and differs in
+  // the solver's last digits).
+  SavedState save_state() override {
+    const mjModel* m = rig_.model();
+    const mjData* d = rig_.data();
+    SavedState state{"mujoco", state_layout(m), {}};
+    auto& v = state.values;
+    v.insert(v.end(), d->qpos, d->qpos + m->nq);
+    v.insert(v.end(), d->qvel, d->qvel + m->nv);
+    v.insert(v.end(), d->act, d->act + m->na);
+    v.insert(v.end(), d->qacc_warmstart, d->qacc_warmstart + m->nv);
+    return state;
+  }
+
+  void restore_state(const SavedState& state) override {
+    const mjModel* m = rig_.model();
+    mjData* d = rig_.data();
+    check_saved_state(state, "mujoco", state_layout(m));
+    const std::size_t size = static_cast<std::size_t>(m->nq + 2 * m->nv + m->na);
+    if (state.values.size() != size)
+      throw std::invalid_argument("a saved MuJoCo state of " + std::to_string(state.values.size()) + " values for " +
+                                  state_layout(m) + " (needs " + std::to_string(size) + ")");
+    const double* v = state.values.data();
+    std::copy(v, v + m->nq, d->qpos);
+    v += m->nq;
+    std::copy(v, v + m->nv, d->qvel);
+    v += m->nv;
+    std::copy(v, v + m->na, d->act);
+    v += m->na;
+    std::copy(v, v + m->nv, d->qacc_warmstart);
+  }
+
  private:
+  static std::string state_layout(const mjModel* m) {
+    return "mujoco qpos[" + std::to_string(m->nq) + "] qvel[" + std::to_string(m->nv) + "] act[" + std::to_string(m->na) +
+           "] qacc_warmstart[" + std::to_string(m->nv) + "]";
+  }
+
   const MujocoRunPlan& plan_;
   MujocoRig& rig_;
   const RigEnergy energy_;

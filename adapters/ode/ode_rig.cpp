@@ -170,4 +170,32 @@ void OdeRig::step() {
     dWorldStep(world_, settings_.time_step_s);
 }
 
+std::vector<double> OdeRig::body_states() const {
+  std::vector<double> values;
+  values.reserve(static_cast<std::size_t>(body_count() * kValuesPerBody));
+  for (const Frame& frame : frames_)
+    for (dBodyID body : frame.bodies) {
+      const dReal* p = dBodyGetPosition(body);
+      const dReal* q = dBodyGetQuaternion(body);
+      const dReal* v = dBodyGetLinearVel(body);
+      const dReal* w = dBodyGetAngularVel(body);
+      values.insert(values.end(), {p[0], p[1], p[2], q[0], q[1], q[2], q[3], v[0], v[1], v[2], w[0], w[1], w[2]});
+    }
+  return values;
+}
+
+void OdeRig::set_body_states(const std::vector<double>& values) {
+  std::size_t i = 0;
+  for (const Frame& frame : frames_)
+    for (dBodyID body : frame.bodies) {
+      const double* x = values.data() + i;
+      dBodySetPosition(body, x[0], x[1], x[2]);
+      const dQuaternion q = {x[3], x[4], x[5], x[6]};
+      dBodySetQuaternion(body, q);
+      dBodySetLinearVel(body, x[7], x[8], x[9]);
+      dBodySetAngularVel(body, x[10], x[11], x[12]);
+      i += kValuesPerBody;
+    }
+}
+
 }  // namespace ib::ode

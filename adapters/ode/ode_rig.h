@@ -68,6 +68,13 @@ class OdeRig {
 
   void step();
 
+  // ODE's state in maximal coordinates: every body's position, quaternion (w, x, y, z), linear and angular
+  // velocity, 13 values a body, frame 1's bodies first (a sweep's continuation, FixedStepEngine::save_state).
+  static constexpr int kValuesPerBody = 13;
+  int body_count() const { return static_cast<int>(frames_[0].bodies.size() + frames_[1].bodies.size()); }
+  std::vector<double> body_states() const;
+  void set_body_states(const std::vector<double>& values);  // body_count() x kValuesPerBody values
+
   double hinge_stop_erp(int frame) const { return stop_softness_[frame].erp; }
   double hinge_stop_cfm(int frame) const { return stop_softness_[frame].cfm; }
   double world_erp() const { return dWorldGetERP(world_); }  // the hinges' own (hard) rows

@@ -82,6 +82,9 @@ class OdeStepper final : public FixedStepEngine {
 
   const RigSpec& rig() const { return rig_; }
   double time_step_s() const { return model_.time_step_s; }
+  std::string state_layout() const {
+    return "ode bodies[" + std::to_string(ode_rig_.body_count()) + "] x (position, quaternion, linear and angular velocity)";
+  }
 
   bool injects_contact() const override { return contact_.force_from_tip_states; }
 
@@ -125,6 +128,16 @@ class OdeStepper final : public FixedStepEngine {
   }
 
   double contact_force_n() override { return contact_.ode_collision ? ode_rig_.tip_contact_force() : 0.0; }
+
+  SavedState save_state() override { return {"ode", state_layout(), ode_rig_.body_states()}; }
+  void restore_state(const SavedState& state) override {
+    check_saved_state(state, "ode", state_layout());
+    const std::size_t size = static_cast<std::size_t>(ode_rig_.body_count() * ode::OdeRig::kValuesPerBody);
+    if (state.values.size() != size)
+      throw std::invalid_argument("a saved ODE state of " + std::to_string(state.values.size()) + " values for " +
+                                  state_layout() + " (needs " + std::to_string(size) + ")");
+    ode_rig_.set_body_states(state.values);
+  }
 
   // What a person needs to see why a run diverged: the explicit springs' step limit, ODE's own words.
   std::string explain_instability() const override {

@@ -92,6 +92,13 @@ class SimbodyStepper final : public FixedStepEngine {
 
   const RigSpec& rig() const { return rig_; }
   double time_step_s() const { return plan_.stepping.step_s; }
+  std::size_t state_size() const {
+    return 2 * static_cast<std::size_t>(rig_.frames[0].chain.links + rig_.frames[1].chain.links);
+  }
+  std::string state_layout() const {
+    return "simbody hinge angles then rates of " + std::to_string(rig_.frames[0].chain.links) + " + " +
+           std::to_string(rig_.frames[1].chain.links) + " links";
+  }
 
   bool injects_contact() const override { return setup_.kind == ContactKind::injected; }
 
@@ -114,6 +121,34 @@ class SimbodyStepper final : public FixedStepEngine {
     closing_m_s_ = tips.velocity_m_s[0] - tips.velocity_m_s[1];
     separation_m_ = rig_.gap_m - (tips.displacement_m[0] - tips.displacement_m[1]);
     return std::nullopt;
+  }
+
+  // The chains' hinge angles then rates [rad, rad/s], frame 1 first (the State's q and u), read and set
+  // through the chain's mobilisers; restored into a fresh initial State, from which the stepping restarts.
+  SavedState save_state() override {
+    const SimTK::State& s = stepping_.state();
+    SavedState state{"simbody", state_layout(), {}};
+    for (int f = 0; f < 2; ++f) {
+      Eigen::VectorXd angles(rig_.frames[f].chain.links), rates(rig_.frames[f].chain.links);  // hinge_state fills K entries
+      chain_.hinge_state(s, f, angles, rates);
+      state.values.insert(state.values.end(), angles.data(), angles.data() + angles.size());
+      state.values.insert(state.values.end(), rates.data(), rates.data() + rates.size());
+    }
+    return state;
+  }
+  void restore_state(const SavedState& saved) override {
+    check_saved_state(saved, "simbody", state_layout());
+    if (saved.values.size() != state_size())
+      throw std::invalid_argument("a saved Simbody state of " + std::to_string(saved.values.size()) + " values for " +
+                                  state_layout() + " (needs " + std::to_string(state_size()) + ")");
+    SimTK::State s = chain_.initial_state();
+    std::size_t k = 0;
+    for (int f = 0; f < 2; ++f) {
+      const int links = rig_.frames[f].chain.links;
+      for (int j = 0; j < links; ++j) chain_.set_hinge(s, f, j, saved.values[k + j], saved.values[k + links + j]);
+      k += 2 * static_cast<std::size_t>(links);
+    }
+    stepping_.restart(s);
   }
 
   // the rigid contact stores no energy (RigEnergy takes 0 indentation for it)
@@ -251,6 +286,8 @@ class SimbodySimulator final : public Simulator {
       SimbodyStepper stepper(scenario, settings, plan);
       run_fixed_steps(stepper, stepper.rig(), scenario, settings, stepper.time_step_s(), result);
       result.diagnostics = stepper.diagnostics();
+    } catch (const std::invalid_argument&) {  // a saved state of another rig: bad input, nothing run
+      throw;
     } catch (const std::exception& e) {  // Simbody's own errors while building (SimTK::Exception)
       result.status = RunStatus::failed;
       result.reason = std::string("Simbody: ") + e.what();

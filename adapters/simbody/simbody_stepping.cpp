@@ -70,6 +70,11 @@ const State& SimbodyStepping::state() const {
   return s;
 }
 
+void SimbodyStepping::restart(const State& state) {
+  if (rigid_) rigid_->initialize(state);
+  else integrator_->initialize(state);
+}
+
 void SimbodyStepping::loads_changed() {
   if (integrator_) {
     integrator_->reinitialize(Stage::Dynamics, false);

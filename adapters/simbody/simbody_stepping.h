@@ -35,6 +35,9 @@ class SimbodyStepping {
   const SimTK::State& state() const;
   // Advances by the loop's step (to the next multiple of it); the reason when Simbody threw.
   std::optional<std::string> advance();
+  // Starts again from `state` (a continued run's: a saved state set into a copy of state()), as the
+  // constructor started from the initial one.
+  void restart(const SimTK::State& state);
   // Forces read from outside the state were changed between steps: the integrator must not reuse what it
   // computed from the old ones (Integrator::reinitialize at Stage::Dynamics).
   void loads_changed();

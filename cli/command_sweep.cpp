@@ -1,0 +1,117 @@
+// `sweep`: the motor speed over a range of ratios to f_1, from rest or continued up and down (harness/sweep.h).
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+#include "cli/commands.h"
+#include "harness/sweep.h"
+#include "model/simulator_options.h"
+#include "simulators/catalog.h"
+
+namespace cli {
+
+void add_sweep_command(CLI::App& app, SweepOptions& o, MeasurementOptions& measurement, CLI::App*& command) {
+  command = app.add_subcommand("sweep", "a frequency sweep: every ratio of the motor speed to f_1 from rest, or continued "
+                                        "from the previous ratio's final state up and down (sweep.csv, poincare.csv)");
+  command->add_option("scenario", o.scenario, "a scenario file with a motor (.toml)")->required();
+  command->add_option("--ratios", o.ratios, "FROM:TO:STEP, the motor speed over frame 1's f_1")->capture_default_str();
+  command->add_option("--start", o.start, "rest (each ratio from rest), up, down (continued from the previous ratio) or both (up and down), comma-separated")
+      ->capture_default_str();
+  command->add_option("--engines", o.engines, "comma-separated simulators")->capture_default_str();
+  command->add_option("--laws", o.laws, "comma-separated laws")->capture_default_str();
+  command->add_option("--paths", o.paths, "comma-separated contact paths of the engines; default: each engine's");
+  command->add_option("--dt", o.time_steps, "comma-separated time steps of fixed-step engines [s]; default: each engine's");
+  command->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.rtol=1e-10)");
+  command->add_option("--duration", o.duration_s, "each continued ratio's run [s], whole motor periods")->capture_default_str();
+  command->add_option("--rest-duration", o.rest_duration_s,
+                      "a start from rest's run (also a continuation's first ratio) [s]; default: the scenario's duration");
+  command->add_option("--window", o.window_s, "the last S seconds of each run are scored [s]")->capture_default_str();
+  command->add_option("--rate", o.rate_hz, "output series sample rate [Hz]")->capture_default_str();
+  command->add_option("--jobs", o.jobs, "worker processes (one chain each)")->capture_default_str();
+  command->add_option("--time-limit", o.time_limit_s, "per ratio; a chain past it is stopped and recorded [s]")->capture_default_str();
+  command->add_option("--shard", o.shard, "K/N: run every N-th chain only (configuration and start), for a job array");
+  command->add_flag("--resume", o.resume, "continue the sweep in --out: the rows recorded are kept, the rest run");
+  command->add_option("--out", o.out, "output folder")->required();
+  command->add_option("--sensor-rate", measurement.sensor_rate_hz, "accelerometer sample rate [Hz]")->capture_default_str();
+  command->add_option("--series", measurement.series, "what each ratio's folder keeps of its series: none, window or all")
+      ->capture_default_str();
+}
+
+int command_sweep(const SweepOptions& o, const MeasurementOptions& measurement_options) {
+  ib::SweepSettings s;
+  s.simulators = ib::simulator_catalog();
+  s.scenario_path = o.scenario;
+  s.ratios = ib::parse_ratios(o.ratios);
+  s.starts.clear();
+  for (const auto& start : split(o.start, ',')) {
+    const auto add = [&](ib::SweepStart value) {
+      if (std::find(s.starts.begin(), s.starts.end(), value) == s.starts.end()) s.starts.push_back(value);
+    };
+    if (start == "up" || start == "both") add(ib::SweepStart::up);
+    if (start == "down" || start == "both") add(ib::SweepStart::down);
+    if (start == "rest") add(ib::SweepStart::rest);
+    if (start != "up" && start != "down" && start != "both" && start != "rest")
+      throw std::invalid_argument("--start " + o.start + ": allowed: rest, up, down or both (up and down), comma-separated");
+  }
+  if (s.starts.empty()) throw std::invalid_argument("--start '': allowed: rest, up, down or both (up and down), comma-separated");
+  s.engines = split(o.engines, ',');
+  if (s.engines.empty()) throw std::invalid_argument("--engines '" + o.engines + "': allowed: a comma-separated list of simulators");
+  for (const auto& e : s.engines) require_engine(e);
+  s.laws.clear();
+  for (const auto& l : split(o.laws, ',')) s.laws.push_back(parse_law(l));
+  if (s.laws.empty()) throw std::invalid_argument("--laws '" + o.laws + "': allowed: hertz, viscoelastic, newton, comma-separated");
+  for (const auto& dt : split(o.time_steps, ',')) s.time_steps_s.push_back(parse_positive(dt, "--dt"));
+  for (const auto& path : split(o.paths, ',')) {
+    if (!ib::contact_path_from_string(path))
+      throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
+    s.contact_paths.push_back(path);
+  }
+  for (const auto& pair : o.options) {
+    const auto dot = pair.find('.'), eq = pair.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || dot > eq)
+      throw std::invalid_argument("--option " + pair + ": expected engine.name=value, e.g. reference.rtol=1e-10");
+    const std::string engine = pair.substr(0, dot);
+    require_engine(engine);
+    auto& target = engine == "reference" ? s.reference_options : s.engine_options[engine];
+    target[pair.substr(dot + 1, eq - dot - 1)] = pair.substr(eq + 1);
+  }
+  for (const auto& engine : s.engines) {  // fail now, not in every chain
+    ib::RunSettings run;
+    run.options = engine == "reference" ? s.reference_options : s.engine_options[engine];
+    ib::make_simulator(engine)->check_settings(run);
+  }
+  // physical ranges: a run of a few periods to an hour of rig time; the window inside the run
+  if (!(o.duration_s >= 1 && o.duration_s <= 3600)) throw std::invalid_argument("--duration " + std::to_string(o.duration_s) + ": allowed: 1 to 3600 s");
+  if (o.rest_duration_s >= 0) {
+    if (!(o.rest_duration_s >= 1 && o.rest_duration_s <= 3600))
+      throw std::invalid_argument("--rest-duration " + std::to_string(o.rest_duration_s) + ": allowed: 1 to 3600 s");
+    s.rest_duration_s = o.rest_duration_s;
+  }
+  if (!(o.window_s > 0 && o.window_s <= o.duration_s))
+    throw std::invalid_argument("--window " + std::to_string(o.window_s) + ": allowed: > 0 s and at most --duration");
+  if (!(o.rate_hz >= 256 && o.rate_hz <= 1e6)) throw std::invalid_argument("--rate " + std::to_string(o.rate_hz) + ": allowed: 256 to 1e6 Hz");
+  if (o.jobs < 1 || o.jobs > 1024) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: 1 to 1024");
+  if (!(o.time_limit_s > 0)) throw std::invalid_argument("--time-limit: allowed: > 0 s");
+  if (o.out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
+  s.continuation_duration_s = o.duration_s;
+  s.window_s = o.window_s;
+  s.output_rate_hz = o.rate_hz;
+  s.jobs = o.jobs;
+  s.time_limit_s = o.time_limit_s;
+  s.out = o.out;
+  s.resume = o.resume;
+  s.measurement = measurement_options.build();
+  if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
+  s.resume_command = resume_command(g_argc, g_argv);
+  const ib::SweepOutcome outcome = ib::run_sweep(s);
+  if (outcome.interrupted_by != 0) {
+    std::fprintf(stderr, "\nimpactbench: sweep interrupted; continue with: %s\n", s.resume_command.c_str());
+    return kExitInterrupted + outcome.interrupted_by;
+  }
+  std::printf("sweep: %d ratios recorded in %s/sweep.csv (%d run now, %d already recorded), %d not ok\n",
+              outcome.rows_run + outcome.rows_skipped, o.out.c_str(), outcome.rows_run, outcome.rows_skipped, outcome.not_ok);
+  if (s.shard) std::printf("sweep: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", o.shard.c_str());
+  return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
+}
+
+}  // namespace cli

@@ -1,0 +1,187 @@
+// The frequency sweep: its ratios and plan, the reference continued exactly from a saved state, and a
+// sweep's results the same whether it ran whole, was resumed or ran in shards that were merged.
+#include "harness/sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "harness/merge.h"
+#include "reference_fixtures.h"
+#include "simulators/catalog.h"
+
+namespace ib {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(SweepRatios, FromToStepIncludesBothEndsOnAClean1e9Grid) {
+  const auto ratios = parse_ratios("0.85:1.20:0.01");
+  ASSERT_EQ(ratios.size(), 36u);
+  EXPECT_EQ(ratios.front(), 0.85);
+  EXPECT_EQ(ratios[15], 1.0);
+  EXPECT_EQ(ratios.back(), 1.2);
+  EXPECT_EQ(parse_ratios("1:1:0").size(), 1u);
+}
+
+TEST(SweepRatios, BadRangesNameTheOptionTheValueAndWhatIsAllowed) {
+  for (const char* bad : {"1.2:0.85:0.01", "a:1:0.1", "0.85:1.2", "0.01:1:0.1", "0.9:1:0", "0.9:1:-0.1", "0.9:1:1e-9", "nan:1:0.1"}) {
+    try {
+      parse_ratios(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("--ratios ") + bad), std::string::npos) << e.what();
+    }
+  }
+}
+
+SweepSettings small_sweep(const std::string& out) {
+  SweepSettings s;
+  s.scenario_path = std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/resonance.toml";
+  s.ratios = {0.98, 0.99, 1.0};
+  s.starts = {SweepStart::up, SweepStart::down, SweepStart::rest};
+  s.continuation_duration_s = 3;
+  s.rest_duration_s = 4;
+  s.window_s = 2;
+  s.jobs = 2;
+  s.out = out;
+  s.measurement.series = SeriesOutput::none;
+  s.simulators = simulator_catalog();
+  return s;
+}
+
+TEST(SweepPlan, ContinuationsRunInOrderUpAndDownAndEveryStartFromRestIsAChainOfItsOwn) {
+  const auto chains = plan_sweep(small_sweep("unused"), "resonance");
+  ASSERT_EQ(chains.size(), 2u + 3u);
+  EXPECT_EQ(chains[0].id, "resonance/reference/hertz/up");
+  ASSERT_EQ(chains[0].rows.size(), 3u);
+  EXPECT_EQ(chains[0].rows[0].ratio, 0.98);
+  EXPECT_TRUE(chains[0].rows[0].first_of_chain);
+  EXPECT_FALSE(chains[0].rows[1].first_of_chain);
+  EXPECT_EQ(chains[1].rows[0].ratio, 1.0);  // down: from the top
+  EXPECT_EQ(chains[1].rows[2].id, "resonance/reference/hertz/down/r=0.98");
+  EXPECT_EQ(chains[2].rows.size(), 1u);
+  EXPECT_EQ(chains[4].id, "resonance/reference/hertz/rest/r=1");
+}
+
+// Continuing from a saved state is the same physics as not stopping: 2 x 3 s against 6 s at once, the motor
+// at 7 Hz (3 s = 21 whole periods, so the continued run's motor phase 0 is the one the long run has at 3 s).
+TEST(ReferenceContinuation, TwoRunsJoinedByTheSavedStateAreTheOneRunTheyReplace) {
+  Scenario scenario = testing::paper_scenario("resonance");
+  scenario.motor->speed_ratio_to_f1.reset();
+  scenario.motor->frequency_hz = 7.0;
+  scenario.initial.frame1_tip_displacement_m = 0.8e-3;  // contact within the first 3 s and after
+  RunSettings settings;
+  settings.series_start_s = 0;
+  auto reference = make_simulator("reference");
+  scenario.duration_s = 6;
+  const RunResult whole = reference->run(scenario, settings);
+  scenario.duration_s = 3;
+  const RunResult first = reference->run(scenario, settings);
+  ASSERT_TRUE(first.final_state);
+  EXPECT_EQ(first.final_state->simulator, "reference");
+  settings.initial_state = first.final_state;
+  const RunResult second = reference->run(scenario, settings);
+  ASSERT_EQ(second.status, RunStatus::ok);
+  const std::size_t offset = 3 * 4096;
+  ASSERT_EQ(second.trajectory.size() + offset, whole.trajectory.size());
+  double largest_difference_m = 0;
+  for (std::size_t k = 0; k < second.trajectory.size(); ++k)
+    for (int f = 0; f < 2; ++f)
+      largest_difference_m = std::max(largest_difference_m, std::abs(second.trajectory.displacement_m[f][k] -
+                                                                     whole.trajectory.displacement_m[f][k + offset]));
+  EXPECT_LT(largest_difference_m, 1e-9);  // of a 1 mm motion
+  // the same impacts, at the same times
+  std::vector<double> onsets_whole;
+  for (const ContactEvent& e : whole.trajectory.events)
+    if (e.onset_time_s >= 3.0) onsets_whole.push_back(e.onset_time_s - 3.0);
+  ASSERT_EQ(second.trajectory.events.size(), onsets_whole.size());
+  ASSERT_GT(onsets_whole.size(), 0u);
+  // measured: up to 3.0e-9 s apart (the free-flight grid restarts at the continued run's t = 0, and the
+  // contact integrator's tolerance is 1e-9); a continuation that lost the velocities is off by milliseconds
+  for (std::size_t i = 0; i < onsets_whole.size(); ++i) EXPECT_NEAR(second.trajectory.events[i].onset_time_s, onsets_whole[i], 1e-8);
+}
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// sweep.csv without the machine's measurements (its last three columns: cpu and wall time, load)
+std::string without_timing(const std::string& csv) {
+  std::istringstream lines(csv);
+  std::string out;
+  for (std::string line; std::getline(lines, line);) {
+    for (int cut = 0; cut < 3; ++cut) line = line.substr(0, line.rfind(','));
+    out += line + "\n";
+  }
+  return out;
+}
+
+TEST(SweepResults, TheSameWholeResumedAndShardedThenMerged) {
+  const std::string root = ::testing::TempDir() + "/sweep_results";
+  fs::remove_all(root);
+  const SweepOutcome whole = run_sweep(small_sweep(root + "/whole"));
+  EXPECT_EQ(whole.rows_run, 9);
+  EXPECT_EQ(whole.not_ok, 0);
+  const std::string expected = without_timing(read_all(root + "/whole/sweep.csv"));
+  ASSERT_EQ(std::count(expected.begin(), expected.end(), '\n'), 10);
+  EXPECT_NE(expected.find("resonance/reference/hertz/down/r=0.99"), std::string::npos);
+
+  // interrupted after some rows: the up chain's last ratio and one start from rest lost
+  fs::copy(root + "/whole", root + "/resumed", fs::copy_options::recursive);
+  fs::remove_all(root + "/resumed/runs/resonance/reference/hertz/up/r=1");
+  fs::remove_all(root + "/resumed/runs/resonance/reference/hertz/rest/r=0.99");
+  fs::remove(root + "/resumed/sweep.csv");
+  SweepSettings resume = small_sweep(root + "/resumed");
+  resume.resume = true;
+  const SweepOutcome resumed = run_sweep(resume);
+  EXPECT_EQ(resumed.rows_run, 2);
+  EXPECT_EQ(resumed.rows_skipped, 7);
+  EXPECT_EQ(without_timing(read_all(root + "/resumed/sweep.csv")), expected);
+  EXPECT_EQ(read_all(root + "/resumed/poincare.csv"), read_all(root + "/whole/poincare.csv"));
+
+  std::vector<std::string> shards;
+  for (int k = 1; k <= 2; ++k) {
+    SweepSettings shard = small_sweep(root + "/shard-" + std::to_string(k));
+    shard.shard = Shard{k, 2};
+    run_sweep(shard);
+    shards.push_back(shard.out);
+  }
+  const MergeOutcome merged = merge_suites(MergeSettings{shards, root + "/merged"});
+  EXPECT_TRUE(merged.complete());
+  EXPECT_EQ(merged.runs, 9);
+  EXPECT_EQ(without_timing(read_all(root + "/merged/sweep.csv")), expected);
+  EXPECT_EQ(read_all(root + "/merged/poincare.csv"), read_all(root + "/whole/poincare.csv"));
+}
+
+TEST(SweepResults, AResumeWithOtherSettingsOrAScenarioWithoutAMotorIsRefusedBeforeAnyRun) {
+  const std::string root = ::testing::TempDir() + "/sweep_refusals";
+  fs::remove_all(root);
+  SweepSettings s = small_sweep(root + "/a");
+  s.ratios = {1.0};
+  s.starts = {SweepStart::rest};
+  run_sweep(s);
+  s.resume = true;
+  s.window_s = 1;
+  try {
+    run_sweep(s);
+    ADD_FAILURE() << "a resume with another window was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("window_s"), std::string::npos) << e.what();
+  }
+  s.resume = false;
+  EXPECT_THROW(run_sweep(s), std::invalid_argument);  // the folder holds a sweep: --resume or another --out
+  SweepSettings free_vibration = small_sweep(root + "/b");
+  free_vibration.scenario_path = std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/free_vibration.toml";
+  EXPECT_THROW(run_sweep(free_vibration), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(root + "/b/sweep.json"));
+}
+
+}  // namespace
+}  // namespace ib
