@@ -4,7 +4,7 @@
     bench/compare_runs.py BEFORE_FOLDER AFTER_FOLDER [--relative 1e-12]
 
 Compares runs.csv (and steps.csv when both have one) row by row, matched on job_id (and the search key for
-steps.csv): the same job ids on both sides, and in every column that is not a measurement of the machine
+steps.csv), or a sweep's sweep.csv and poincare.csv, matched on id (and period_index): the same job ids on both sides, and in every column that is not a measurement of the machine
 (times, costs, the load average, the timed runs) the same text, or numbers within --relative of each other
 (0: exactly the same text). Prints every difference with its job, column and both values, then a count;
 exit 0 when there is none, 1 otherwise, 2 for unreadable input.
@@ -73,12 +73,17 @@ def main():
     parser.add_argument("after")
     parser.add_argument("--relative", type=float, default=0.0, help="allowed relative difference of numbers (0: same text)")
     args = parser.parse_args()
+    sweep = all(os.path.exists(os.path.join(folder, "sweep.csv")) for folder in (args.before, args.after))
+    table = "sweep.csv" if sweep else "runs.csv"
     for folder in (args.before, args.after):
-        if not os.path.exists(os.path.join(folder, "runs.csv")):
-            print(f"compare_runs: {folder}/runs.csv: no such file (a suite's output folder holds one)", file=sys.stderr)
+        if not os.path.exists(os.path.join(folder, table)):
+            print(f"compare_runs: {folder}/{table}: no such file (a suite's output folder holds a runs.csv, a sweep's a "
+                  "sweep.csv)", file=sys.stderr)
             return 2
     total = []
-    for name, keys in (("runs.csv", ["job_id"]), ("steps.csv", ["group_id"])):
+    tables = ((("sweep.csv", ["id"]), ("poincare.csv", ["id", "period_index"])) if sweep else
+              (("runs.csv", ["job_id"]), ("steps.csv", ["group_id"])))
+    for name, keys in tables:
         differences, rows, cells = compare(name, args.before, args.after, keys, args.relative)
         total += differences
         if rows:

@@ -22,7 +22,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from impactbench_report import analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
 from impactbench_report import step_figures, zoom_figures  # noqa: E402
-from impactbench_report import dynamics  # noqa: E402
+from impactbench_report import dynamics, sweep  # noqa: E402
 
 CAVEATS = [
     "The experiment's figures (rig.md section 7) are data shown beside the simulators, not targets: the "
@@ -152,9 +152,11 @@ def main():
     parser.add_argument("suite", help="a suite's output folder (holds runs.csv)")
     parser.add_argument("--out", help="report folder (default: SUITE/report)")
     args = parser.parse_args()
-    if not os.path.exists(os.path.join(args.suite, "runs.csv")):
-        sys.exit(f"make_report: {args.suite}/runs.csv: no such file (is this a suite's output folder?)")
     out = args.out or os.path.join(args.suite, "report")
+    if sweep.is_sweep(args.suite) and not os.path.exists(os.path.join(args.suite, "runs.csv")):
+        return sweep_report(args.suite, out)
+    if not os.path.exists(os.path.join(args.suite, "runs.csv")):
+        sys.exit(f"make_report: {args.suite}/runs.csv: no such file (is this a suite's or a sweep's output folder?)")
     figures_folder = os.path.join(out, "figures")
     if os.path.isdir(figures_folder):
         shutil.rmtree(figures_folder)  # a figure a case no longer draws must not linger
@@ -212,6 +214,22 @@ def main():
         sys.exit(f"make_report: {error}")
     if measured:
         sections.append(("Performance", measured[0], measured[1], []))
+    # A study's frequency sweeps (scripts/default-suite.sh: SUITE/sweeps/NAME/), each with its answer first.
+    document["sweep_answers"] = []
+    sweeps_folder = os.path.join(args.suite, "sweeps")
+    for name in sorted(os.listdir(sweeps_folder)) if os.path.isdir(sweeps_folder) else []:
+        folder = os.path.join(sweeps_folder, name)
+        if not sweep.is_sweep(folder):
+            continue
+        try:
+            data_of_sweep = sweep.read(folder)
+        except data.ResultsError as error:
+            sys.exit(f"make_report: {error}")
+        document["sweep_answers"].append(f"Frequency sweep ({name}): " + sweep.summary_sentence(data_of_sweep))
+        sections += sweep.sections(data_of_sweep, figures_folder, stamp, f"Frequency sweep ({name})")
+    if document["sweep_answers"]:
+        with open(os.path.join(out, "summary.json"), "w") as f:
+            json.dump(document, f, indent=1, allow_nan=False)
 
     for name in ("runs.csv", "runs.jsonl", "steps.csv", "commands.jsonl"):
         source = os.path.join(args.suite, name)
@@ -223,8 +241,47 @@ def main():
           f"{os.path.join(out, 'summary.json')}")
 
 
+def sweep_report(folder, out):
+    """The report of a sweep's folder alone (impactbench sweep --out FOLDER): its answer, its figures and the
+    engines' agreement with the reference, per law."""
+    import html
+    figures_folder = os.path.join(out, "figures")
+    if os.path.isdir(figures_folder):
+        shutil.rmtree(figures_folder)
+    os.makedirs(figures_folder)
+    try:
+        data_of_sweep = sweep.read(folder)
+    except data.ResultsError as error:
+        sys.exit(f"make_report: {error}")
+    if not data_of_sweep.rows:
+        sys.exit(f"make_report: {folder}/sweep.csv holds no rows yet (no ratio has ended)")
+    made = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    stamp = f"impactbench, {made}, {machine()}"
+    sections = sweep.sections(data_of_sweep, figures_folder, stamp, "Frequency sweep")
+    settings = json.dumps(data_of_sweep.settings, indent=1)
+    loads = sorted(r["load_average"] for r in data_of_sweep.rows if not math.isnan(r["load_average"]))
+    machine_line = f"{machine()}; load average {loads[0]:.2f} to {loads[-1]:.2f}" if loads else machine()
+    lines = ["# impactbench: frequency sweep", "", sweep.summary_sentence(data_of_sweep), ""]
+    parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
+             f"<title>impactbench sweep report</title><style>{STYLE}</style></head><body>",
+             "<h1>impactbench: frequency sweep</h1>", f"<p class='lede'>{html.escape(sweep.summary_sentence(data_of_sweep))}</p>"]
+    for title, text, table_html, paths in sections:
+        lines += [f"## {title}", "", text, ""] + [f"![{os.path.basename(p)}]({os.path.relpath(p, out)})" for p in paths] + [""]
+        parts.append(f"<h2 id='{anchor(title)}'>{html.escape(title)}</h2>{table_html}")
+        parts += [figure_html(p, out) for p in paths]
+    lines += ["## What ran", "", f"Made {made} on {machine_line}.", "", "```json", settings, "```"]
+    parts += ["<h2 id='provenance'>What ran</h2>", f"<p>Made {made} on {html.escape(machine_line)}.</p>",
+              f"<pre>{html.escape(settings)}</pre></body></html>"]
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    with open(os.path.join(out, "index.html"), "w") as f:
+        f.write("\n".join(parts))
+    print(f"report: {os.path.join(out, 'index.html')}, {os.path.join(out, 'summary.md')}")
+
+
 def write_markdown(path, document, facts, sections, out):
-    lines = [first_screen.markdown(document, facts), "", "## Caveats", ""] + [f"- {c}" for c in CAVEATS]
+    lines = [first_screen.markdown(document, facts)] + [f"\n{a}" for a in document.get("sweep_answers", [])]
+    lines += ["", "## Caveats", ""] + [f"- {c}" for c in CAVEATS]
     for title, text, _, paths in sections:
         lines += ["", f"## {title}", ""]
         if text:
@@ -274,6 +331,7 @@ def write_html(path, document, facts, sections, out):
              "<meta name='viewport' content='width=device-width, initial-scale=1'>",
              f"<title>impactbench report</title><style>{STYLE}</style></head><body>",
              first_screen.html_page_top(document, facts),
+             "".join(f"<p class='lede'>{html.escape(a)}</p>" for a in document.get("sweep_answers", [])),
              "<nav><b>Cases:</b> " + " · ".join(f"<a href='#{anchor(t)}'>{html.escape(t)}</a>" for t, _, _, _ in sections)
              + " · <a href='#settings'>settings</a> · <a href='#provenance'>what ran</a> · <a href='#caveats'>caveats</a></nav>"]
     for title, _, table_html, paths in sections:

@@ -20,6 +20,7 @@ packages=(
   python3-scipy                  # bench/reference_vs_scipy.py: the reference against SciPy's solve_ivp
   libgtest-dev libgmock-dev      # tests
   libbenchmark-dev               # bench/: speed measurements
+  slurmctld slurmd slurm-client munge  # tests/slurm/: a real one-node Slurm cluster runs the job-array scripts
 )
 
 # scripts/fuzz.sh alone needs clang-14 and libclang-rt-14-dev (libFuzzer): it passes them in

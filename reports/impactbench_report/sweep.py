@@ -1,0 +1,265 @@
+"""A frequency sweep's results (impactbench sweep: sweep.csv, poincare.csv) read, measured against the
+reference and put in words: which regime each simulator reaches at each motor speed ratio, where the up
+and down sweeps disagree (coexisting branches), and how far each engine's regimes are from the reference's.
+The figures are sweep_figures.py's."""
+
+import csv
+import json
+import math
+import os
+
+from . import data
+
+EXPERIMENT_RATIOS = (0.95, 1.00, 1.17)  # the published operating points (rig.md section 7)
+STARTS = ("up", "down", "rest")
+
+
+class Sweep:
+    """A sweep folder read: its rows (dicts, numbers as floats where the column is numeric) and the
+    Poincare samples of each row id."""
+
+    def __init__(self, folder, rows, samples, settings):
+        self.folder, self.rows, self.samples, self.settings = folder, rows, samples, settings
+
+    def simulators(self):
+        """Configurations (engine, options, time step) in the order they first appear, the reference first.
+        A configuration is its rows' id without start and ratio (the time step a run that never started
+        could not report is its chain's)."""
+        seen = []
+        for r in self.rows:
+            if r["id"].rsplit("/", 2)[0] not in [k for k, _ in seen]:
+                seen.append((r["id"].rsplit("/", 2)[0], r))
+        steps = {}
+        for r in self.rows:
+            if not math.isnan(r["time_step_s"]) and r["time_step_s"] > 0:
+                steps[r["id"].rsplit("/", 2)[0]] = r["time_step_s"]
+        configs = [(r["engine"], r["options"], steps.get(key, 0.0) if r["engine"] != "reference" else 0.0, key)
+                   for key, r in seen]
+        return sorted(configs, key=lambda c: (c[0] != "reference", configs.index(c)))
+
+    def laws(self):
+        return sorted({r["law"] for r in self.rows}, key=lambda law: ["hertz", "viscoelastic", "newton"].index(law)
+                      if law in ("hertz", "viscoelastic", "newton") else 9)
+
+    def rows_of(self, config, law, start):
+        return sorted((r for r in self.rows if r["id"].rsplit("/", 2)[0] == config[3] and r["law"] == law
+                       and r["start"] == start), key=lambda r: r["ratio"])
+
+    def all_ratios(self):
+        return sorted({r["ratio"] for r in self.rows})
+
+
+def label(config):
+    engine, options, step, _ = config
+    if engine == "reference":
+        return "reference" + (f" ({options})" if options else "")
+    return f"{engine} {options or 'default'}, dt {step:g} s"
+
+
+NUMBERS = ("ratio", "time_step_s", "motor_frequency_hz", "duration_s", "window_s", "impacts_in_window",
+           "impacts_per_cycle", "period_n", "impacts_per_period", "frame1_sensor_peak_m_s2", "frame2_sensor_peak_m_s2",
+           "frame1_peak_tip_displacement_m", "frame2_peak_tip_displacement_m", "mean_approach_velocity_m_s",
+           "mean_contact_duration_s", "poincare_samples", "steps", "cpu_time_s", "wall_time_s", "load_average")
+
+
+def number(text, path, line, column):
+    if text == "":
+        return math.nan
+    try:
+        return float(text)
+    except ValueError:
+        raise data.ResultsError(f"{path} line {line}: column {column} is {text!r}, not a number") from None
+
+
+def is_sweep(folder):
+    return os.path.isfile(os.path.join(folder, "sweep.json"))
+
+
+def read(folder):
+    """The sweep in folder; data.ResultsError naming the file, line and column for what cannot be read."""
+    path = os.path.join(folder, "sweep.csv")
+    if not os.path.isfile(path):
+        raise data.ResultsError(f"{path}: no such file (a sweep's folder holds one once a ratio has ended)")
+    rows = []
+    with open(path, newline="") as f:
+        reader = csv.DictReader(f)
+        missing = [c for c in ("id", "engine", "law", "start", "ratio", "verdict", "regime") if c not in (reader.fieldnames or [])]
+        if missing:
+            raise data.ResultsError(f"{path}: columns {', '.join(missing)} missing (not a sweep.csv of this build?)")
+        for line, row in enumerate(reader, start=2):
+            for column in NUMBERS:
+                if column in row:
+                    row[column] = number(row[column] or "", path, line, column)
+            if math.isnan(row["ratio"]):
+                raise data.ResultsError(f"{path} line {line}: column ratio is empty")
+            rows.append(row)
+    samples = {}
+    samples_path = os.path.join(folder, "poincare.csv")
+    if os.path.isfile(samples_path):
+        with open(samples_path, newline="") as f:
+            for line, row in enumerate(csv.DictReader(f), start=2):
+                samples.setdefault(row["id"], []).append(number(row.get("frame1_tip_displacement_m", ""), samples_path,
+                                                                line, "frame1_tip_displacement_m"))
+    settings = {}
+    try:
+        with open(os.path.join(folder, "sweep.json")) as f:
+            settings = json.load(f)
+    except (OSError, json.JSONDecodeError):
+        pass  # the tables say what ran; the settings only add the scenario's name
+    return Sweep(folder, rows, samples, settings)
+
+
+def impacts(row):
+    return row["verdict"] == "ok" and row["regime"] not in ("", "no impact")
+
+
+def ratio_text(ratio):
+    return f"{ratio:.3f}".rstrip("0").rstrip(".") if not math.isnan(ratio) else "?"
+
+
+def branch_facts(sweep, law):
+    """The reference's sweep of one law in words and numbers: the largest ratio the up sweep still impacts at,
+    whether each experiment ratio impacts sweeping up, the ratios where up and down differ in regime."""
+    reference = next((c for c in sweep.simulators() if c[0] == "reference"), None)
+    if reference is None:
+        return None
+    up, down = sweep.rows_of(reference, law, "up"), sweep.rows_of(reference, law, "down")
+    rest = sweep.rows_of(reference, law, "rest")
+    facts = {"law": law, "ratios": len({r["ratio"] for r in up + down + rest})}
+    if up:
+        impacting = [r["ratio"] for r in up if impacts(r)]
+        facts["up_last_impacting_ratio"] = max(impacting) if impacting else None
+        at = {round(r["ratio"], 6): r for r in up}
+        facts["up_at_experiment"] = {x: at.get(round(x, 6)) for x in EXPERIMENT_RATIOS}
+    if down:
+        impacting = [r["ratio"] for r in down if impacts(r)]
+        facts["down_last_impacting_ratio"] = max(impacting) if impacting else None
+    if up and down:
+        down_at = {round(r["ratio"], 6): r for r in down}
+        facts["coexisting"] = [(r["ratio"], r["regime"] or r["verdict"], down_at[round(r["ratio"], 6)]["regime"] or
+                                down_at[round(r["ratio"], 6)]["verdict"])
+                               for r in up if round(r["ratio"], 6) in down_at and
+                               impacts(r) != impacts(down_at[round(r["ratio"], 6)])]
+    if rest:
+        facts["rest_impacting"] = [r["ratio"] for r in rest if impacts(r)]
+    return facts
+
+
+def answer_sentences(sweep):
+    """The measured answer to "does a sweep up reach 1.17 f_1 still impacting?", one sentence per law."""
+    sentences = []
+    for law in sweep.laws():
+        f = branch_facts(sweep, law)
+        if not f or "up_last_impacting_ratio" not in f:
+            continue
+        last = f["up_last_impacting_ratio"]
+        end = max(r["ratio"] for r in sweep.rows if r["start"] == "up")
+        text = f"{law}: sweeping up, the reference " + (
+            "never impacts" if last is None else f"impacts up to the sweep's end, r = {ratio_text(last)}" if last >= end
+            else f"keeps impacting up to r = {ratio_text(last)}")
+        if f.get("down_last_impacting_ratio") is not None:
+            text += f" (sweeping down, it first impacts at r = {ratio_text(f['down_last_impacting_ratio'])})"
+        at117 = f["up_at_experiment"].get(1.17)
+        if at117 is not None:
+            if impacts(at117):
+                text += (f"; at 1.17 f_1 it impacts, {at117['impacts_per_cycle']:.2f} impacts per cycle "
+                         f"({at117['regime']})")
+            else:
+                text += "; at 1.17 f_1 (the experiment's post-resonance, about 8 impacts per beat) it has no impact"
+        coexisting = f.get("coexisting", [])
+        if coexisting:
+            text += ("; up and down differ at r = " + ", ".join(f"{ratio_text(r)} ({u} up, {d} down)" for r, u, d in coexisting))
+        if f.get("rest_impacting"):
+            text += ("; from rest it impacts at " + ", ".join(ratio_text(r) for r in f["rest_impacting"]))
+        sentences.append(text + ".")
+    return sentences
+
+
+def agreement(sweep):
+    """Per engine configuration, law and start: how often its regime equals the reference's at the same
+    ratio, where not, the error of impacts per cycle and of frame 1's sensor peak where both impact, and
+    its CPU time. Rows whose verdict is not ok disagree."""
+    reference = next((c for c in sweep.simulators() if c[0] == "reference"), None)
+    table = []
+    for config in sweep.simulators():
+        if config[0] == "reference" or reference is None:
+            continue
+        for law in sweep.laws():
+            for start in STARTS:
+                rows = sweep.rows_of(config, law, start)
+                ref = {round(r["ratio"], 6): r for r in sweep.rows_of(reference, law, start)}
+                paired = [(r, ref[round(r["ratio"], 6)]) for r in rows if round(r["ratio"], 6) in ref]
+                if not paired:
+                    continue
+                same = [(r, q) for r, q in paired if r["verdict"] == "ok" and r["regime"] == q["regime"]]
+                differ = [(r, q) for r, q in paired if not (r["verdict"] == "ok" and r["regime"] == q["regime"])]
+                ipc = [abs(r["impacts_per_cycle"] - q["impacts_per_cycle"]) for r, q in paired
+                       if r["verdict"] == "ok" and not math.isnan(r["impacts_per_cycle"]) and not math.isnan(q["impacts_per_cycle"])]
+                peaks = sorted(abs(r["frame1_sensor_peak_m_s2"] / q["frame1_sensor_peak_m_s2"] - 1) for r, q in paired
+                               if impacts(r) and impacts(q) and q["frame1_sensor_peak_m_s2"] > 0)
+                table.append({
+                    "configuration": label(config), "law": law, "start": start, "ratios": len(paired),
+                    "agreement": len(same) / len(paired),
+                    "differ": [(r["ratio"], r["regime"] if r["verdict"] == "ok" else r["verdict"], q["regime"] or q["verdict"])
+                               for r, q in differ],
+                    "impacts_per_cycle_mean_abs_error": sum(ipc) / len(ipc) if ipc else math.nan,
+                    "sensor_peak_median_relative_error": peaks[len(peaks) // 2] if peaks else math.nan,
+                    "cpu_time_s": sum(r["cpu_time_s"] for r in rows if not math.isnan(r["cpu_time_s"])),
+                })
+    return table
+
+
+AGREEMENT_HEADER = ["configuration", "law", "start", "ratios", "regime as the reference", "where it differs (engine vs reference)",
+                    "impacts/cycle mean |error|", "frame 1 sensor peak median |error|", "CPU [s]"]
+
+
+def agreement_rows(table):
+    def differ_text(items):
+        shown = [f"{ratio_text(r)} ({e} vs {q})" for r, e, q in items[:8]]
+        return ", ".join(shown) + (f", and {len(items) - 8} more" if len(items) > 8 else "") if items else "none"
+
+    def fmt(value, percent=False):
+        if math.isnan(value):
+            return "n/a"
+        return f"{100 * value:.1f} %" if percent else f"{value:.3f}"
+
+    return [[t["configuration"], t["law"], t["start"], str(t["ratios"]), f"{100 * t['agreement']:.0f} %",
+             differ_text(t["differ"]), fmt(t["impacts_per_cycle_mean_abs_error"]),
+             fmt(t["sensor_peak_median_relative_error"], percent=True), f"{t['cpu_time_s']:.1f}"] for t in table]
+
+
+def summary_sentence(sweep):
+    """One opening line: the reference's branches and the engines' agreement, from the data."""
+    parts = answer_sentences(sweep)
+    table = agreement(sweep)
+    if table:
+        by_config = {}
+        for t in table:
+            by_config.setdefault(t["configuration"], []).append(t)
+        parts.append("Regime as the reference's: " + "; ".join(
+            f"{name} {100 * sum(t['agreement'] * t['ratios'] for t in ts) / sum(t['ratios'] for t in ts):.0f} % of "
+            f"{sum(t['ratios'] for t in ts)} ratios" for name, ts in by_config.items()) + ".")
+    return " ".join(parts)
+
+
+def sections(data, figures_folder, stamp, title):
+    """The report's sections of one sweep: (title, markdown, html, figure paths) per law, its answer first."""
+    from . import sweep_figures, tables  # the figures need matplotlib; reading a sweep does not
+    found = []
+    lede = summary_sentence(data)
+    table = agreement(data)
+    for law in data.laws():
+        slug = "".join(c if c.isalnum() else "_" for c in f"{title}_{law}")
+        paths = [sweep_figures.bifurcation(data, law, figures_folder, stamp, f"sweep_{slug}_bifurcation"),
+                 sweep_figures.response(data, law, figures_folder, stamp, f"sweep_{slug}_response")]
+        rows = agreement_rows([t for t in table if t["law"] == law])
+        text = lede if law == data.laws()[0] else ""
+        markdown_text, html_text = text, f"<p>{text}</p>" if text else ""
+        if rows:
+            note = ("Each engine's regime against the reference's at the same ratio and start (no impact, period-n, "
+                    "irregular; a run not ok disagrees), the error of impacts per cycle, the median error of frame 1's "
+                    "sensor peak where both impact, and the engine's CPU time for the sweep.")
+            markdown_text += "\n\n" + note + "\n\n" + tables.markdown(AGREEMENT_HEADER, rows)
+            html_text += f"<p>{note}</p>" + tables.html_table(AGREEMENT_HEADER, rows)
+        found.append((f"{title}, {law}", markdown_text, html_text, [p for p in paths if p]))
+    return found

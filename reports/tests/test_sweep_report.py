@@ -1,0 +1,114 @@
+"""A sweep's report from its tables (impactbench sweep: sweep.csv, poincare.csv): the answer follows the data,
+the engines' regime agreement counts and lists the right ratios, and a broken sweep.csv stops the report with a
+message naming the file, never a traceback.
+
+    /usr/bin/python3 reports/tests/test_sweep_report.py
+"""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from impactbench_report import sweep  # noqa: E402
+
+MAKE_REPORT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "make_report.py")
+COLUMNS = ("id,scenario,engine,engine_version,law,options,time_step_s,start,ratio,motor_frequency_hz,duration_s,window_s,"
+           "verdict,reason,timed_out,impacts_in_window,impacts_per_cycle,regime,period_n,impacts_per_period,"
+           "frame1_sensor_peak_m_s2,frame2_sensor_peak_m_s2,frame1_peak_tip_displacement_m,frame2_peak_tip_displacement_m,"
+           "mean_approach_velocity_m_s,mean_contact_duration_s,poincare_samples,steps,cpu_time_s,wall_time_s,load_average")
+
+
+def row(engine, start, ratio, regime, impacts_per_cycle, peak=100.0, verdict="ok", options=""):
+    prefix = f"resonance/{engine}/hertz" + (f"/{options}" if options else "")
+    return (f"{prefix}/{start}/r={ratio:g},resonance,{engine},v1,hertz,{options},{1e-4 if engine != 'reference' else 0},"
+            f"{start},{ratio},{6.95 * ratio},30,10,{verdict},,0,{round(70 * impacts_per_cycle)},{impacts_per_cycle},"
+            f"{regime},,,{peak},{peak},0.001,0.0005,0.1,0.0003,70,1000,1.5,1.5,1.0")
+
+
+def write_sweep(folder, rows):
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, "sweep.csv"), "w") as f:
+        f.write(COLUMNS + "\n" + "\n".join(rows) + "\n")
+    with open(os.path.join(folder, "poincare.csv"), "w") as f:
+        f.write("id,period_index,time_s,frame1_tip_displacement_m,frame1_tip_velocity_m_s,frame2_tip_displacement_m,"
+                "frame2_tip_velocity_m_s\n")
+        for r in rows:
+            f.write(f"{r.split(',')[0]},1,0.1,0.001,0,0,0\n")
+    with open(os.path.join(folder, "sweep.json"), "w") as f:
+        json.dump({"scenario": "resonance"}, f)
+
+
+def reference_rows(last_impacting_up=1.08, impacts_at_117=False):
+    rows = []
+    for start in ("up", "down"):
+        for ratio in (1.0, 1.08, 1.17):
+            hit = ratio <= (last_impacting_up if start == "up" else 1.0) or (ratio == 1.17 and impacts_at_117)
+            rows.append(row("reference", start, ratio, "period-1" if hit else "no impact", 1.0 if hit else 0.0))
+    return rows
+
+
+class SweepAnswer(unittest.TestCase):
+    def read(self, rows):
+        folder = tempfile.mkdtemp(prefix="impactbench_sweep_")
+        write_sweep(folder, rows)
+        return sweep.read(folder)
+
+    def test_the_answer_follows_the_data(self):
+        text = " ".join(sweep.answer_sentences(self.read(reference_rows())))
+        self.assertIn("keeps impacting up to r = 1.08", text)
+        self.assertIn("at 1.17 f_1 (the experiment's post-resonance, about 8 impacts per beat) it has no impact", text)
+        self.assertIn("up and down differ at r = 1.08 (period-1 up, no impact down)", text)
+        text = " ".join(sweep.answer_sentences(self.read(reference_rows(impacts_at_117=True))))
+        self.assertIn("at 1.17 f_1 it impacts, 1.00 impacts per cycle (period-1)", text)
+
+    def test_regime_agreement_counts_and_lists_the_ratios_where_an_engine_differs(self):
+        engine = [row("mujoco", "up", 1.0, "period-1", 1.0, peak=110.0, options="contact=matched"),
+                  row("mujoco", "up", 1.08, "no impact", 0.0, options="contact=matched"),
+                  row("mujoco", "up", 1.17, "", 0.0, verdict="unstable", options="contact=matched")]
+        table = sweep.agreement(self.read(reference_rows() + engine))
+        self.assertEqual(len(table), 1)  # mujoco, hertz, up (no down rows of the engine)
+        t = table[0]
+        self.assertEqual(t["ratios"], 3)
+        self.assertAlmostEqual(t["agreement"], 1 / 3)
+        self.assertEqual(t["differ"], [(1.08, "no impact", "period-1"), (1.17, "unstable", "no impact")])
+        self.assertAlmostEqual(t["impacts_per_cycle_mean_abs_error"], 0.5)  # 0 at 1.0, 1 at 1.08; 1.17 not ok
+        self.assertAlmostEqual(t["sensor_peak_median_relative_error"], 0.1)  # where both impact: 1.0 only
+        self.assertIn("1.08 (no impact vs period-1), 1.17 (unstable vs no impact)", sweep.agreement_rows(table)[0][5])
+
+
+class SweepReport(unittest.TestCase):
+    def test_a_sweep_folder_gets_a_report_that_answers_first(self):
+        folder = tempfile.mkdtemp(prefix="impactbench_sweep_report_")
+        write_sweep(folder, reference_rows())
+        run = subprocess.run([sys.executable, MAKE_REPORT, folder], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        with open(os.path.join(folder, "report", "index.html")) as f:
+            page = f.read()
+        self.assertLess(page.index("keeps impacting up to r = 1.08"), page.index("<figure"))
+        self.assertTrue(os.path.exists(os.path.join(folder, "report", "figures", "sweep_Frequency_sweep_hertz_bifurcation.svg")))
+
+    def test_a_broken_sweep_csv_names_the_file_and_line_never_a_traceback(self):
+        folder = tempfile.mkdtemp(prefix="impactbench_sweep_broken_")
+        write_sweep(folder, reference_rows())
+        path = os.path.join(folder, "sweep.csv")
+        with open(path) as f:
+            lines = f.read().splitlines()
+        lines[2] = lines[2].replace(",1.08,", ",1.08x,", 1)
+        with open(path, "w") as f:
+            f.write("\n".join(lines) + "\n")
+        run = subprocess.run([sys.executable, MAKE_REPORT, folder], capture_output=True, text=True)
+        self.assertNotEqual(run.returncode, 0)
+        self.assertNotIn("Traceback", run.stderr)
+        self.assertIn(f"{path} line 3: column ratio is '1.08x', not a number", run.stderr)
+        os.remove(path)
+        run = subprocess.run([sys.executable, MAKE_REPORT, folder], capture_output=True, text=True)
+        self.assertNotIn("Traceback", run.stderr)
+        self.assertIn("sweep.csv: no such file", run.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
