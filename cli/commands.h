@@ -28,7 +28,7 @@ struct SuiteOptions {
 struct SweepOptions {
   std::string scenario, ratios = "0.85:1.25:0.01", start = "both", engines = "reference", laws = "hertz", paths, time_steps, out;
   std::vector<std::string> options;
-  double duration_s = 30, rest_duration_s = -1, window_s = 10, rate_hz = 4096, time_limit_s = 600;
+  double duration_s = 60, rest_duration_s = -1, window_s = 10, rate_hz = 4096, time_limit_s = 600;
   int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   std::string shard;
   bool resume = false;

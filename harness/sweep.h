@@ -39,9 +39,9 @@ struct SweepSettings {
   std::map<std::string, std::string> reference_options;
   std::map<std::string, std::map<std::string, std::string>> engine_options;
   // Each ratio's run length [s], rounded to whole motor periods: a continuation's ratios after its first
-  // (default 30 s); a start from rest, and a continuation's first ratio (from rest), run the scenario's
+  // (default 60 s: docs/sweeps.md); a start from rest, and a continuation's first ratio (from rest), run the scenario's
   // own duration unless rest_duration_s is set.
-  double continuation_duration_s = 30;
+  double continuation_duration_s = 60;
   std::optional<double> rest_duration_s;
   double window_s = 10;                            // the last window_s of each run is scored [s] (whole periods)
   double output_rate_hz = 4096;

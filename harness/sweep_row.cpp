@@ -75,9 +75,11 @@ std::string poincare_text(const SweepRow& row, const std::vector<PoincareSample>
   text << "id,period_index,time_s,frame1_tip_displacement_m,frame1_tip_velocity_m_s,frame2_tip_displacement_m,"
           "frame2_tip_velocity_m_s\n";
   for (const PoincareSample& p : samples)
+    // the states to 9 digits (number_text: beyond any regime's tolerance and the solvers' own accuracy), the
+    // time exactly: a study's sweeps write tens of thousands of samples
     text << csv_escape(row.id) << ',' << p.period_index << ',' << exact_number_text(p.time_s) << ','
-         << exact_number_text(p.displacement_m[0]) << ',' << exact_number_text(p.velocity_m_s[0]) << ','
-         << exact_number_text(p.displacement_m[1]) << ',' << exact_number_text(p.velocity_m_s[1]) << '\n';
+         << number_text(p.displacement_m[0]) << ',' << number_text(p.velocity_m_s[0]) << ','
+         << number_text(p.displacement_m[1]) << ',' << number_text(p.velocity_m_s[1]) << '\n';
   return text.str();
 }
 
@@ -116,6 +118,9 @@ std::optional<SavedState> run_sweep_row(const Scenario& base, const SweepRow& ro
     write_row(folder, row_fields(row, at, f));
     return std::nullopt;
   }
+  // Without series (--series none, the default) a row keeps no events.csv either: the row's metrics and
+  // samples are its results, and the events of every ratio's whole run were most of a study's sweep size.
+  if (settings.measurement.series == SeriesOutput::none) std::filesystem::remove(folder + "/events.csv");
   f.engine_version = record.engine_version;
   f.verdict = to_string(record.verdict);
   f.reason = record.reason;

@@ -117,6 +117,18 @@ def ratio_text(ratio):
     return f"{ratio:.3f}".rstrip("0").rstrip(".") if not math.isnan(ratio) else "?"
 
 
+def ranges_text(ratios, grid):
+    """Ratios as runs of neighbours on the sweep's grid: "0.94 to 1.08, 1.1 to 1.13"."""
+    index = {round(r, 6): i for i, r in enumerate(grid)}
+    runs = []
+    for r in sorted(ratios):
+        if runs and index.get(round(r, 6), -9) == index.get(round(runs[-1][-1], 6), -99) + 1:
+            runs[-1].append(r)
+        else:
+            runs.append([r])
+    return ", ".join(ratio_text(run[0]) if len(run) == 1 else f"{ratio_text(run[0])} to {ratio_text(run[-1])}" for run in runs)
+
+
 def branch_facts(sweep, law):
     """The reference's sweep of one law in words and numbers: the largest ratio the up sweep still impacts at,
     whether each experiment ratio impacts sweeping up, the ratios where up and down differ in regime."""
@@ -170,7 +182,7 @@ def answer_sentences(sweep):
         if coexisting:
             text += ("; up and down differ at r = " + ", ".join(f"{ratio_text(r)} ({u} up, {d} down)" for r, u, d in coexisting))
         if f.get("rest_impacting"):
-            text += ("; from rest it impacts at " + ", ".join(ratio_text(r) for r in f["rest_impacting"]))
+            text += "; from rest it impacts at r = " + ranges_text(f["rest_impacting"], sweep.all_ratios())
         sentences.append(text + ".")
     return sentences
 

@@ -55,7 +55,9 @@ def bifurcation(data, law, folder, stamp, name):
                 xs += [r["ratio"] + shift[start]] * len(values)
                 ys += [1e3 * v for v in values]
             if xs:
-                ax.plot(xs, ys, ".", markersize=1.5 if start != "rest" else 1.0, color=START_COLOURS[start], alpha=0.7)
+                # tens of thousands of points: drawn as an image inside the SVG (1.1 MB of vector marks otherwise)
+                ax.plot(xs, ys, ".", markersize=1.5 if start != "rest" else 1.0, color=START_COLOURS[start], alpha=0.7,
+                        rasterized=True)
                 drawn.add(start)
             if unstable:
                 ax.plot(unstable, [0] * len(unstable), "x", color=figures.VERDICT_COLOURS["unstable"], markersize=5)
