@@ -74,21 +74,24 @@ full_search_args=(scenarios/stiff scenarios/extreme --engines reference,mujoco,o
 
 # The frequency sweeps (docs/sweeps.md), each "NAME SWEEP_ARGUMENTS" into OUT/sweeps/NAME (a folder per sweep:
 # its settings are one record). The default study's:
-#  - reference: the reference alone on the fine grid, 0.85 to 1.20 f_1 in steps of 0.01, from rest and
-#    continued up and down, Hertz and spring-dashpot: the bifurcation diagram every engine is read against
-#    (its regimes are stable under refinement of the run length and of the tolerances: docs/sweeps.md).
+#  - reference: the reference alone on the fine grid, 0.85 to 1.20 f_1 in steps of 0.01, from rest (60 s:
+#    the 22.9 s start-up transient is over by the window) and continued up and down (60 s a ratio), Hertz and
+#    spring-dashpot: the bifurcation diagram every engine is read against (its regimes are stable under
+#    refinement of the run length and of the tolerances: docs/sweeps.md). About 50 s of CPU.
 #  - engines: every engine on its matched path at its default step with the reference beside it, Hertz,
-#    swept up over 0.90 to 1.15 f_1 in steps of 0.05 (the first ratio from rest over 40 s, each next one
-#    continued over 30 s): the regime agreement at a glance. The full study sweeps them on the fine grid.
+#    swept up over 0.90 to 1.10 f_1 in steps of 0.05 (the first ratio from rest over 30 s, each next one
+#    continued over 20 s): each engine's regime against the reference's at a glance, about 110 s of CPU,
+#    Simbody's chain 65 s of it (listed first so that it starts first: the others share the second core).
 default_sweep_parts=(
-  "reference scenarios/paper/resonance.toml --ratios 0.85:1.20:0.01 --start rest,both --engines reference --laws hertz,viscoelastic"
-  "engines scenarios/paper/resonance.toml --ratios 0.90:1.15:0.05 --start up --engines reference,mujoco,ode,bullet,dart,simbody --laws hertz --paths matched --rest-duration 40 --duration 30"
+  "reference scenarios/paper/resonance.toml --ratios 0.85:1.20:0.01 --start rest,both --engines reference --laws hertz,viscoelastic --rest-duration 60"
+  "engines scenarios/paper/resonance.toml --ratios 0.90:1.10:0.05 --start up --engines simbody,bullet,ode,dart,mujoco,reference --laws hertz --paths matched --rest-duration 30 --duration 20"
 )
 # The full study's: the reference as in the default study, and every engine on the fine grid, up and down,
-# Hertz and spring-dashpot, on its matched path at its default step (each continued ratio over 60 s).
+# Hertz, on its matched path at its default step, 30 s a ratio (about 50 min of CPU, Simbody's 22 of them:
+# the full study is a cluster's, scripts/slurm/submit.sh NAME N --full).
 full_sweep_parts=(
   "${default_sweep_parts[0]}"
-  "engines scenarios/paper/resonance.toml --ratios 0.85:1.20:0.01 --start both --engines reference,mujoco,ode,bullet,dart,simbody --laws hertz,viscoelastic --paths matched"
+  "engines scenarios/paper/resonance.toml --ratios 0.85:1.20:0.01 --start both --engines simbody,bullet,ode,dart,mujoco,reference --laws hertz --paths matched --duration 30"
 )
 
 # Runs a study into OUT:
