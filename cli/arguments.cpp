@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "harness/plausibility.h"
 #include "simulators/catalog.h"
 
 namespace cli {
@@ -25,6 +26,20 @@ std::string resume_command(int argc, char** argv) {
     command += " " + (plain ? arg : quoted + "'");
   }
   return command + (resume ? "" : " --resume");
+}
+
+std::vector<std::string> split_list(const std::string& text, const std::string& option, const std::string& allowed) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (item.empty())
+      throw std::invalid_argument(option + " '" + text + "': an empty item; allowed: " + allowed + ", comma-separated");
+    items.push_back(item);
+  }
+  if (items.empty() || text.back() == ',')
+    throw std::invalid_argument(option + " '" + text + "': " + (items.empty() ? "empty" : "an empty item") + "; allowed: " +
+                                allowed + ", comma-separated");
+  return items;
 }
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -75,11 +90,12 @@ double parse_positive(const std::string& text, const std::string& option) {
 }
 
 ib::Measurement MeasurementOptions::build() const {
-  if (!(sensor_rate_hz > 0)) throw std::invalid_argument("--sensor-rate " + std::to_string(sensor_rate_hz) + ": allowed: > 0 Hz");
-  if (!(merge_window_s >= 0)) throw std::invalid_argument("--merge-window " + std::to_string(merge_window_s) + ": allowed: >= 0 s");
+  using ib::Plausible;
+  ib::check_option("--sensor-rate", sensor_rate_hz, Plausible::kMinRate_hz, Plausible::kMaxRate_hz, "Hz", true);
+  ib::check_option("--merge-window", merge_window_s, 0, Plausible::kMaxMergeWindow_s, "s", true);
   ib::Measurement m;
-  if (window_s >= 0) {
-    if (!(window_s > 0)) throw std::invalid_argument("--window " + std::to_string(window_s) + ": allowed: > 0 s");
+  if (app_ && app_->count("--window") > 0) {  // given: whatever its value, it is checked (-1 and nan too)
+    ib::check_option("--window", window_s, 0, Plausible::kMaxDuration_s, "s");
     m.window_s = window_s;
   }
   m.sensor_rate_hz = sensor_rate_hz;

@@ -24,6 +24,9 @@ extern char** g_argv;
 std::string resume_command(int argc, char** argv);
 
 std::vector<std::string> split(const std::string& text, char separator);
+// A comma-separated option's items: none empty ('--engines ""' and 'reference,,mujoco' are refused, naming
+// the option, the value and what is allowed).
+std::vector<std::string> split_list(const std::string& text, const std::string& option, const std::string& allowed);
 
 // "name=value" pairs from --option.
 std::map<std::string, std::string> parse_options(const std::vector<std::string>& pairs);
@@ -41,6 +44,7 @@ struct MeasurementOptions {
   std::string series = "window";
   // with_timing: the command runs simulators (run, suite), so --repeat and --series apply; score measures files only
   void add_to(CLI::App* app, bool with_timing) {
+    app_ = app;
     app->add_option("--window", window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's");
     app->add_option("--sensor-rate", sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]")->capture_default_str();
     app->add_option("--merge-window", merge_window_s, "onsets closer than this are one impact [s]")->capture_default_str();
@@ -55,6 +59,9 @@ struct MeasurementOptions {
           ->capture_default_str();
   }
   ib::Measurement build() const;  // throws std::invalid_argument naming the option, the value and what is allowed
+
+ private:
+  const CLI::App* app_ = nullptr;  // the command's: whether --window was given at all (any value it has is then checked)
 };
 
 }  // namespace cli

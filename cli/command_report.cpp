@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "harness/reporters.h"
 #include "harness/run_files.h"
 
 namespace cli {
@@ -17,6 +18,20 @@ int command_report(const std::string& suite_folder, const std::string& out) {
   // An unwritable report folder is said here, in the words of every other write error, not as a traceback.
   // (A folder without runs.csv is left to make_report.py, which says so.)
   const std::string folder = out.empty() ? suite_folder + "/report" : out;
+  if (!std::filesystem::is_directory(suite_folder))
+    throw std::invalid_argument(suite_folder + ": " + (std::filesystem::exists(suite_folder) ? "not a folder" : "no such folder") +
+                                "; expected a suite's or a sweep's output folder");
+  // One record per job, run folders present: a damaged folder is said here, with what repairs it.
+  if (std::filesystem::exists(suite_folder + "/runs.jsonl") || std::filesystem::exists(suite_folder + "/runs.csv")) {
+    const std::vector<std::string> problems = ib::runs_table_problems(suite_folder);
+    if (!problems.empty()) {
+      std::string text;
+      for (std::size_t i = 0; i < problems.size() && i < 5; ++i) text += (i ? "; " : "") + problems[i];
+      if (problems.size() > 5) text += "; and " + std::to_string(problems.size() - 5) + " more";
+      throw std::invalid_argument(suite_folder + ": its results are damaged (" + text +
+                                  "); continue the suite with --resume, which repairs its records and runs again what they lack");
+    }
+  }
   if (std::filesystem::exists(suite_folder + "/runs.csv")) {
     std::error_code error;
     std::filesystem::create_directories(folder, error);

@@ -1,10 +1,24 @@
 // `run`: one scenario with one simulator and law, compared with the reference run here first.
 #include "cli/commands.h"
 
-#include <cmath>
-#include <cstdio>
-#include <optional>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <thread>
+
+#include "harness/number_text.h"
+#include "harness/plausibility.h"
+#include "harness/reporters.h"
+#include "harness/run_files.h"
 #include "harness/run_job.h"
 #include "model/scenario_toml.h"
 #include "simulators/catalog.h"
@@ -45,23 +59,9 @@ void print_record(const ib::RunRecord& r) {
               shown(r.load_average, "%.2f", "unknown").c_str());
 }
 
-}  // namespace
 
-int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
-                double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
-                const MeasurementOptions& measurement_options) {
-  const ib::Scenario scenario = ib::load_scenario(path);
-  require_engine(engine);
-  if (!(rate_hz > 0)) throw std::invalid_argument("--rate " + std::to_string(rate_hz) + ": allowed: > 0 Hz");
-  ib::JobSpec job;
-  job.scenario_path = path;
-  job.engine = engine;
-  job.settings.law = parse_law(law_name);
-  job.settings.output_rate_hz = rate_hz;
-  job.settings.series_start_s = series_start_s;
-  job.settings.time_step_s = time_step_s;
-  job.settings.options = parse_options(option_pairs);
-  const ib::Measurement measurement = measurement_options.build();
+int run_and_print(const ib::Scenario& scenario, ib::JobSpec job, const ib::Measurement& measurement,
+                  const std::string& engine, const std::string& out) {
   if (measurement.window_s) ib::warn_if_window_in_transient(scenario, measurement);
   // An engine is compared with the reference of the same scenario and law, run here first.
   std::optional<ib::ReferenceData> beam, chain;
@@ -70,18 +70,111 @@ int command_run(const std::string& path, const std::string& engine, const std::s
     reference.engine = "reference";
     reference.settings.options.clear();
     reference.settings.time_step_s = 0;
-    beam.emplace();
-    ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*beam, ib::make_simulator);
+    // a reference that did not end stable is no yardstick: the run's accuracy is then "not available"
+    const auto run_reference = [&](std::optional<ib::ReferenceData>& data, const char* which) {
+      data.emplace();
+      const ib::RunRecord r = ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*data, ib::make_simulator);
+      if (r.verdict == ib::Verdict::unstable || r.verdict == ib::Verdict::failed) {
+        data.reset();
+        job.missing_reference += std::string(job.missing_reference.empty() ? "" : "; ") + "the " + which + " reference run was " +
+                                 ib::to_string(r.verdict) + " (" + r.reason + ")";
+      }
+    };
+    run_reference(beam, "beam");
     if (const auto links = ib::make_simulator(engine)->chain_links(scenario, job.settings)) {
       reference.settings.options = ib::simulator_catalog().chain_reference_options(*links);
-      chain.emplace();
-      ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*chain, ib::make_simulator);
+      run_reference(chain, "chain");
     }
   }
   const ib::RunRecord record = ib::run_job(scenario, job, measurement, beam ? &*beam : nullptr, chain ? &*chain : nullptr, out, nullptr, ib::make_simulator);
   print_record(record);
   std::printf("  files in %s\n", out.c_str());
   return record.verdict == ib::Verdict::unstable || record.verdict == ib::Verdict::failed ? kExitRunNotOk : kExitOk;
+}
+
+
+// Runs `work` in a child process and waits at most time_limit_s for it: the exit code it returned, or
+// nullopt when it was stopped at the limit (so that `run` ends like a suite's job, never hangs).
+std::optional<int> within_time_limit(double time_limit_s, const std::function<int()>& work) {
+  std::fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error(std::string("cannot start the run's process: ") + std::strerror(errno));
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    int code = kExitBadInput;
+    try {
+      code = work();
+    } catch (const ib::OutputError& e) {
+      std::fprintf(stderr, "impactbench: %s\n", e.what());
+      code = kExitOutputError;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "impactbench: %s\n", e.what());
+    }
+    std::fflush(nullptr);
+    _exit(code);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(time_limit_s);
+  for (int status = 0;;) {
+    const pid_t ended = waitpid(pid, &status, WNOHANG);
+    if (ended == pid) {
+      if (WIFEXITED(status)) return WEXITSTATUS(status);
+      throw std::runtime_error("the run's process died of signal " + std::to_string(WTERMSIG(status)) + " (" +
+                               strsignal(WTERMSIG(status)) + ")");
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      return std::nullopt;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+}  // namespace
+
+int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
+                double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
+                const MeasurementOptions& measurement_options, double time_limit_s) {
+  const ib::Scenario scenario = ib::load_scenario(path);
+  require_engine(engine);
+  ib::check_option("--time-limit", time_limit_s, 0, ib::Plausible::kMaxTimeLimit_s, "s");
+  if (out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
+  ib::JobSpec job;
+  job.scenario_path = path;
+  job.engine = engine;
+  job.settings.law = parse_law(law_name);
+  job.settings.output_rate_hz = rate_hz;
+  job.settings.series_start_s = series_start_s;
+  job.settings.time_step_s = time_step_s;
+  job.settings.options = parse_options(option_pairs);
+  if (time_step_s != 0 || engine == "reference") ib::check_run_size(scenario, job.settings);  // --dt 1e300: not 0 steps, ok
+  else {  // the engine's default step is its own: the rest of the size
+    ib::RunSettings sized = job.settings;
+    sized.time_step_s = 0;
+    ib::check_run_size(scenario, sized);
+  }
+  const ib::Measurement measurement = measurement_options.build();
+  if (measurement.window_s && *measurement.window_s > scenario.duration_s)
+    throw std::invalid_argument("--window " + std::to_string(*measurement.window_s) + ": allowed: at most the run (" + path +
+                                ": duration_s = " + std::to_string(scenario.duration_s) + " s)");
+  const std::optional<int> code = within_time_limit(time_limit_s, [&]() { return run_and_print(scenario, job, measurement, engine, out); });
+  if (code) return *code;
+  // recorded as a suite records a job past its limit
+  ib::RunRecord record;
+  record.job_id = ib::job_id(scenario.name, job);
+  record.scenario = scenario.name;
+  record.scenario_file = path;
+  record.engine = engine;
+  record.law = ib::to_string(job.settings.law);
+  record.time_step_s = time_step_s;
+  record.verdict = ib::Verdict::failed;
+  record.reason = "stopped at the time limit of " + ib::number_text(time_limit_s) + " s (--time-limit)";
+  record.timed_out = true;
+  record.duration_s = scenario.duration_s;
+  std::filesystem::create_directories(out);
+  ib::write_summary_json(out + "/summary.json", record);
+  std::printf("%s: failed: %s\n  files in %s\n", record.job_id.c_str(), record.reason.c_str(), out.c_str());
+  return kExitRunNotOk;
 }
 
 }  // namespace cli

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "harness/plausibility.h"
 #include "harness/run_files.h"
 #include "harness/suite.h"
 #include "model/simulator_options.h"
@@ -40,6 +41,7 @@ void record_command(const std::string& out, const ib::VerdictSettings& v) {
       {"stability_bounds",
        {{"displacement_fraction_of_length", v.stability.displacement_bound_fraction_of_length},
         {"penetration_gaps", v.stability.penetration_bound_gaps},
+        {"penetration_floor_m", v.stability.penetration_bound_floor_m},
         {"energy_growth_relative", v.stability.energy_growth_tolerance}}}};
   std::error_code error;
   std::filesystem::create_directories(out, error);  // when it cannot, the suite reports why (exit 3)
@@ -58,6 +60,8 @@ ib::StepSearchSettings parse_step_search(const SuiteOptions& o, ib::VerdictSetti
   s.min_step_s = parse_positive(range[0], "--step-range");
   s.max_step_s = parse_positive(range[1], "--step-range");
   if (s.min_step_s > s.max_step_s) throw std::invalid_argument("--step-range " + o.step_range + ": allowed: MIN <= MAX");
+  ib::check_option("--step-range MIN", s.min_step_s, ib::Plausible::kMinTimeStep_s, ib::Plausible::kMaxTimeStep_s, "s", true);
+  ib::check_option("--step-range MAX", s.max_step_s, ib::Plausible::kMinTimeStep_s, ib::Plausible::kMaxTimeStep_s, "s", true);
   for (const auto& pair : split(o.tolerances, ',')) {
     const auto eq = pair.find('=');
     const std::string name = pair.substr(0, eq);
@@ -85,27 +89,33 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
   ib::SuiteSettings s;
   s.simulators = ib::simulator_catalog();
   s.inputs = o.inputs.empty() ? std::vector<std::string>{std::string(IMPACTBENCH_SCENARIO_DIR) + "/paper"} : o.inputs;
-  s.engines = split(o.engines, ',');
+  std::string engine_names;
+  for (const auto& n : ib::simulator_names()) engine_names += (engine_names.empty() ? "" : ", ") + n;
+  s.engines = split_list(o.engines, "--engines", engine_names);
   for (const auto& e : s.engines) require_engine(e);
   s.laws.clear();
-  for (const auto& l : split(o.laws, ',')) s.laws.push_back(parse_law(l));
-  for (const auto& dt : split(o.time_steps, ',')) {
-    std::size_t used = 0;
-    double value = 0;
-    try {
-      value = std::stod(dt, &used);
-    } catch (const std::exception&) {
+  for (const auto& l : split_list(o.laws, "--laws", "hertz, viscoelastic, newton")) s.laws.push_back(parse_law(l));
+  using ib::Plausible;
+  if (!o.time_steps.empty())
+    for (const auto& dt : split_list(o.time_steps, "--dt", "time steps in seconds")) {
+      std::size_t used = 0;
+      double value = 0;
+      try {
+        value = std::stod(dt, &used);
+      } catch (const std::exception&) {
+      }
+      if (used != dt.size()) throw std::invalid_argument("--dt " + dt + ": not a number; allowed: time steps in seconds, comma-separated");
+      ib::check_option("--dt", value, Plausible::kMinTimeStep_s, Plausible::kMaxTimeStep_s, "s", true);
+      s.time_steps_s.push_back(value);
     }
-    if (used != dt.size() || !(value > 0)) throw std::invalid_argument("--dt " + dt + ": allowed: time steps > 0 s, comma-separated");
-    s.time_steps_s.push_back(value);
-  }
-  for (const auto& path : split(o.paths, ',')) {
+  for (const auto& path : o.paths.empty() ? std::vector<std::string>{} : split_list(o.paths, "--paths", ib::contact_path_names())) {
     if (!ib::contact_path_from_string(path))
       throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
     s.contact_paths.push_back(path);
   }
-  if (o.jobs < 1) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: >= 1");
-  if (!(o.time_limit_s > 0)) throw std::invalid_argument("--time-limit: allowed: > 0 s");
+  if (o.jobs < 1 || o.jobs > 1024) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: 1 to 1024");
+  ib::check_option("--time-limit", o.time_limit_s, 0, Plausible::kMaxTimeLimit_s, "s");
+  if (o.out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
   // --option ENGINE.NAME=VALUE
   for (const auto& pair : o.options) {
     const auto dot = pair.find('.'), eq = pair.find('=');
@@ -121,13 +131,15 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
     run.options = engine == "reference" ? s.reference_options : s.engine_options[engine];
     ib::make_simulator(engine)->check_settings(run);
   }
+  ib::check_option("--rate", o.rate_hz, Plausible::kMinRate_hz, Plausible::kMaxRate_hz, "Hz", true);
   s.output_rate_hz = o.rate_hz;
-  if (o.max_duration_s < 0) throw std::invalid_argument("--duration: allowed: > 0 s");
+  if (o.duration_given) ib::check_option("--duration", o.max_duration_s, 0, Plausible::kMaxDuration_s, "s");
   s.max_duration_s = o.max_duration_s;
   s.jobs = o.jobs;
   s.time_limit_s = o.time_limit_s;
   s.out = o.out;
   s.resume = o.resume;
+  s.extend = o.extend;
   s.measurement = measurement_options.build();
   if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
   s.resume_command = resume_command(g_argc, g_argv);
@@ -148,13 +160,19 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
                  outcome.jobs_skipped + outcome.jobs_run, total.c_str(), resume_command(g_argc, g_argv).c_str());
     return kExitInterrupted + outcome.interrupted_by;
   }
-  std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed\n",
-              outcome.jobs_run, o.out.c_str(), outcome.jobs_skipped, outcome.not_ok);
+  if (outcome.jobs_stopped > 0) {  // a worker got a signal from outside before the suite did (or alone)
+    std::fprintf(stderr, "\nimpactbench: %d jobs are not recorded: stopped by signal %d from outside, or compared with a reference that was; run them with: %s\n",
+                 outcome.jobs_stopped, outcome.stopped_by, resume_command(g_argc, g_argv).c_str());
+    return kExitInterrupted + outcome.stopped_by;
+  }
+  std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed; "
+              "of all %d results there, %d unstable or failed\n",
+              outcome.jobs_run, o.out.c_str(), outcome.jobs_skipped, outcome.not_ok, outcome.recorded, outcome.not_ok_recorded);
   if (o.find_steps)
     std::printf("suite: %d step searches recorded in %s/steps.csv\n", outcome.step_searches, o.out.c_str());
   if (s.shard)
     std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", o.shard.c_str());
-  return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
+  return outcome.not_ok_recorded > 0 ? kExitRunNotOk : kExitOk;  // every result, also those of an earlier invocation
 }
 
 }  // namespace cli

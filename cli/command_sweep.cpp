@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "cli/commands.h"
+#include "harness/plausibility.h"
 #include "harness/sweep.h"
 #include "model/simulator_options.h"
 #include "simulators/catalog.h"
@@ -43,7 +44,7 @@ int command_sweep(const SweepOptions& o, const MeasurementOptions& measurement_o
   s.scenario_path = o.scenario;
   s.ratios = ib::parse_ratios(o.ratios);
   s.starts.clear();
-  for (const auto& start : split(o.start, ',')) {
+  for (const auto& start : split_list(o.start, "--start", "rest, up, down or both (up and down)")) {
     const auto add = [&](ib::SweepStart value) {
       if (std::find(s.starts.begin(), s.starts.end(), value) == s.starts.end()) s.starts.push_back(value);
     };
@@ -54,14 +55,19 @@ int command_sweep(const SweepOptions& o, const MeasurementOptions& measurement_o
       throw std::invalid_argument("--start " + o.start + ": allowed: rest, up, down or both (up and down), comma-separated");
   }
   if (s.starts.empty()) throw std::invalid_argument("--start '': allowed: rest, up, down or both (up and down), comma-separated");
-  s.engines = split(o.engines, ',');
-  if (s.engines.empty()) throw std::invalid_argument("--engines '" + o.engines + "': allowed: a comma-separated list of simulators");
+  std::string engine_names;
+  for (const auto& n : ib::simulator_names()) engine_names += (engine_names.empty() ? "" : ", ") + n;
+  s.engines = split_list(o.engines, "--engines", engine_names);
   for (const auto& e : s.engines) require_engine(e);
   s.laws.clear();
-  for (const auto& l : split(o.laws, ',')) s.laws.push_back(parse_law(l));
+  for (const auto& l : split_list(o.laws, "--laws", "hertz, viscoelastic, newton")) s.laws.push_back(parse_law(l));
   if (s.laws.empty()) throw std::invalid_argument("--laws '" + o.laws + "': allowed: hertz, viscoelastic, newton, comma-separated");
-  for (const auto& dt : split(o.time_steps, ',')) s.time_steps_s.push_back(parse_positive(dt, "--dt"));
-  for (const auto& path : split(o.paths, ',')) {
+  if (!o.time_steps.empty())
+    for (const auto& dt : split_list(o.time_steps, "--dt", "time steps in seconds")) {
+      s.time_steps_s.push_back(parse_positive(dt, "--dt"));
+      ib::check_option("--dt", s.time_steps_s.back(), ib::Plausible::kMinTimeStep_s, ib::Plausible::kMaxTimeStep_s, "s", true);
+    }
+  for (const auto& path : o.paths.empty() ? std::vector<std::string>{} : split_list(o.paths, "--paths", ib::contact_path_names())) {
     if (!ib::contact_path_from_string(path))
       throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
     s.contact_paths.push_back(path);
@@ -107,6 +113,11 @@ int command_sweep(const SweepOptions& o, const MeasurementOptions& measurement_o
   if (outcome.interrupted_by != 0) {
     std::fprintf(stderr, "\nimpactbench: sweep interrupted; continue with: %s\n", s.resume_command.c_str());
     return kExitInterrupted + outcome.interrupted_by;
+  }
+  if (outcome.chains_stopped > 0) {  // a chain's process got a signal from outside before the sweep did (or alone)
+    std::fprintf(stderr, "\nimpactbench: %d chains were stopped by signal %d from outside before their end; continue with: %s\n",
+                 outcome.chains_stopped, outcome.stopped_by, s.resume_command.c_str());
+    return kExitInterrupted + outcome.stopped_by;
   }
   std::printf("sweep: %d ratios recorded in %s/sweep.csv (%d run now, %d already recorded), %d not ok\n",
               outcome.rows_run + outcome.rows_skipped, o.out.c_str(), outcome.rows_run, outcome.rows_skipped, outcome.not_ok);

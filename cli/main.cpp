@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
 
   std::string scenario_path, engine = "reference", law = "hertz", out_dir, list_folder = std::string(IMPACTBENCH_SCENARIO_DIR);
   bool json = false;
-  double rate_hz = 4096, series_start_s = -1, time_step_s = 0;
+  double rate_hz = 4096, series_start_s = -1, time_step_s = 0, run_time_limit_s = 600;
   std::vector<std::string> options;
   MeasurementOptions run_measurement, suite_measurement;
   SuiteOptions suite_options;
@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
   run->add_option("--dt", time_step_s, "time step of fixed-step engines [s]");
   run->add_option("--option", options, "simulator option name=value, repeatable (see 'impactbench list')");
   run_measurement.add_to(run, /*with_timing=*/true);
+  run->add_option("--time-limit", run_time_limit_s, "the run (its references included) is stopped past this and recorded as failed [s]")
+      ->capture_default_str();
 
   CLI::App* suite = app.add_subcommand("suite", "run scenarios x laws x engines x time steps in worker processes; "
                                                 "append DIR/runs.csv, DIR/runs.jsonl and DIR/runs/<job>/");
@@ -57,7 +59,11 @@ int main(int argc, char** argv) {
   suite->add_option("--paths", suite_options.paths, "comma-separated contact paths of the engines: matched, injected, native; default: each engine's");
   suite->add_option("--jobs", suite_options.jobs, "worker processes")->capture_default_str();
   suite->add_option("--out", suite_options.out, "output folder")->required();
-  suite->add_flag("--resume", suite_options.resume, "skip the jobs already recorded in the output folder");
+  suite->add_flag("--resume", suite_options.resume,
+                  "continue the suite recorded in the output folder (same settings): skip the jobs already recorded");
+  suite->add_flag("--extend", suite_options.extend,
+                  "add this suite to a folder that holds suites with other settings (a study's parts); a job it shares "
+                  "with the folder must have been recorded with the same settings");
   suite->add_option("--time-limit", suite_options.time_limit_s, "per job; a job past it is stopped and recorded [s]")->capture_default_str();
   suite->add_option("--rate", suite_options.rate_hz, "output series sample rate [Hz]")->capture_default_str();
   suite->add_option("--duration", suite_options.max_duration_s,
@@ -134,10 +140,12 @@ int main(int argc, char** argv) {
     const int code = app.exit(error);
     return code == 0 ? kExitOk : kExitBadInput;
   }
+  suite_options.duration_given = suite->count("--duration") > 0;
   try {
     if (modes->parsed()) return command_modes(scenario_path, json, options);
     if (run->parsed())
-      return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options, run_measurement);
+      return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options, run_measurement,
+                         run_time_limit_s);
     if (suite->parsed()) return command_suite(suite_options, suite_measurement);
     if (sweep->parsed()) return command_sweep(sweep_options, sweep_measurement);
     if (report->parsed()) return command_report(report_folder, report_out);

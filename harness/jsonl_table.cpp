@@ -1,8 +1,11 @@
 #include "harness/jsonl_table.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -53,22 +56,65 @@ void append_table_row(const std::string& jsonl_path, const std::string& csv_path
   append_text_file(csv_path, (fresh ? csv_header : "") + csv_row);
 }
 
-std::set<std::string> repair_jsonl_table(const std::string& jsonl_path, const std::string& csv_path,
-                                         const std::vector<std::string>& columns,
-                                         const std::function<std::string(const std::string& line)>& key_of) {
-  std::set<std::string> keys;
+JsonlTable scan_jsonl_table(const std::string& jsonl_path, const std::string& csv_path, const KeyOf& key_of) {
+  JsonlTable table;
+  std::error_code kind_error;
+  if (std::filesystem::exists(jsonl_path, kind_error) && !std::filesystem::is_regular_file(jsonl_path, kind_error))
+    throw std::runtime_error(jsonl_path + ": not a file (a folder?); expected the results' JSON lines");
   errno = 0;
   std::ifstream in(jsonl_path, std::ios::binary);
   if (!in) {
-    if (errno == ENOENT) return keys;
-    throw std::runtime_error(jsonl_path + ": cannot read: " + std::strerror(errno));
+    if (errno != ENOENT) throw std::runtime_error(jsonl_path + ": cannot read: " + std::strerror(errno));
+    std::ifstream csv(csv_path);
+    std::string header, row;
+    if (std::getline(csv, header) && std::getline(csv, row) && !row.empty())
+      throw std::runtime_error(jsonl_path + ": missing, but " + csv_path + " holds results: the record of these results "
+                               "(which every reader and --resume trusts) is gone; restore it, or choose another folder");
+    return table;
   }
+  std::map<std::string, std::size_t> at;  // key -> index in records
+  std::set<std::string> conflicting;
+  int line_number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_number;
+    if (line.empty()) continue;
+    std::string problem;
+    const std::string key = key_of(line, problem);
+    const std::string where = jsonl_path + " line " + std::to_string(line_number) + ": ";
+    if (key.empty()) {
+      table.problems.push_back(where + (problem.empty() ? "not a whole record (cut short?)" : problem) +
+                               "; dropped: its job runs again");
+      continue;
+    }
+    const auto found = at.find(key);
+    if (found == at.end()) {
+      at[key] = table.records.size();
+      table.records.emplace_back(key, line);
+    } else if (table.records[found->second].second == line) {
+      table.problems.push_back(where + key + " recorded again, the same; kept once");
+    } else if (conflicting.insert(key).second) {
+      table.problems.push_back(where + key + " recorded again with other values; both dropped: its job runs again");
+    }
+  }
+  if (in.bad()) throw std::runtime_error(jsonl_path + ": read error");
+  if (!conflicting.empty())
+    table.records.erase(std::remove_if(table.records.begin(), table.records.end(),
+                                       [&](const auto& record) { return conflicting.count(record.first) > 0; }),
+                        table.records.end());
+  return table;
+}
+
+std::set<std::string> repair_jsonl_table(const std::string& jsonl_path, const std::string& csv_path,
+                                         const std::vector<std::string>& columns, const KeyOf& key_of,
+                                         std::vector<std::string>* repairs) {
+  std::set<std::string> keys;
+  const JsonlTable table = scan_jsonl_table(jsonl_path, csv_path, key_of);  // throws: unreadable, or CSV rows without record
+  if (!std::filesystem::exists(jsonl_path)) return keys;                     // no table yet
+  if (repairs) repairs->insert(repairs->end(), table.problems.begin(), table.problems.end());
   std::string jsonl, csv;
   for (const std::string& name : columns) csv += (csv.empty() ? "" : ",") + name;
   csv += "\n";
-  for (std::string line; std::getline(in, line);) {
-    const std::string key = key_of(line);
-    if (key.empty()) continue;  // its job (or search) runs again
+  for (const auto& [key, line] : table.records) {
     keys.insert(key);
     jsonl += line + "\n";
     const nlohmann::json j = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
@@ -82,8 +128,6 @@ std::set<std::string> repair_jsonl_table(const std::string& jsonl_path, const st
     }
     csv += row + "\n";
   }
-  if (in.bad()) throw std::runtime_error(jsonl_path + ": read error");
-  in.close();
   replace_text_file(jsonl_path, jsonl);
   replace_text_file(csv_path, csv);
   return keys;

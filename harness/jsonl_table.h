@@ -35,13 +35,27 @@ nlohmann::ordered_json json_object(const std::vector<Field>& row);
 void append_table_row(const std::string& jsonl_path, const std::string& csv_path, const std::string& csv_header,
                       const std::string& csv_row, const std::string& json_line);
 
-// Drops every line of `jsonl_path` that `key_of` gives no key for (a line a kill cut short, or one that
-// is not a record of this table), rewrites the CSV from the lines kept, laid out by `columns` (the
+// A record's key, or "" with why the line is not a whole record of this table: a line a kill cut short,
+// a value of the wrong type, a run folder that is gone. One record per key, always.
+using KeyOf = std::function<std::string(const std::string& line, std::string& problem)>;
+
+// The table as read: its whole records in order, one per key, and what was wrong with the others. A key
+// on several identical lines is kept once; a key on lines that disagree is kept on none (which of them
+// is the job's result cannot be told). A missing JSONL is an empty table, unless the CSV beside it holds
+// rows (the record is gone, the copy is not: std::runtime_error, so that nothing runs twice); a file
+// that cannot be read throws std::runtime_error naming it.
+struct JsonlTable {
+  std::vector<std::pair<std::string, std::string>> records;  // (key, line)
+  std::vector<std::string> problems;                         // "<file> line N: <what>; <what was done>"
+};
+JsonlTable scan_jsonl_table(const std::string& jsonl_path, const std::string& csv_path, const KeyOf& key_of);
+
+// Keeps only the whole records (scan_jsonl_table), rewrites the CSV from them, laid out by `columns` (the
 // header's names, whatever the order or the gaps of a line's keys; each number as its shortest exact
-// text, which holds the digits the record was written with), and returns the keys. A missing file is
-// an empty table; one that cannot be read throws std::runtime_error naming it.
+// text, which holds the digits the record was written with), and returns the keys; `repairs` (when
+// given) gets what was dropped and why. A dropped record's job runs again.
 std::set<std::string> repair_jsonl_table(const std::string& jsonl_path, const std::string& csv_path,
-                                         const std::vector<std::string>& columns,
-                                         const std::function<std::string(const std::string& line)>& key_of);
+                                         const std::vector<std::string>& columns, const KeyOf& key_of,
+                                         std::vector<std::string>* repairs = nullptr);
 
 }  // namespace ib

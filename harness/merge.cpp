@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "harness/folder_lock.h"
 #include "harness/recorded_run.h"
 #include "harness/reporters.h"
 #include "harness/run_files.h"
@@ -169,6 +170,32 @@ struct Recorded {
   std::set<std::string> jobs, step_searches;
 };
 
+// Shards of one suite (or study) hold the same suites: each folder's plans name suites (a digest of the
+// whole plan and its settings, divided into N shards). Two folders with no suite in common are shards of
+// different suites, whose merge would be neither: refused, naming both. (Folders that share some suites
+// but not all are one study's shards, one stopped before its later parts: check_completeness says which.)
+void check_same_suites(const MergeSettings& settings) {
+  std::string first_folder;
+  std::map<std::pair<std::string, int>, std::string> first;  // (digest, N) -> the command that made it
+  for (const std::string& folder : settings.inputs) {
+    std::map<std::pair<std::string, int>, std::string> suites;
+    for (const ShardPlan& plan : read_shard_plans(folder)) suites.emplace(std::pair{plan.suite, plan.shard.count}, plan.resume_command);
+    if (suites.empty()) continue;  // a whole suite's folder: its records are joined as they are
+    if (first_folder.empty()) {
+      first_folder = folder;
+      first = suites;
+      continue;
+    }
+    bool shared = false;
+    for (const auto& [suite, command] : suites) shared = shared || first.count(suite) > 0;
+    if (!shared)
+      throw std::runtime_error(first_folder + " and " + folder + " are shards of different suites (" +
+                               first.begin()->second + "; " + suites.begin()->second +
+                               "): merge the shards of one suite, made by the same command with the same settings "
+                               "and the same shard count N");
+  }
+}
+
 // Which shards lack planned results in their own folder (what their resume command would run), and
 // which shards of a suite none of the folders holds.
 void check_completeness(const MergeSettings& settings, const std::map<std::string, Recorded>& recorded,
@@ -237,6 +264,7 @@ static MergeOutcome merge_sweep_shards(const MergeSettings& settings) {
   std::error_code error;
   fs::create_directories(settings.out, error);
   if (error) throw OutputError(output_error_text(settings.out, "create the output folder", error.value()));
+  const FolderLock lock(settings.out, "merge");
   for (const auto& [id, kept] : rows) {
     join_run_folder(kept.folder + "/runs/" + id, settings.out + "/runs/" + id);
     outcome.runs_in_several += kept.folders > 1 ? 1 : 0;
@@ -249,6 +277,7 @@ static MergeOutcome merge_sweep_shards(const MergeSettings& settings) {
 
 MergeOutcome merge_suites(const MergeSettings& settings) {
   check_inputs(settings);
+  check_same_suites(settings);
   if (fs::exists(settings.inputs.front() + "/sweep.json")) return merge_sweep_shards(settings);
   // Read and check everything before writing anything.
   MergeOutcome outcome;
@@ -259,6 +288,13 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
   for (const std::string& folder : settings.inputs) {
     Recorded& in_folder = recorded[folder];
     check_header(folder + "/runs.csv", csv_header(RunRecord{}));
+    if (const std::vector<std::string> problems = runs_table_problems(folder); !problems.empty()) {
+      std::string text;
+      for (std::size_t i = 0; i < problems.size() && i < 5; ++i) text += (i ? "; " : "") + problems[i];
+      if (problems.size() > 5) text += "; and " + std::to_string(problems.size() - 5) + " more";
+      throw std::runtime_error(folder + ": its results are damaged (" + text + "); continue that shard with --resume, "
+                               "which repairs its records and runs again what they lack, then merge");
+    }
     check_header(folder + "/steps.csv", steps_csv_header());
     for (const auto& [id, line] : recorded_run_lines(folder)) {
       join(runs, id, line, folder, "runs.jsonl", "job " + id, run_timing);
@@ -278,6 +314,7 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
   std::error_code error;
   fs::create_directories(settings.out, error);
   if (error) throw OutputError(output_error_text(settings.out, "create the output folder", error.value()));
+  const FolderLock lock(settings.out, "merge");
   // The run folders first, the records last: an OUT with a runs.jsonl has everything it lists.
   for (const auto& [id, kept] : runs) join_run_folder(kept.folder + "/runs/" + id, settings.out + "/runs/" + id);
   std::string jsonl;

@@ -1,5 +1,8 @@
 #include "harness/reporters.h"
 
+#include <filesystem>
+#include <variant>
+
 #include <nlohmann/json.hpp>
 
 #include "harness/jsonl_table.h"
@@ -45,13 +48,48 @@ void append_run(const std::string& folder, const RunRecord& record) {
   append_rows(folder, csv_row(record), json_line(record));
 }
 
-std::set<std::string> repair_and_list_runs(const std::string& folder) {
-  // A line that is not a run's record (cut short by a kill) is dropped: its job runs again.
-  const auto job_id_of = [](const std::string& line) {
+static KeyOf run_key_of(const std::string& folder) {
+  return [folder](const std::string& line, std::string& problem) -> std::string {
     const RecordedRun run = read_recorded_run(line);
-    return run.readable ? run.job_id : std::string();
+    if (!run.readable || run.job_id.empty()) return "";  // cut short by a kill, or not a run's record
+    const Json j = Json::parse(line);                    // readable: it parsed
+    // every column of this build's layout that the line has, of its type (a number may be null: NaN)
+    for (const Field& f : fields(RunRecord{})) {
+      const auto value = j.find(f.name);
+      if (value == j.end()) continue;
+      const bool text = std::holds_alternative<std::string>(f.value);
+      if (text ? !value->is_string() : !(value->is_number() || value->is_null())) {
+        problem = run.job_id + ": " + f.name + " is " + value->dump() + ", expected " + (text ? "text" : "a number");
+        return "";
+      }
+    }
+    // a run that ran has its folder (a job that could not start has none)
+    if ((run.verdict == Verdict::ok || run.verdict == Verdict::inaccurate || run.verdict == Verdict::unstable) &&
+        !std::filesystem::exists(folder + "/runs/" + run.job_id + "/summary.json")) {
+      problem = run.job_id + ": its run folder " + folder + "/runs/" + run.job_id + "/ (summary.json) is gone";
+      return "";
+    }
+    return run.job_id;
   };
-  return repair_jsonl_table(folder + "/runs.jsonl", folder + "/runs.csv", column_names(fields(RunRecord{})), job_id_of);
+}
+
+std::set<std::string> repair_and_list_runs(const std::string& folder, std::vector<std::string>* repairs) {
+  return repair_jsonl_table(folder + "/runs.jsonl", folder + "/runs.csv", column_names(fields(RunRecord{})),
+                            run_key_of(folder), repairs);
+}
+
+void drop_runs(const std::string& folder, const std::set<std::string>& job_ids) {
+  const KeyOf keep = [&job_ids](const std::string& line, std::string&) {
+    const RecordedRun run = read_recorded_run(line);
+    return run.readable && !job_ids.count(run.job_id) ? run.job_id : std::string();
+  };
+  repair_jsonl_table(folder + "/runs.jsonl", folder + "/runs.csv", column_names(fields(RunRecord{})), keep);
+  std::error_code error;
+  for (const std::string& id : job_ids) std::filesystem::remove_all(folder + "/runs/" + id, error);
+}
+
+std::vector<std::string> runs_table_problems(const std::string& folder) {
+  return scan_jsonl_table(folder + "/runs.jsonl", folder + "/runs.csv", run_key_of(folder)).problems;
 }
 
 }  // namespace ib

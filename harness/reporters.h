@@ -4,6 +4,7 @@
 
 #include <set>
 #include <string>
+#include <vector>
 
 #include "harness/run_record.h"
 
@@ -23,9 +24,17 @@ void append_run(const std::string& folder, const RunRecord& record);
 // The same with the row and line already rendered (by a job's own process).
 void append_rows(const std::string& folder, const std::string& csv_row_text, const std::string& json_line_text);
 
-// For --resume: runs.jsonl is the record of what finished. Drops a line a kill cut short, rewrites
-// runs.csv from runs.jsonl (so the two agree whatever moment the kill came), and returns the job ids
-// recorded. Empty when there is no runs.jsonl.
-std::set<std::string> repair_and_list_runs(const std::string& folder);
+// For --resume: runs.jsonl is the record of what finished. One record per job, always: drops a line a
+// kill cut short, a line with a value of the wrong type, a record whose run folder is gone, a job
+// recorded twice with other values (all its lines) and a repeated identical line (kept once), says so in
+// `repairs`, rewrites runs.csv from runs.jsonl (so the two agree whatever moment the kill came), and
+// returns the job ids recorded. A dropped job runs again. Empty when there is no runs.jsonl; throws
+// std::runtime_error when runs.jsonl is gone but runs.csv holds rows.
+std::set<std::string> repair_and_list_runs(const std::string& folder, std::vector<std::string>* repairs = nullptr);
+// Removes these jobs' records (runs.jsonl, runs.csv) and run folders: the rows of a scenario file that
+// could not be read, once it can.
+void drop_runs(const std::string& folder, const std::set<std::string>& job_ids);
+// The same checks without changing anything (merge refuses a damaged shard): the problems found.
+std::vector<std::string> runs_table_problems(const std::string& folder);
 
 }  // namespace ib

@@ -226,6 +226,27 @@ void read_events_csv(const std::string& path, Trajectory& t) {
 
 void read_series_csv(std::istream& in, const std::string& path, Trajectory& t) {
   const auto rows = read_table(in, path, kSeriesHeader, 12);
+  // The metrics assume a series sampled at one rate (the sensor's windows, the peaks between samples):
+  // times finite, increasing, evenly spaced (within 1e-6 of the spacing, what 17-digit times keep).
+  // Line numbers count the header as line 1.
+  if (rows.size() < 2) throw std::runtime_error(path + ": " + std::to_string(rows.size()) + " samples; allowed: at least 2");
+  for (std::size_t i = 0; i < rows.size(); ++i) {  // first the order, then the spacing: the plainer fault first
+    const double time = rows[i][0];
+    const std::string where = path + ":" + std::to_string(i + 2) + ": time_s = ";
+    if (!std::isfinite(time)) throw std::runtime_error(where + "'" + std::to_string(time) + "'; allowed: a finite time");
+    if (i > 0 && !(time > rows[i - 1][0]))
+      throw std::runtime_error(where + exact_number_text(time) + " after " + exact_number_text(rows[i - 1][0]) +
+                               "; allowed: increasing times");
+  }
+  const double spacing = (rows.back()[0] - rows.front()[0]) / static_cast<double>(rows.size() - 1);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double time = rows[i][0];
+    const std::string where = path + ":" + std::to_string(i + 2) + ": time_s = ";
+    const double expected = rows.front()[0] + spacing * static_cast<double>(i);
+    if (std::abs(time - expected) > 1e-6 * spacing + 1e-12 * std::abs(time))
+      throw std::runtime_error(where + exact_number_text(time) + ", expected " + exact_number_text(expected) +
+                               "; allowed: samples evenly spaced (one output rate, here " + number_text(1 / spacing) + " Hz)");
+  }
   t = Trajectory{};
   t.reserve(rows.size());
   for (const auto& r : rows) {
@@ -249,7 +270,18 @@ void read_series_csv(std::istream& in, const std::string& path, Trajectory& t) {
 
 void read_events_csv(std::istream& in, const std::string& path, Trajectory& t) {
   t.events.clear();
+  int line = 1;
   for (const auto& r : read_table(in, path, kEventsHeader, 9)) {
+    ++line;
+    const std::string where = path + ":" + std::to_string(line) + ": ";
+    if (!std::isfinite(r[0]) || !std::isfinite(r[1]))
+      throw std::runtime_error(where + "onset or end time not a finite number; allowed: finite times");
+    if (r[1] < r[0])
+      throw std::runtime_error(where + "the contact ends (" + exact_number_text(r[1]) + " s) before it begins (" +
+                               exact_number_text(r[0]) + " s); allowed: end_time_s >= onset_time_s");
+    if (!t.events.empty() && r[0] < t.events.back().onset_time_s)
+      throw std::runtime_error(where + "onset " + exact_number_text(r[0]) + " s before the previous one (" +
+                               exact_number_text(t.events.back().onset_time_s) + " s); allowed: events in time order");
     ContactEvent e;
     e.onset_time_s = r[0];
     e.end_time_s = r[1];

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "physics/modal_model.h"
+#include "harness/number_text.h"
 #include "harness/reporters.h"
 #include "harness/run_files.h"
 
@@ -102,8 +103,12 @@ double diagnostic(const RunResult& result, const std::string& name) {
 // error a user sees, are in the record beside it). Only a stable run (verdict ok) is judged, and
 // never a reference: a reference is what others are judged against (the chain reference's distance
 // from the beam is the discretisation's, reported as data).
-void judge_accuracy_of(RunRecord& record, const Measurement& measurement) {
+void judge_accuracy_of(RunRecord& record, const Measurement& measurement, const std::string& missing_reference) {
   if (record.engine == "reference" || record.verdict != Verdict::ok) return;
+  if (!missing_reference.empty()) {
+    record.reason = "stable; accuracy not available: " + missing_reference;
+    return;
+  }
   const bool on_chain = record.errors_vs_chain_reference.has_value();
   const auto& accuracy_errors = on_chain ? record.errors_vs_chain_reference : record.errors_vs_reference;
   if (!accuracy_errors) return;
@@ -180,7 +185,7 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   const Metrics metrics = compute_metrics(result.trajectory, metrics_settings);
   record.metrics = metrics;
   compare_with_references(record, metrics, result.trajectory, beam_reference, chain_reference, metrics_settings);
-  judge_accuracy_of(record, measurement);
+  judge_accuracy_of(record, measurement, job.missing_reference);
   if (!run_folder.empty()) {
     std::error_code error;
     std::filesystem::create_directories(run_folder, error);
@@ -202,7 +207,8 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
 RunRecord score_for_law(const Scenario& scenario, const RunRecord& run, const ReferenceData& run_data,
                         const std::string& job_id, ContactLaw law, const Measurement& measurement,
                         const ReferenceData* beam_reference, const ReferenceData* chain_reference,
-                        const std::string& source_folder, const std::string& run_folder) {
+                        const std::string& source_folder, const std::string& run_folder,
+                        const std::string& missing_reference) {
   RunRecord record = run;
   record.job_id = job_id;
   record.law = to_string(law);
@@ -213,7 +219,7 @@ RunRecord score_for_law(const Scenario& scenario, const RunRecord& run, const Re
   if (record.verdict == Verdict::inaccurate || record.verdict == Verdict::ok) {
     record.verdict = Verdict::ok;
     record.reason.clear();
-    judge_accuracy_of(record, measurement);
+    judge_accuracy_of(record, measurement, missing_reference);
   }
   if (!run_folder.empty()) {
     std::error_code error;
@@ -237,7 +243,17 @@ ReferenceData load_reference(const std::string& run_folder, const Scenario& scen
   ReferenceData data;
   read_series_csv(series_file(run_folder), data.trajectory);
   read_events_csv(run_folder + "/events.csv", data.trajectory);
-  data.metrics = compute_metrics(data.trajectory, metric_settings(scenario, measurement));
+  // The scoring window must lie in the series (a sample of slack at each end: the series' grid need not
+  // land on the run's end): metrics of a window past the data would all be NaN, and nothing would say why.
+  const MetricSettings settings = metric_settings(scenario, measurement);
+  const Trajectory& t = data.trajectory;
+  const double slack_s = (1 + 1e-9) / t.output_rate_hz;
+  if (settings.window_start_s < t.time_s.front() - slack_s || settings.window_end_s > t.time_s.back() + slack_s)
+    throw std::runtime_error(series_file(run_folder) + ": holds " + exact_number_text(t.time_s.front()) + " to " +
+                             exact_number_text(t.time_s.back()) + " s, but the scoring window is " +
+                             exact_number_text(settings.window_start_s) + " to " + exact_number_text(settings.window_end_s) +
+                             " s (" + scenario.source_path + " and --window); allowed: a window inside the series");
+  data.metrics = compute_metrics(data.trajectory, settings);
   return data;
 }
 

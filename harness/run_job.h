@@ -19,6 +19,10 @@ struct JobSpec {
   std::string scenario_path;
   std::string engine;
   RunSettings settings;                 // law, output rate, time step, options
+  // Why a reference this job is compared with is not there (it failed, or a signal stopped it); "" when
+  // every one is. A stable run is then "ok" for stability with its accuracy "not available: <why>" in its
+  // reason: never a silent ok.
+  std::string missing_reference;
 };
 
 // Which part of a run's series its folder keeps (series.csv.gz). The metrics need only the scoring window,
@@ -69,11 +73,12 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
 // simulation compared with that law's references and judged again for accuracy (stability does not
 // depend on the references). For the native contact path, which ignores the scenario's law. With
 // run_folder, writes its summary.json there and links the run's series and events files into it from
-// source_folder.
+// source_folder. missing_reference: as JobSpec's, for this law's references.
 RunRecord score_for_law(const Scenario& scenario, const RunRecord& run, const ReferenceData& run_data,
                         const std::string& job_id, ContactLaw law, const Measurement& measurement,
                         const ReferenceData* beam_reference, const ReferenceData* chain_reference,
-                        const std::string& source_folder, const std::string& run_folder);
+                        const std::string& source_folder, const std::string& run_folder,
+                        const std::string& missing_reference);
 
 // A finished run read back from its folder (series.csv, events.csv) with its metrics recomputed.
 ReferenceData load_reference(const std::string& run_folder, const Scenario& scenario, const Measurement& measurement);

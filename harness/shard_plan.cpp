@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -72,23 +73,30 @@ void record_shard_plan(const std::string& folder, const ShardPlan& plan) {
   j["jobs"] = plan.jobs;
   j["step_searches"] = plan.step_searches;
   j["resume_command"] = plan.resume_command;
-  // A line a kill cut short has no end: start on a line of our own.
-  std::ifstream existing(folder + kPlanFile, std::ios::binary | std::ios::ate);
-  const bool ends_open = existing && existing.tellg() > 0 && (existing.seekg(-1, std::ios::end), existing.peek() != '\n');
-  append_text_file(folder + kPlanFile, (ends_open ? "\n" : "") + j.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n");
+  // The whole file replaced through a rename: a kill never leaves half a line, so a line that is not a
+  // plan is damage, which read_shard_plans reports.
+  std::ifstream existing(folder + kPlanFile, std::ios::binary);
+  std::stringstream text;
+  if (existing) text << existing.rdbuf();
+  replace_text_file(folder + kPlanFile, text.str() + j.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n");
 }
 
 std::vector<ShardPlan> read_shard_plans(const std::string& folder) {
   std::vector<ShardPlan> plans;
   std::ifstream in(folder + kPlanFile);
+  int line_number = 0;
   for (std::string line; std::getline(in, line);) {
+    ++line_number;
     const Json j = Json::parse(line, nullptr, /*allow_exceptions=*/false);
-    if (!j.is_object() || !j.contains("shard") || !j["shard"].is_number_integer() || !j.contains("shards") ||
-        !j["shards"].is_number_integer() || !j.contains("suite") || !j["suite"].is_string() || !j.contains("resume_command"))
-      continue;
+    const bool plan_like = j.is_object() && j.contains("shard") && j["shard"].is_number_integer() && j.contains("shards") &&
+                           j["shards"].is_number_integer() && j.contains("suite") && j["suite"].is_string() &&
+                           j.contains("jobs") && j["jobs"].is_array() && j.contains("resume_command");
+    if (!plan_like || j["shard"].get<int>() < 1 || j["shard"].get<int>() > j["shards"].get<int>())
+      throw std::runtime_error(folder + kPlanFile + " line " + std::to_string(line_number) +
+                               ": not a shard's plan (expected shard K <= shards N, suite, jobs, resume_command); the "
+                               "folder is damaged: restore the file, or run the shard again into another --out");
     ShardPlan plan;
     plan.shard = Shard{j["shard"].get<int>(), j["shards"].get<int>()};
-    if (plan.shard.index < 1 || plan.shard.index > plan.shard.count) continue;  // not a plan this build writes
     plan.suite = j["suite"].get<std::string>();
     plan.jobs = strings_of(j, "jobs");
     plan.step_searches = strings_of(j, "step_searches");

@@ -44,7 +44,7 @@ std::string plan_digest(const std::vector<std::string>& planned);
 // --resume). Throws OutputError (run_files.h) naming the file.
 void record_shard_plan(const std::string& folder, const ShardPlan& plan);
 // The plans in DIR/shard.jsonl, in order; none when there is no such file. A line that is not a plan
-// (cut short by a kill) is skipped.
+// (damage: the file is replaced whole, never cut) throws std::runtime_error naming the file and line.
 std::vector<ShardPlan> read_shard_plans(const std::string& folder);
 
 }  // namespace ib

@@ -37,6 +37,11 @@ void SuiteRunner::run_step_searches() {
       progress_->estimate().expect(g.info.group_id, {}, 0);  // recorded before (--resume): nothing to come
       continue;
     }
+    if (reference_stopped(job)) {  // its reference was stopped from outside: the search waits for --resume
+      ++outcome_.jobs_stopped;
+      progress_->estimate().expect(g.info.group_id, {}, 0);
+      continue;
+    }
     const std::string& reference_id = g.with_chain ? job.chain_reference : job.beam_reference;
     const ReferenceFacts facts = recorded.count(reference_id) ? reference_from_json(recorded[reference_id]) : ReferenceFacts{};
     g.search = std::make_unique<StepSearch>(search_settings, facts, g.info.accuracy_reference);

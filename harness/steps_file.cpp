@@ -119,7 +119,7 @@ RecordedStepRow read_step_row(const std::string& json_line) {
 
 std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
   const std::vector<std::string> columns = column_names(step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}));
-  const auto key_of = [](const std::string& line) { return read_step_row(line).key; };
+  const auto key_of = [](const std::string& line, std::string&) { return read_step_row(line).key; };
   return repair_jsonl_table(folder + "/steps.jsonl", folder + "/steps.csv", columns, key_of);
 }
 

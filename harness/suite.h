@@ -30,6 +30,7 @@ struct SuiteSettings {
   double time_limit_s = 600;                       // per job; then it is stopped and recorded
   std::string out;                                 // output folder
   bool resume = false;
+  bool extend = false;   // --extend: add a suite with other settings to a folder that holds one (DIR/suite.jsonl)
   Measurement measurement;
   SimulatorCatalog simulators;                     // what runs the jobs (simulators/catalog.h: this binary's)
   // Set: instead of fixed time steps, each (scenario, law, engine, options) group searches its largest
@@ -47,9 +48,13 @@ struct SuiteOutcome {
   int jobs_run = 0;         // in this invocation
   int jobs_skipped = 0;     // already recorded (--resume)
   int not_ok = 0;           // unstable or failed among those run
+  int not_ok_recorded = 0;  // unstable or failed among every result in the folder: a resumed suite's exit code covers them all
+  int recorded = 0;         // every result in the folder
   int step_searches = 0;    // groups whose step search ended (a row in steps.csv) in this invocation
   int jobs_total = 0;       // the whole matrix, recorded or not
   int interrupted_by = 0;   // the signal (SIGINT, SIGTERM) that stopped the suite early; 0: it ran to the end
+  int jobs_stopped = 0;     // jobs whose process a signal from outside stopped (not recorded: --resume runs them)
+  int stopped_by = 0;       // that signal (the last one seen)
 };
 
 // Runs the suite (or its shard); progress goes to stderr (a bar on a terminal, lines otherwise). SIGINT or SIGTERM

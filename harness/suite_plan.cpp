@@ -2,11 +2,14 @@
 // each job is compared with, shards, and the plan described before the suite starts.
 #include "harness/suite_runner.h"
 
+#include "harness/plausibility.h"
+
 #include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -134,24 +137,62 @@ StepGroup SuiteRunner::step_group(const PlannedJob& job) const {
                    job.chain_links};
 }
 
+// The job id of a scenario file that cannot be read: its stem, made unique by a digest of its path when
+// another file of the suite has the same stem, and cut to fit a file name.
+static std::string unreadable_job_id(const std::string& file, bool stem_shared) {
+  std::string stem = fs::path(file).stem().string();
+  for (char& c : stem)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') c = '_';
+  if (stem.size() > 64 || stem_shared || stem.empty() || stem[0] == '.') {
+    std::error_code error;
+    const fs::path canonical = fs::weakly_canonical(file, error);
+    stem = stem.substr(0, 48) + "-" + plan_digest({error ? file : canonical.string()}).substr(0, 8);
+  }
+  return stem + "/unreadable";
+}
+
 void SuiteRunner::plan() {
   std::vector<std::string> files;
   for (const std::string& input : settings_.inputs) {
-    if (fs::is_directory(input)) {
-      for (const std::string& f : find_scenario_files(input)) files.push_back(f);
+    std::error_code error;
+    if (fs::is_directory(input, error)) {
+      const std::vector<std::string> found = find_scenario_files(input);
+      if (found.empty())
+        throw std::invalid_argument(input + ": holds no scenario file (*.toml, searched recursively); expected scenario "
+                                    "files or folders of them");
+      files.insert(files.end(), found.begin(), found.end());
+    } else if (!fs::exists(input, error)) {
+      throw std::invalid_argument(input + ": no such file or folder; expected scenario files (*.toml) or folders of them");
     } else {
-      files.push_back(input);
+      files.push_back(input);  // a file that cannot be read as a scenario is recorded as such: the others run
     }
   }
+  // A file reached twice (a folder and a file in it) is planned once.
+  std::set<std::string> seen;
+  std::map<std::string, int> stems;
+  files.erase(std::remove_if(files.begin(), files.end(),
+                             [&seen](const std::string& f) {
+                               std::error_code error;
+                               const fs::path canonical = fs::weakly_canonical(f, error);
+                               return !seen.insert(error ? f : canonical.string()).second;
+                             }),
+              files.end());
+  for (const std::string& file : files) ++stems[fs::path(file).stem().string()];
   std::set<std::string> planned;
+  std::map<std::string, std::string> file_of_name;  // the job ids start with the scenario's name: one file each
   for (const std::string& file : files) {
     try {
       scenarios_.push_back(load_scenario(file));
     } catch (const std::exception& e) {
-      unrunnable_.push_back(unrunnable(fs::path(file).stem().string() + "/unreadable", fs::path(file).stem().string(),
-                                       file, "", "", e.what()));
+      unrunnable_.push_back(unrunnable(unreadable_job_id(file, stems[fs::path(file).stem().string()] > 1),
+                                       fs::path(file).stem().string(), file, "", "", e.what()));
       continue;
     }
+    const auto [named, fresh] = file_of_name.emplace(scenarios_.back().name, file);
+    if (!fresh)
+      throw std::invalid_argument(file + ": [scenario] name = \"" + scenarios_.back().name + "\" is also the name of " +
+                                  named->second + "; allowed: a name no other scenario of the suite has (its job ids "
+                                  "and run folders are named after it)");
     const std::size_t index = scenarios_.size() - 1;
     Scenario& s = scenarios_.back();
     const bool cut = settings_.max_duration_s > 0 && s.duration_s > settings_.max_duration_s;
@@ -200,6 +241,9 @@ void SuiteRunner::plan() {
             }
           }
           if (settings_.step_search) {
+            RunSettings coarsest = job.spec.settings;  // the search's largest step on this scenario
+            coarsest.time_step_s = settings_.step_search->max_step_s;
+            check_run_size(s, coarsest);
             if (planned.insert(job.id).second) step_groups_.push_back(job);  // its probes are planned by the search
             continue;
           }
@@ -307,6 +351,7 @@ void SuiteRunner::describe_plan(int to_run) const {
 }
 
 void SuiteRunner::add(const PlannedJob& job, std::set<std::string>& planned) {
+  check_run_size(scenarios_[job.scenario], job.spec.settings);  // before anything runs: exit 2, not hours later
   if (planned.insert(job.id).second) jobs_.push_back(job);
 }
 

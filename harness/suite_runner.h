@@ -13,6 +13,7 @@
 #include <csignal>
 #include <deque>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <memory>
 #include <optional>
 #include <set>
@@ -20,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "harness/folder_lock.h"
 #include "harness/progress.h"
 #include "harness/run_job.h"
 #include "harness/step_search.h"
@@ -53,6 +55,13 @@ RunRecord unrunnable(const std::string& id, const std::string& scenario, const s
 // Why a job's process ended without a record, for its failed row; its log's last line, cut at 300 characters.
 std::string describe_exit(int status, double time_limit_s, bool timed_out, const std::string& log_tail);
 std::string last_line(const std::string& path);
+
+// A job's process ended by a signal from outside (a scheduler stopping the task, a person, the OOM killer:
+// SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGKILL), not by its time limit: its run decided nothing about the
+// simulator, so it is not recorded and --resume runs it again. Slurm and systemd send SIGTERM to every
+// process of a task in no particular order: a worker can get it before the suite does. A crash (SIGSEGV,
+// SIGABRT, SIGFPE, ...) is a finding.
+bool stopped_from_outside(int status, bool timed_out);
 std::string read_file(const std::string& path);
 
 // ---- Interruption: SIGINT and SIGTERM stop the suite between results, never in the middle of one.
@@ -142,6 +151,13 @@ class SuiteRunner {
 
   void plan();
 
+  // DIR/suite.jsonl (suite_settings.cpp): what decides this suite's results, and its job ids.
+  nlohmann::ordered_json settings_record() const;
+  // Refuses (std::invalid_argument) a --resume whose settings equal none of the folder's suites, naming
+  // the keys that differ, unless --extend; with --extend, a shared job recorded under other settings.
+  // Then records this suite's line unless it is there.
+  void check_and_record_settings();
+
   PlannedJob make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,
                       const std::map<std::string, std::string>& options) const;
 
@@ -164,6 +180,12 @@ class SuiteRunner {
 
   void start(const PlannedJob& job);
 
+  // A job compared with a reference that a signal from outside stopped: it waits for --resume too (run
+  // now, it would be recorded without its comparison).
+  bool reference_stopped(const PlannedJob& job) const {
+    return stopped_.count(job.beam_reference) > 0 || stopped_.count(job.chain_reference) > 0;
+  }
+
   // What a job's folder keeps of its series: a reference always its window (engine runs are compared
   // with it, also on --resume), a step-search probe none unless asked (its summary and events say
   // whether the step is stable and accurate), any other run what --series says.
@@ -178,8 +200,8 @@ class SuiteRunner {
   // runs.jsonl line recorded for it (none when nothing ended).
   std::optional<std::pair<const PlannedJob*, std::string>> reap(bool block);
 
-  // Records a job that ended; returns its runs.jsonl line ("" when an interruption stopped it: nothing
-  // is recorded and --resume reruns it).
+  // Records a job that ended; returns its runs.jsonl line ("" when an interruption or a signal from
+  // outside stopped it: nothing is recorded and --resume reruns it).
   std::string collect(const PlannedJob& job, int status, bool timed_out, int message_pipe);
 
   // The jobs scored from this job's run that are not recorded yet.
@@ -207,10 +229,12 @@ class SuiteRunner {
   std::deque<PlannedJob> probe_jobs_;    // the searches' probes (a deque keeps their addresses)
   std::vector<RunRecord> unrunnable_;
   std::set<std::string> recorded_;
+  std::set<std::string> stopped_;  // jobs stopped from outside: neither they nor the jobs compared with them are recorded
   std::multimap<std::string, const PlannedJob*> scored_from_;  // a run's job id -> the jobs scored from its run
   std::map<std::string, std::unique_ptr<ReferenceData>> references_;
   std::map<pid_t, Running> running_;
   std::unique_ptr<Progress> progress_;
+  std::unique_ptr<FolderLock> lock_;  // the output folder's, held while the suite writes into it
   SuiteOutcome outcome_;
 };
 

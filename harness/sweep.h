@@ -59,6 +59,8 @@ struct SweepOutcome {
   int rows_run = 0, rows_skipped = 0, rows_total = 0;
   int not_ok = 0;            // rows whose verdict is not ok among all recorded
   int interrupted_by = 0;    // SIGINT or SIGTERM that stopped the sweep; 0: it ran to its end
+  int chains_stopped = 0;    // chains whose process a signal from outside stopped (--resume runs the rest)
+  int stopped_by = 0;        // that signal (the last one seen)
 };
 
 // Runs the sweep (or its shard); progress on stderr. Throws std::invalid_argument for bad input (a

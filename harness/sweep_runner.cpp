@@ -13,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "harness/folder_lock.h"
 #include "harness/number_text.h"
 #include "harness/run_files.h"
 #include "harness/suite_runner.h"
@@ -69,14 +70,6 @@ std::string read_whole(const std::string& path) {
   return text.str();
 }
 
-// A signal from outside (a scheduler stopping the task, a person, the OOM killer): the chain's row in
-// flight decided nothing about the simulator, and --resume runs it again. A crash is a finding.
-bool stopped_from_outside(int status) {
-  if (!WIFSIGNALED(status)) return false;
-  const int signal = WTERMSIG(status);
-  return signal == SIGTERM || signal == SIGINT || signal == SIGHUP || signal == SIGKILL || signal == SIGQUIT;
-}
-
 class SweepRunner {
  public:
   explicit SweepRunner(const SweepSettings& s) : s_(s) {}
@@ -116,12 +109,14 @@ class SweepRunner {
   std::map<pid_t, Running> running_;
   int recorded_ = -1;  // rows in the tables when last written
   SweepOutcome outcome_;
+  std::unique_ptr<FolderLock> lock_;  // the output folder's, held while the sweep writes into it
 };
 
 void SweepRunner::prepare_folder() {
   std::error_code error;
   std::filesystem::create_directories(s_.out + "/runs", error);
   if (error) throw OutputError(output_error_text(s_.out, "create the sweep's folder", error.value()));
+  lock_ = std::make_unique<FolderLock>(s_.out, "sweep");
   const nlohmann::ordered_json record = settings_record(s_, scenario_);
   const std::string path = s_.out + "/sweep.json";
   if (std::filesystem::exists(path)) {
@@ -215,7 +210,8 @@ void SweepRunner::collect(pid_t pid, int status) {
   for (std::size_t k = 0; k < chain.rows.size() && first_missing == chain.rows.size(); ++k)
     if (!row_done(folder_of(chain.rows[k]))) first_missing = k;
   if (first_missing == chain.rows.size()) return;
-  if (suite_internal::interrupted() || (!run.timed_out && stopped_from_outside(status))) {
+  if (suite_internal::interrupted() || suite_internal::stopped_from_outside(status, run.timed_out)) {
+    if (!suite_internal::interrupted()) ++outcome_.chains_stopped, outcome_.stopped_by = WTERMSIG(status);
     std::fprintf(stderr, "sweep: %s stopped by signal %d before r = %s; --resume runs it again\n", chain.id.c_str(),
                  WIFSIGNALED(status) ? WTERMSIG(status) : 0, ratio_text(chain.rows[first_missing].ratio).c_str());
     return;

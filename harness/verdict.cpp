@@ -1,5 +1,6 @@
 #include "harness/verdict.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -32,11 +33,16 @@ std::string describe(const char* what, double value, const char* unit, double t)
 
 }  // namespace
 
+double penetration_bound_m(const Scenario& scenario, const VerdictSettings& settings) {
+  return std::max(settings.stability.penetration_bound_gaps * scenario.gap_m, settings.stability.penetration_bound_floor_m);
+}
+
 Judgement judge_stability(const Scenario& scenario, const RunResult& result, const VerdictSettings& settings) {
   if (result.status == RunStatus::failed) return {Verdict::failed, result.reason};
   if (result.status == RunStatus::unstable) return {Verdict::unstable, result.reason};
   const Trajectory& t = result.trajectory;
-  const double penetration_bound = settings.stability.penetration_bound_gaps * (scenario.gap_m > 0 ? scenario.gap_m : 1e-3);
+  if (t.size() == 0) return {Verdict::failed, "the run wrote no samples: nothing to measure"};  // never an ok of NaN
+  const double penetration_bound = penetration_bound_m(scenario, settings);
   for (std::size_t k = 0; k < t.size(); ++k) {
     for (int f = 0; f < 2; ++f) {
       const double u = t.displacement_m[f][k], v = t.velocity_m_s[f][k], a = t.acceleration_m_s2[f][k];

@@ -38,6 +38,9 @@ struct VerdictSettings {
   AccuracyTolerances accuracy;
 };
 
+// The overlap of the tips beyond which a run is unstable [m]: penetration_bound_gaps gaps, at least the floor.
+double penetration_bound_m(const Scenario& scenario, const VerdictSettings& settings);
+
 // From the simulator's own status and the trajectory alone.
 Judgement judge_stability(const Scenario& scenario, const RunResult& result, const VerdictSettings& settings);
 

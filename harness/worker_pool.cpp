@@ -42,6 +42,12 @@ std::string describe_exit(int status, double time_limit_s, bool timed_out, const
   return why.str();
 }
 
+bool stopped_from_outside(int status, bool timed_out) {
+  if (timed_out || !WIFSIGNALED(status)) return false;
+  const int signal = WTERMSIG(status);
+  return signal == SIGTERM || signal == SIGINT || signal == SIGHUP || signal == SIGKILL || signal == SIGQUIT;
+}
+
 std::string last_line(const std::string& path) {
   std::ifstream in(path);
   std::string line, last;
@@ -193,6 +199,16 @@ Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
   return m;
 }
 
+// Why a job cannot be compared with the references it was planned with ("" when it can).
+static std::string missing_reference(const PlannedJob& job, const ReferenceData* beam, const ReferenceData* chain) {
+  std::string missing;
+  if (job.kind != JobKind::engine) return missing;
+  if (!job.beam_reference.empty() && !beam) missing = "its reference " + job.beam_reference + " did not finish (see its row)";
+  if (!job.chain_reference.empty() && !chain)
+    missing += (missing.empty() ? "its reference " : "; its reference ") + job.chain_reference + " did not finish (see its row)";
+  return missing;
+}
+
 // The job's process: its output goes to log.txt; its record to row.csv and row.jsonl for the parent.
 [[noreturn]] void SuiteRunner::run_in_child(const PlannedJob& job, const std::string& folder, const Scenario& scenario,
                                const ReferenceData* beam, const ReferenceData* chain,
@@ -207,7 +223,9 @@ Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
   ReferenceData run_data;  // the run's metrics and trajectory, for the jobs scored from it
   bool ran = false;
   try {
-    record = run_job(scenario, job.spec, measurement_of(job), beam, chain, folder, scored.empty() ? nullptr : &run_data,
+    JobSpec spec = job.spec;
+    spec.missing_reference = missing_reference(job, beam, chain);
+    record = run_job(scenario, spec, measurement_of(job), beam, chain, folder, scored.empty() ? nullptr : &run_data,
                      settings_.simulators.make);
     ran = true;
   } catch (const OutputError& e) {
@@ -228,7 +246,7 @@ Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
       RunRecord r = record;
       if (ran) {
         r = score_for_law(scenario, record, run_data, o.id, o.spec.settings.law, measurement_of(o), other.beam,
-                          other.chain, folder, folder_of(o));
+                          other.chain, folder, folder_of(o), missing_reference(o, other.beam, other.chain));
       } else {  // the run failed: so does every job scored from it, for the same reason
         r.job_id = o.id;
         r.law = to_string(o.spec.settings.law);
@@ -270,8 +288,8 @@ std::optional<std::pair<const PlannedJob*, std::string>> SuiteRunner::reap(bool 
   }
 }
 
-// Records a job that ended; returns its runs.jsonl line ("" when an interruption stopped it: nothing
-// is recorded and --resume reruns it).
+// Records a job that ended; returns its runs.jsonl line ("" when an interruption or a signal from
+// outside stopped it: nothing is recorded and --resume reruns it).
 std::string SuiteRunner::collect(const PlannedJob& job, int status, bool timed_out, int message_pipe) {
   const std::string folder = folder_of(job);
   const std::string output_error = message_pipe >= 0 ? receive(message_pipe) : "";
@@ -292,6 +310,14 @@ std::string SuiteRunner::collect(const PlannedJob& job, int status, bool timed_o
     return json;
   }
   if (interrupted()) return "";  // stopped by the interruption, not by its own fault: --resume reruns it
+  if (stopped_from_outside(status, timed_out)) {  // the same, when the worker got the signal first
+    ++outcome_.jobs_stopped;
+    outcome_.stopped_by = WTERMSIG(status);
+    stopped_.insert(job.id);
+    std::fprintf(stderr, "suite: %s stopped by signal %d (%s) from outside, not recorded: --resume runs it again\n",
+                 job.id.c_str(), WTERMSIG(status), strsignal(WTERMSIG(status)));
+    return "";
+  }
   const Scenario& s = scenarios_[job.scenario];
   RunRecord record = unrunnable(job.id, s.name, s.source_path, job.spec.engine, to_string(job.spec.settings.law),
                                 describe_exit(status, settings_.time_limit_s, timed_out, last_line(folder + "/log.txt")));

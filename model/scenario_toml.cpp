@@ -56,34 +56,34 @@ using namespace toml_schema;  // what a value may be, Key, Table and the Checker
 const std::vector<Key<Scenario>> kScenarioKeys = {
     {"name",             &Scenario::name,             required, identifier(), "short identifier of the scenario"},
     {"description",      &Scenario::description,      required, anything(),   "what the scenario is and what it probes"},
-    {"duration_s",       &Scenario::duration_s,       required, above(0),     "simulated time [s]"},
-    {"scoring_window_s", &Scenario::scoring_window_s, required, above(0),     "scoring window at the end of the run, where metrics are taken [s]"},
+    {"duration_s",       &Scenario::duration_s,       required, above_up_to(0, 3600), "simulated time [s], up to an hour of rig time"},
+    {"scoring_window_s", &Scenario::scoring_window_s, required, above_up_to(0, 3600), "scoring window at the end of the run, where metrics are taken [s]"},
 };
 
 // [frame1] and [frame2]: the columns of a frame act as one clamped-free Euler-Bernoulli beam.
 const std::vector<Key<FrameSpec>> kFrameKeys = {
     {"columns",            &FrameSpec::columns,            required, at_least(1),        "number of columns acting as one beam [-]"},
-    {"youngs_modulus_pa",  &FrameSpec::youngs_modulus_pa,  required, above(0),           "Young's modulus E [Pa]"},
-    {"density_kg_m3",      &FrameSpec::density_kg_m3,      required, above(0),           "column density rho [kg/m^3]"},
-    {"column_thickness_m", &FrameSpec::column_thickness_m, required, above(0),           "column thickness h, in the bending direction [m]"},
-    {"column_width_m",     &FrameSpec::column_width_m,     required, above(0),           "column width b [m]"},
-    {"length_m",           &FrameSpec::length_m,           required, above(0),           "column length L [m]"},
-    {"tip_mass_kg",        &FrameSpec::tip_mass_kg,        required, at_least(0),        "tip mass [kg]"},
+    {"youngs_modulus_pa",  &FrameSpec::youngs_modulus_pa,  required, closed(1e5, 1.5e12),  "Young's modulus E [Pa]: soft rubber to diamond"},
+    {"density_kg_m3",      &FrameSpec::density_kg_m3,      required, closed(10, 25e3),     "column density rho [kg/m^3]: foam to osmium"},
+    {"column_thickness_m", &FrameSpec::column_thickness_m, required, closed(1e-5, 1),      "column thickness h, in the bending direction [m] (and L/h >= 10: a slender beam)"},
+    {"column_width_m",     &FrameSpec::column_width_m,     required, closed(1e-5, 10),     "column width b [m]"},
+    {"length_m",           &FrameSpec::length_m,           required, closed(1e-3, 100),    "column length L [m]"},
+    {"tip_mass_kg",        &FrameSpec::tip_mass_kg,        required, closed(0, 1e4),       "tip mass [kg]"},
     {"damping_ratio",      &FrameSpec::damping_ratio,      required, half_open(0, 1),    "damping ratio zeta of every mode [-]"},
 };
 
 // [rig]
 const std::vector<Key<Scenario>> kRigKeys = {
-    {"gap_m", &Scenario::gap_m, required, at_least(0), "surface gap d between the tips at rest [m]"},
+    {"gap_m", &Scenario::gap_m, required, closed(0, 0.1), "surface gap d between the tips at rest [m]"},
 };
 
 // [motor]: the unbalanced motor on frame 1's tip. Exactly one of the two speeds is given
 // (check_motor_speed below).
 const std::vector<Key<MotorSpec>> kMotorKeys = {
-    {"unbalance_mass_kg",  &MotorSpec::unbalance_mass_kg,  required, at_least(0), "unbalance mass m_u [kg]"},
-    {"unbalance_radius_m", &MotorSpec::unbalance_radius_m, required, at_least(0), "unbalance radius e_u [m]"},
-    {"speed_ratio_to_f1",  &MotorSpec::speed_ratio_to_f1,  optional, above(0),    "motor speed / frame 1's first natural frequency [-]"},
-    {"frequency_hz",       &MotorSpec::frequency_hz,       optional, above(0),    "motor speed [Hz]"},
+    {"unbalance_mass_kg",  &MotorSpec::unbalance_mass_kg,  required, closed(0, 100), "unbalance mass m_u [kg]"},
+    {"unbalance_radius_m", &MotorSpec::unbalance_radius_m, required, closed(0, 1),   "unbalance radius e_u [m]"},
+    {"speed_ratio_to_f1",  &MotorSpec::speed_ratio_to_f1,  optional, above_up_to(0, 100), "motor speed / frame 1's first natural frequency [-]"},
+    {"frequency_hz",       &MotorSpec::frequency_hz,       optional, above_up_to(0, 1e4), "motor speed [Hz]"},
 };
 
 // [initial]: frame 1 released from rest in its static tip-load shape. The displacement is also
@@ -96,17 +96,17 @@ const std::vector<Key<InitialSpec>> kInitialKeys = {
 // [contact.hertz]: F = k delta^n (1 + c/k delta'). c_h is either given (damping) or calibrated from
 // restitution and approach_velocity_m_s, never both (check_hertz_damping below).
 const std::vector<Key<HertzSpec>> kHertzKeys = {
-    {"stiffness",             &HertzSpec::stiffness,             required, above(0),    "Hertz stiffness k_h [N/m^n]"},
+    {"stiffness",             &HertzSpec::stiffness,             required, above_up_to(0, 1e15), "Hertz stiffness k_h [N/m^n]"},
     {"exponent",              &HertzSpec::exponent,              required, closed(1, 3), "Hertz exponent n [-]"},
-    {"damping",               &HertzSpec::damping,               optional, at_least(0), "explicit Hertz damping c_h [N s/m^(n+1)]"},
+    {"damping",               &HertzSpec::damping,               optional, closed(0, 1e15), "explicit Hertz damping c_h [N s/m^(n+1)]"},
     {"restitution",           &HertzSpec::restitution,           optional, closed(0, 1), "coefficient of restitution e, calibrates c_h [-]"},
-    {"approach_velocity_m_s", &HertzSpec::approach_velocity_m_s, optional, above(0),    "mean approach velocity v_rel, calibrates c_h [m/s]"},
+    {"approach_velocity_m_s", &HertzSpec::approach_velocity_m_s, optional, above_up_to(0, 100), "mean approach velocity v_rel, calibrates c_h [m/s]"},
 };
 
 // [contact.viscoelastic]: F = k delta + c delta'.
 const std::vector<Key<ViscoelasticSpec>> kViscoelasticKeys = {
-    {"stiffness_n_per_m", &ViscoelasticSpec::stiffness_n_per_m, required, above(0),    "spring stiffness k_v [N/m]"},
-    {"damping_n_s_per_m", &ViscoelasticSpec::damping_n_s_per_m, required, at_least(0), "dashpot damping c_v [N s/m]"},
+    {"stiffness_n_per_m", &ViscoelasticSpec::stiffness_n_per_m, required, above_up_to(0, 1e13), "spring stiffness k_v [N/m]"},
+    {"damping_n_s_per_m", &ViscoelasticSpec::damping_n_s_per_m, required, closed(0, 1e9), "dashpot damping c_v [N s/m]"},
     {"clip_tension",      &ViscoelasticSpec::clip_tension,      optional, anything(),  "clip the force at zero rather than let it turn tensile; default false"},
 };
 
@@ -182,6 +182,33 @@ void check_initial_displacement(const Checker& checker, const Section& section, 
                    number_text(limit) + " (small-deflection theory; " + rule.meaning + ")");
 }
 
+// Euler-Bernoulli theory holds for slender columns (length at least 10 thicknesses); and the first natural
+// frequency of each frame, estimated from the cantilever with a tip mass (Rayleigh: k = 3EI/L^3, mass
+// M + 33/140 m), lies where a run of the rig can resolve it: 0.05 Hz (hours per cycle) to 5 kHz (its
+// higher modes beyond any step an engine takes). Both fail for values each within its own range (a
+// column 1 m thick, a tip mass of tonnes on a thin strip).
+void check_frame_shape(const Checker& checker, const Section& section, const FrameSpec& f) {
+  const toml::node* thickness = section.find("column_thickness_m");
+  if (thickness && f.length_m < 10 * f.column_thickness_m)
+    checker.fail(line_of(*thickness), section.dotted("column_thickness_m"),
+                 checker.show(section.dotted("column_thickness_m"), *thickness) + ": out of range; allowed: x <= " +
+                     section.dotted("length_m") + " / 10 = " + number_text(f.length_m / 10) +
+                     " (a slender column, as Euler-Bernoulli theory assumes)");
+  constexpr double kPi = 3.14159265358979323846;
+  const double area = f.column_width_m * f.column_thickness_m, inertia = f.column_width_m * std::pow(f.column_thickness_m, 3) / 12;
+  const double stiffness = f.columns * 3 * f.youngs_modulus_pa * inertia / std::pow(f.length_m, 3);
+  const double mass = f.tip_mass_kg + 33.0 / 140.0 * f.columns * f.density_kg_m3 * area * f.length_m;
+  const double f1_hz = std::sqrt(stiffness / mass) / (2 * kPi);
+  if (f1_hz >= 0.05 && f1_hz <= 5e3) return;
+  checker.fail(section.line, section.name,
+               section.name + ": its first natural frequency would be about " + number_text(f1_hz) + " Hz (from " +
+                   section.dotted("youngs_modulus_pa") + " = " + number_text(f.youngs_modulus_pa) + ", " +
+                   section.dotted("column_thickness_m") + " = " + number_text(f.column_thickness_m) + ", " +
+                   section.dotted("length_m") + " = " + number_text(f.length_m) + ", " +
+                   section.dotted("tip_mass_kg") + " = " + number_text(f.tip_mass_kg) +
+                   "); allowed: 0.05 to 5000 Hz (the published rig: 6.95 Hz)");
+}
+
 // c_h is either given (damping) or calibrated (restitution and approach_velocity_m_s), not both.
 void check_hertz_damping(const Checker& checker, const Section& section) {
   const std::vector<std::string> calibration = {"restitution", "approach_velocity_m_s"};
@@ -224,8 +251,11 @@ Scenario parse_scenario(std::string_view toml_text, const std::string& source_pa
   checker.read(scenario, kScenarioKeys, s);
   check_scoring_window(checker, scenario, s);
 
-  checker.read(*checker.section(top, kTopLevelTables, "frame1"), kFrameKeys, s.frames[0]);
-  checker.read(*checker.section(top, kTopLevelTables, "frame2"), kFrameKeys, s.frames[1]);
+  for (int i = 0; i < 2; ++i) {
+    const Section frame = *checker.section(top, kTopLevelTables, i == 0 ? "frame1" : "frame2");
+    checker.read(frame, kFrameKeys, s.frames[i]);
+    check_frame_shape(checker, frame, s.frames[i]);
+  }
   checker.read(*checker.section(top, kTopLevelTables, "rig"), kRigKeys, s);
 
   if (const auto motor = checker.section(top, kTopLevelTables, "motor")) {
@@ -263,6 +293,14 @@ Scenario load_scenario(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) {
     throw ScenarioError(path, 0, "", "cannot read scenario file: it is a directory");
   }
+  // A FIFO would block forever and /dev/zero never end: a scenario is a regular file of at most 1 MB (the
+  // published ones are 2 kB).
+  constexpr std::uintmax_t kMaxScenarioBytes = 1 << 20;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw ScenarioError(path, 0, "", "cannot read scenario file: not a regular file (a FIFO, a device?); allowed: a .toml file");
+  if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) > kMaxScenarioBytes)
+    throw ScenarioError(path, 0, "", "cannot read scenario file: " + std::to_string(std::filesystem::file_size(path, ec)) +
+                                         " bytes; allowed: at most 1 MB");
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in) {

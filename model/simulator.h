@@ -19,7 +19,10 @@ namespace ib {
 // early) and the verdict (harness/verdict.h) read.
 struct StabilityBounds {
   double displacement_bound_fraction_of_length = 0.1;  // |u| beyond this x frame length: unstable [-]
-  double penetration_bound_gaps = 10;                  // delta beyond this x gap (1 mm when the gap is 0) [-]
+  double penetration_bound_gaps = 10;                  // delta beyond this x gap, and beyond the floor below [-]
+  // The bound's floor: a zero or tiny gap (1e-7 m) must not make a micrometre contact "unstable". A
+  // centimetre of overlap: no contact of this rig (tens of micrometres) comes near it. [m]
+  double penetration_bound_floor_m = 1e-2;
   double energy_growth_tolerance = 1e-3;               // relative rise of energy allowed without a motor [-]
 };
 

@@ -51,7 +51,8 @@ bool in_range(double x, const Allowed& a) {
 }
 
 bool is_identifier(const std::string& s) {
-  if (s.empty()) return false;
+  // a name becomes a folder name (runs/<name>/...) and a file name's part: 64 characters fit every file system
+  if (s.empty() || s.size() > kIdentifierMaxLength) return false;
   return std::all_of(s.begin(), s.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
   });

@@ -36,14 +36,16 @@ struct Allowed {
   bool lo_included = false;
   double hi = kInfinity;
   bool hi_included = false;
-  bool identifier = false;  // strings: non-empty, only a-z, 0-9 and _
+  bool identifier = false;  // strings: 1 to kIdentifierMaxLength characters, only a-z, 0-9 and _
 };
 
 inline Allowed at_least(double lo) { return {lo, true, kInfinity, false, false}; }          // x >= lo
 inline Allowed above(double lo) { return {lo, false, kInfinity, false, false}; }            // x > lo
 inline Allowed closed(double lo, double hi) { return {lo, true, hi, true, false}; }         // lo <= x <= hi
 inline Allowed half_open(double lo, double hi) { return {lo, true, hi, false, false}; }     // lo <= x < hi
+inline Allowed above_up_to(double lo, double hi) { return {lo, false, hi, true, false}; }   // lo < x <= hi
 inline Allowed anything() { return {}; }  // any finite number, any string, true or false
+constexpr std::size_t kIdentifierMaxLength = 64;
 Allowed identifier();
 
 // ------------------------------------------------------------------------------------------------
@@ -132,7 +134,7 @@ struct Rule {
       case Kind::number:
       case Kind::integer: what = range_text(allowed); if (what.empty()) what = "any finite number"; break;
       case Kind::boolean: what = "true or false"; break;
-      case Kind::string: what = allowed.identifier ? "a non-empty string of a-z, 0-9 and _" : "any string"; break;
+      case Kind::string: what = allowed.identifier ? "1 to 64 characters of a-z, 0-9 and _" : "any string"; break;
     }
     return what + " (" + meaning + ")";
   }
@@ -146,7 +148,7 @@ struct Rule {
       case Kind::number: return "a number" + suffix;
       case Kind::integer: return "an integer" + suffix;
       case Kind::boolean: return "a boolean (true or false)";
-      case Kind::string: return allowed.identifier ? "a string of a-z, 0-9 and _" : "a string";
+      case Kind::string: return allowed.identifier ? "a string of 1 to 64 characters of a-z, 0-9 and _" : "a string";
     }
     return "";
   }

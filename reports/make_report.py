@@ -9,6 +9,7 @@ performance section when SUITE_FOLDER/performance/ holds bench/ measurements (im
 Debian's python3-matplotlib (run with /usr/bin/python3)."""
 
 import argparse
+import csv
 import datetime
 import json
 import math
@@ -17,6 +18,7 @@ import os
 import platform
 import shutil
 import sys
+import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -348,5 +350,19 @@ def anchor(title):
     return "".join(c if c.isalnum() else "-" for c in title.lower())
 
 
+def guarded_main():
+    """main(), with every failure said in one line naming the folder and what went wrong, never a traceback
+    (IMPACTBENCH_TRACEBACK=1 shows it, for a developer)."""
+    try:
+        main()
+    except (data.ResultsError, OSError, ValueError, KeyError, IndexError, TypeError, csv.Error, EOFError,
+            zlib.error, UnicodeDecodeError) as error:
+        if os.environ.get("IMPACTBENCH_TRACEBACK"):
+            raise
+        what = f"{type(error).__name__}: {error}" if not isinstance(error, data.ResultsError) else str(error)
+        sys.exit(f"make_report: cannot make the report of {sys.argv[1] if len(sys.argv) > 1 else '?'}: {what} "
+                 "(a damaged or incomplete results folder? `impactbench suite ... --resume` repairs a suite's)")
+
+
 if __name__ == "__main__":
-    main()
+    guarded_main()

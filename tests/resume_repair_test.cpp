@@ -1,6 +1,7 @@
 // --resume reads runs.jsonl back (repair_and_list_runs): runs.csv is rebuilt with every value under its
 // own header's column whatever the order or the gaps of a line's keys (a hand-edited or foreign line),
 // and a line that is not a run's record (no job_id or verdict) is dropped so that its job runs again.
+// (Damaged records, duplicates and missing run folders: suite_records_test.cpp.)
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -36,6 +37,10 @@ TEST(ResumeRepair, RowsAreLaidOutByTheHeaderWhateverTheKeyOrder) {
       << R"({"verdict":"ok","impacts":3,"job_id":"s/reference/hertz","scenario":"s"})" "\n"
       << R"({"job_id":"s/reference/newton","scenario":"s"})" "\n"  // no verdict: not a record
       << R"({"job_id":"s/mujoco/hertz","verdict":"unstable","reason":"a, b","law":"hertz"})" "\n";
+  for (const char* id : {"s/reference/hertz", "s/mujoco/hertz"}) {  // a run that ran has its folder
+    fs::create_directories(folder / "runs" / id);
+    std::ofstream(folder / "runs" / id / "summary.json") << "{}\n";
+  }
   const auto ids = repair_and_list_runs(folder.string());
   EXPECT_EQ(ids, (std::set<std::string>{"s/reference/hertz", "s/mujoco/hertz"}));
   std::ifstream csv(folder / "runs.csv");

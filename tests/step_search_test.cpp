@@ -293,6 +293,7 @@ TEST_F(StepSearchSuite, FindsTheKnownStepsAndResumesWithoutRepeating) {
   EXPECT_EQ(test::json_lines(settings_.out + "/steps.jsonl").size(), 1u);
   // a kill before the row was written: the row is recomputed from the recorded probes, none re-run
   fs::remove(settings_.out + "/steps.jsonl");
+  fs::remove(settings_.out + "/steps.csv");
   const SuiteOutcome recomputed = run_suite(settings_);
   EXPECT_EQ(recomputed.jobs_run, 0);
   EXPECT_EQ(recomputed.step_searches, 1);
@@ -302,6 +303,8 @@ TEST_F(StepSearchSuite, FindsTheKnownStepsAndResumesWithoutRepeating) {
   EXPECT_EQ(test::json_lines(settings_.out + "/runs.jsonl").size(), runs.size());
   // other tolerances are another search: a second row, reusing the probes it shares with the first
   settings_.measurement.verdicts.accuracy.sensor_peak_relative = 0.3;  // the one tolerance record
+  EXPECT_THROW(run_suite(settings_), std::invalid_argument);  // another suite in this folder: said, not mixed
+  settings_.extend = true;
   const SuiteOutcome looser = run_suite(settings_);
   const auto both = test::json_lines(settings_.out + "/steps.jsonl");
   ASSERT_EQ(both.size(), 2u);

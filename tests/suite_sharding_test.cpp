@@ -172,6 +172,7 @@ fs::path copy_records(const fs::path& from, const fs::path& to) {
   fs::create_directories(to);
   for (const char* file : {"runs.jsonl", "runs.csv", "shard.jsonl", "steps.jsonl", "steps.csv"})
     if (fs::exists(from / file)) fs::copy_file(from / file, to / file);
+  if (fs::exists(from / "runs")) fs::copy(from / "runs", to / "runs", fs::copy_options::recursive);
   return to;
 }
 
@@ -361,6 +362,29 @@ TEST_F(SuiteSharding, MergeRefusesWhatItCannotJoin) {
   EXPECT_NE(conflict.text.find(shard(1).string() + " and " + changed.string() + " disagree on job " + reference +
                                ": field impacts is "),
             std::string::npos) << conflict.text;
+  // a shard whose run folders are gone
+  const fs::path hollow = copy_records(shard(3), *root_ / "hollow");
+  fs::remove_all(hollow / "runs");
+  const CommandOutput damaged = command("merge " + out + " " + quoted(shard(1)) + " " + quoted(hollow) + " --no-report");
+  EXPECT_EQ(damaged.exit_code, 2) << damaged.text;
+  EXPECT_NE(damaged.text.find(hollow.string() + ": its results are damaged ("), std::string::npos) << damaged.text;
+  EXPECT_NE(damaged.text.find("/ (summary.json) is gone"), std::string::npos) << damaged.text;
+  EXPECT_NE(damaged.text.find("continue that shard with --resume"), std::string::npos) << damaged.text;
+  // a shard whose plan file is damaged
+  const fs::path scribbled = copy_records(shard(3), *root_ / "scribbled");
+  std::ofstream(scribbled / "shard.jsonl", std::ios::app) << "{\"shard\": \"three\"}\n";
+  const CommandOutput plan = command("merge " + out + " " + quoted(shard(1)) + " " + quoted(scribbled) + " --no-report");
+  EXPECT_EQ(plan.exit_code, 2) << plan.text;
+  EXPECT_NE(plan.text.find((scribbled / "shard.jsonl").string() + " line 2: not a shard's plan"), std::string::npos)
+      << plan.text;
+  // a shard of another suite (other scenarios: other jobs)
+  const fs::path stranger = *root_ / "stranger";
+  ASSERT_LE(command("suite " + quoted(*root_ / "scenarios" / "short_free.toml") + " --laws hertz --shard 2/3 --out " +
+                    quoted(stranger)).exit_code, 1);
+  const CommandOutput mixed = command("merge " + out + " " + quoted(shard(1)) + " " + quoted(stranger) + " --no-report");
+  EXPECT_EQ(mixed.exit_code, 2) << mixed.text;
+  EXPECT_NE(mixed.text.find(shard(1).string() + " and " + stranger.string() + " are shards of different suites"),
+            std::string::npos) << mixed.text;
   EXPECT_FALSE(fs::exists(*root_ / "refused")) << "nothing is written when the input is bad";
   // an OUT that holds something already
   const CommandOutput full = command("merge" + shard_list() + " --no-report");

@@ -129,6 +129,7 @@ def read_runs(folder):
     finished (parallel workers, a suite interrupted and resumed)."""
     path = os.path.join(folder, "runs.csv")
     suite = Suite(folder)
+    seen = {}  # job id -> line
     with open(path, newline="") as f:
         reader = csv.DictReader(f)
         if not reader.fieldnames or "job_id" not in reader.fieldnames:
@@ -147,6 +148,10 @@ def read_runs(folder):
                     values[name] = float(text) if text != "" else math.nan
                 except ValueError:
                     raise ResultsError(f"{path}:{line}: {name} = '{text}': not a number") from None
+            if values["job_id"] in seen:
+                raise ResultsError(f"{path}:{line}: job {values['job_id']} recorded again (line {seen[values['job_id']]} "
+                                   "too): one record per job (`impactbench suite ... --resume` repairs the folder)")
+            seen[values["job_id"]] = line
             suite.runs.append(Run(values))
     suite.runs.sort(key=lambda r: r["job_id"])
     return suite
@@ -157,11 +162,19 @@ def read_series(path):
     opener = gzip.open if path.endswith(".gz") else open
     with opener(path, "rt", newline="") as f:
         reader = csv.reader(f)
-        header = next(reader)
+        header = next(reader, None)
+        if not header:
+            raise ResultsError(f"{path}: empty (no header); the run's series is damaged: run the job again "
+                               "(`impactbench suite ... --resume` after removing its row, or `impactbench run`)")
         columns = {name: [] for name in header}
         for row in reader:
+            if len(row) != len(header):
+                raise ResultsError(f"{path}:{reader.line_num}: {len(row)} values, expected {len(header)}")
             for name, text in zip(header, row):
-                columns[name].append(float(text) if text != "" else math.nan)
+                try:
+                    columns[name].append(float(text) if text != "" else math.nan)
+                except ValueError:
+                    raise ResultsError(f"{path}:{reader.line_num}: {name} = '{text}': not a number") from None
     return columns
 
 

@@ -4,7 +4,8 @@
 # (--dependency=afterany), and the merged results compared with a local run of the same jobs
 # (bench/compare_runs.py: every value but the machine's measurements the same). Then a sweep task is
 # cancelled while it runs (scancel: SIGTERM to every process of the task, in no order) and submitted
-# again: its resumed results equal the uninterrupted ones. The cluster is stopped on every exit.
+# again: its resumed results equal the uninterrupted ones; and a suite task the same way (no worker stopped by
+# the signal recorded as failed). The cluster is stopped on every exit.
 #
 #   tests/slurm/test_slurm_cluster.sh BUILD_DIR      (as root: ctest slurm_cluster runs it)
 set -euo pipefail
@@ -77,4 +78,27 @@ sbatch --wait --array=1 --cpus-per-task=1 -o "$work/resumed-%a.log" scripts/slur
 local_run sweep "${long[@]}" --out "$work/local-long"
 same_results "$work/local-long" results/cancelled/shard-1
 echo "cancelled after $recorded of 10 ratios, resubmitted: the same results as an uninterrupted run"
+
+# d. The same for a suite task: scancel's SIGTERM reaches the workers and the suite in no order; a worker
+# stopped that way is not a finding (no run recorded as failed), and the resubmitted task finishes the suite.
+cut=("$project/scenarios/paper/free_vibration.toml" --engines reference,mujoco,ode --laws hertz,viscoelastic
+     --duration 2 --dt 1e-4,5e-5)
+job=$(sbatch --parsable --array=1 --cpus-per-task=2 -o "$work/cut-%a.log" scripts/slurm/suite-array.sbatch cut 1 -- "${cut[@]}")
+job=${job%%;*}
+for _ in $(seq 600); do  # until the task has recorded a few runs
+  [[ -s results/cut/shard-1/runs.jsonl ]] && (( $(wc -l < results/cut/shard-1/runs.jsonl) >= 4 )) && break
+  sleep 0.1
+done
+scancel "${job}_1"
+while squeue -h -j "$job" 2>/dev/null | grep -q .; do sleep 0.2; done
+recorded=$(wc -l < results/cut/shard-1/runs.jsonl)
+if grep -q "died of signal" results/cut/shard-1/runs.jsonl; then
+  echo "test_slurm_cluster: a run stopped by scancel was recorded as failed:" >&2
+  grep "died of signal" results/cut/shard-1/runs.jsonl >&2
+  exit 1
+fi
+sbatch --wait --array=1 --cpus-per-task=2 -o "$work/cut-resumed-%a.log" scripts/slurm/suite-array.sbatch cut 1 -- "${cut[@]}" >/dev/null
+local_run suite "${cut[@]}" --out "$work/local-cut"
+same_results "$work/local-cut" results/cut/shard-1
+echo "suite cancelled after $recorded runs, resubmitted: the same results as an uninterrupted run"
 echo "test_slurm_cluster: passed in $(seconds_since_start) s"
