@@ -26,11 +26,14 @@ namespace {
 
 constexpr const char* kSettingsFile = "/suite.jsonl";
 
-// The keys of a settings record that choose which jobs a suite has (they are in the job ids), or how a
-// result is judged rather than measured (the accuracy tolerances: a step search under other tolerances
-// reuses the probes it shares), as opposed to how every job is run and measured (the result-deciding ones).
-const std::set<std::string> kMatrixKeys = {"scenario_files", "engines", "laws", "time_steps_s", "contact_paths",
-                                           "engine_options", "step_search", "verdict_tolerances"};
+// The keys of a settings record that choose which jobs a suite has (they are in the job ids), how a result
+// is judged rather than measured (the accuracy tolerances: a step search under other tolerances reuses the
+// probes it shares), or which files a run keeps (the series: a reference keeps its window whatever it says,
+// and a study's 1e-4 s runs keep none), as opposed to how every job is run and measured (the
+// result-deciding ones).
+const std::set<std::string> kMatrixKeys = {"scenario_files", "engines",     "laws",               "time_steps_s",
+                                           "contact_paths",  "engine_options", "step_search", "verdict_tolerances",
+                                           "series"};
 
 std::string file_digest(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

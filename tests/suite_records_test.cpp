@@ -110,6 +110,12 @@ TEST_F(SuiteRecords, ExtendAddsJobsButNeverMixesSettings) {
               std::string::npos)
         << e.what();
   }
+  // what a run keeps of its series is not a result (a reference keeps its window whatever --series says):
+  // a study's part without series shares the references of one with them
+  settings_.max_duration_s = 0;
+  settings_.measurement.series = SeriesOutput::none;
+  EXPECT_EQ(run_suite(settings_).jobs_run, 0);
+  settings_.measurement.series = SeriesOutput::window;
   // a resume of either suite is the same suite again: nothing runs
   settings_.extend = false;
   settings_.resume = true;
