@@ -48,6 +48,16 @@ nlohmann::ordered_json json_object(const std::vector<Field>& row) {
   return j;
 }
 
+std::string differing_keys(const nlohmann::ordered_json& a, const nlohmann::ordered_json& b,
+                           const std::set<std::string>& ignored) {
+  std::string keys;
+  for (const auto& [key, value] : a.items())
+    if (!ignored.count(key) && (!b.contains(key) || b[key] != value)) keys += (keys.empty() ? "" : ", ") + key;
+  for (const auto& [key, value] : b.items())
+    if (!ignored.count(key) && !a.contains(key)) keys += (keys.empty() ? "" : ", ") + key;
+  return keys;
+}
+
 void append_table_row(const std::string& jsonl_path, const std::string& csv_path, const std::string& csv_header,
                       const std::string& csv_row, const std::string& json_line) {
   append_text_file(jsonl_path, json_line);

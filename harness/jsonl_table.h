@@ -29,6 +29,11 @@ std::string csv_row_line(const std::vector<Field>& row);
 // The row as a JSON object in column order: numbers as json_number (NaN is null).
 nlohmann::ordered_json json_object(const std::vector<Field>& row);
 
+// The keys whose values differ between two records (a key in one only counts), `ignored` aside,
+// comma-separated in the first record's order: what a refused --resume names (a suite's or a sweep's).
+std::string differing_keys(const nlohmann::ordered_json& a, const nlohmann::ordered_json& b,
+                           const std::set<std::string>& ignored = {});
+
 // Appends one row: its JSON line to `jsonl_path` first (the record), then its CSV row to `csv_path`,
 // with `csv_header` before it when the CSV is new or empty; each flushed at once, so that nothing
 // finished is lost. Throws OutputError (run_files.h) naming the file.

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/jsonl_table.h"
 #include "harness/reporters.h"
 #include "harness/run_files.h"
 
@@ -40,16 +41,6 @@ std::string file_digest(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   return in ? plan_digest({text.str()}) : "unreadable";
-}
-
-// The keys whose values differ between two records (skipping `ignored`), comma-separated.
-std::string differing_keys(const Json& a, const Json& b, const std::set<std::string>& ignored = {}) {
-  std::string keys;
-  for (const auto& [key, value] : a.items())
-    if (!ignored.count(key) && (!b.contains(key) || b[key] != value)) keys += (keys.empty() ? "" : ", ") + key;
-  for (const auto& [key, value] : b.items())
-    if (!ignored.count(key) && !a.contains(key)) keys += (keys.empty() ? "" : ", ") + key;
-  return keys;
 }
 
 struct SuitePart {

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "harness/folder_lock.h"
+#include "harness/jsonl_table.h"
 #include "harness/number_text.h"
 #include "harness/run_files.h"
 #include "harness/suite_runner.h"
@@ -51,16 +52,6 @@ nlohmann::ordered_json settings_record(const SweepSettings& s, const Scenario& s
   j["sensor_rate_hz"] = s.measurement.sensor_rate_hz;
   j["merge_window_s"] = s.measurement.merge_window_s;
   return j;
-}
-
-// Which keys of two settings records differ, for the message that refuses a resume.
-std::string differing_keys(const nlohmann::ordered_json& a, const nlohmann::ordered_json& b) {
-  std::string keys;
-  for (auto it = a.begin(); it != a.end(); ++it)
-    if (!b.contains(it.key()) || b[it.key()] != it.value()) keys += (keys.empty() ? "" : ", ") + it.key();
-  for (auto it = b.begin(); it != b.end(); ++it)
-    if (!a.contains(it.key())) keys += (keys.empty() ? "" : ", ") + it.key();
-  return keys;
 }
 
 std::string read_whole(const std::string& path) {
