@@ -84,10 +84,9 @@ class InterruptionHandler {
 
 bool interrupted();
 
-// In a job's process, right after fork: the default signal actions (the parent's handler would only
-// set a flag nobody reads), and death with the parent, so that a suite killed with SIGKILL leaves no
-// orphan writing into the folder a --resume is about to use.
-void become_worker(pid_t parent);
+// Starts a job's process (fork's return value): in it, the default signal actions and death with the
+// parent; a SIGINT or SIGTERM sent to it at any moment, even during the fork, ends it (worker_pool.cpp).
+pid_t fork_worker();
 
 // ---- Write errors inside a job's process: the message goes to the parent through a pipe and the
 // process exits with this code; the parent stops the suite with that message (OutputError).

@@ -168,12 +168,10 @@ void SweepRunner::run_chain_in_child(const SweepChain& chain) {
 
 void SweepRunner::start(const SweepChain& chain) {
   std::filesystem::create_directories(s_.out + "/runs/" + chain.id);
-  const pid_t parent = getpid();
   std::fflush(nullptr);
-  const pid_t pid = fork();
+  const pid_t pid = suite_internal::fork_worker();
   if (pid < 0) throw std::runtime_error("cannot start a worker process (fork failed)");
   if (pid == 0) {
-    suite_internal::become_worker(parent);
     const int log = open(log_of(chain).c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     if (log >= 0) dup2(log, STDOUT_FILENO), dup2(log, STDERR_FILENO), close(log);
     run_chain_in_child(chain);

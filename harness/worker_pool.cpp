@@ -88,14 +88,30 @@ InterruptionHandler::~InterruptionHandler() {
 
 bool interrupted() { return interrupt_signal != 0; }
 
-// In a job's process, right after fork: the default signal actions (the parent's handler would only
-// set a flag nobody reads), and death with the parent, so that a suite killed with SIGKILL leaves no
-// orphan writing into the folder a --resume is about to use.
-void become_worker(pid_t parent) {
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
-  prctl(PR_SET_PDEATHSIG, SIGKILL);
-  if (getppid() != parent) _exit(1);  // the parent died before prctl
+// Starts a job's process (fork) and returns its pid, as fork does. In the job's process: the default
+// signal actions (the parent's handler would only set a flag nobody reads), and death with the parent, so
+// that a suite killed with SIGKILL leaves no orphan writing into the folder a --resume is about to use.
+// SIGINT and SIGTERM stay blocked from before the fork until the child has its default actions: one sent
+// to the child in between would otherwise run the parent's handler, copied into the child, and be lost
+// (the job then finished as if no one had stopped it); blocked, it waits and then ends the child.
+pid_t fork_worker() {
+  sigset_t stop_signals, previous;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  sigprocmask(SIG_BLOCK, &stop_signals, &previous);
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  const int fork_error = errno;
+  if (pid == 0) {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(1);  // the parent died before prctl
+  }
+  sigprocmask(SIG_SETMASK, &previous, nullptr);
+  errno = fork_error;
+  return pid;
 }
 
 // ---- Write errors inside a job's process: the message goes to the parent through a pipe and the
@@ -176,11 +192,9 @@ void SuiteRunner::start(const PlannedJob& job) {
   int message_pipe[2] = {-1, -1};
   if (pipe2(message_pipe, O_CLOEXEC) != 0)
     throw std::runtime_error(std::string("cannot start a job's process: pipe: ") + std::strerror(errno));
-  const pid_t parent = getpid();
-  const pid_t pid = fork();
+  const pid_t pid = fork_worker();
   if (pid < 0) throw std::runtime_error(std::string("cannot start a job's process: ") + std::strerror(errno));
   if (pid == 0) {
-    become_worker(parent);
     close(message_pipe[0]);
     run_in_child(job, folder, scenario, beam, chain, scored, message_pipe[1]);  // never returns
   }

@@ -89,40 +89,60 @@ std::size_t lines_of(const fs::path& path) {
   return n;
 }
 
-// Processes still alive (not zombies) in process group `group`, from /proc.
-int live_processes_in_group(pid_t group) {
-  int n = 0;
+// One process's state, parent and process group, from /proc/PID/stat (state 0 when it is gone).
+struct ProcessStat {
+  char state = 0;
+  long parent = 0;
+  long group = 0;
+};
+ProcessStat process_stat(const fs::path& proc_entry) {
+  const std::string stat = read_text(proc_entry / "stat");
+  const auto close = stat.rfind(')');
+  ProcessStat s;
+  if (close == std::string::npos) return s;
+  std::istringstream rest(stat.substr(close + 2));
+  rest >> s.state >> s.parent >> s.group;
+  return s;
+}
+bool alive(const ProcessStat& s) { return s.state != 0 && s.state != 'Z' && s.state != 'X'; }
+
+// The live (not zombie) processes for which `keep` holds, from /proc.
+template <class Keep>
+std::vector<pid_t> live_processes(Keep keep) {
+  std::vector<pid_t> found;
   for (const auto& entry : fs::directory_iterator("/proc")) {
     const std::string name = entry.path().filename().string();
     if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    const std::string stat = read_text(entry.path() / "stat");
-    const auto close = stat.rfind(')');
-    if (close == std::string::npos) continue;
-    std::istringstream rest(stat.substr(close + 2));
-    char state = 0;
-    long parent = 0, pgrp = 0;
-    rest >> state >> parent >> pgrp;
-    if (pgrp == group && state != 'Z' && state != 'X') ++n;
+    const ProcessStat s = process_stat(entry.path());
+    if (alive(s) && keep(s)) found.push_back(static_cast<pid_t>(std::stol(name)));
   }
-  return n;
+  return found;
+}
+int live_processes_in_group(pid_t group) {
+  return static_cast<int>(live_processes([group](const ProcessStat& s) { return s.group == group; }).size());
+}
+std::vector<pid_t> children_of(pid_t parent) {
+  return live_processes([parent](const ProcessStat& s) { return s.parent == parent; });
 }
 
-// The live children of `parent`, from /proc.
-std::vector<pid_t> children_of(pid_t parent) {
-  std::vector<pid_t> children;
-  for (const auto& entry : fs::directory_iterator("/proc")) {
-    const std::string name = entry.path().filename().string();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    const std::string stat = read_text(entry.path() / "stat");
-    const auto close = stat.rfind(')');
-    if (close == std::string::npos) continue;
-    std::istringstream rest(stat.substr(close + 2));
-    char state = 0;
-    long ppid = 0;
-    rest >> state >> ppid;
-    if (ppid == parent && state != 'Z' && state != 'X') children.push_back(static_cast<pid_t>(std::stol(name)));
+// Stops (SIGSTOP) one live child of `parent` and returns it, or -1 if none is left before `deadline`. A
+// stopped worker cannot finish its job, so a signal sent to it next is the one that ends it: without this
+// the worker could end its job between being found and being signalled (the suite then finished every job
+// and exited 1, 3 times in 35).
+pid_t freeze_one_child(pid_t parent, std::chrono::steady_clock::time_point deadline) {
+  while (std::chrono::steady_clock::now() < deadline) {
+    for (pid_t child : children_of(parent)) {
+      kill(child, SIGSTOP);
+      for (int i = 0; i < 400; ++i) {  // until the stop shows (at most 2 s) or the child is gone
+        const ProcessStat s = process_stat("/proc/" + std::to_string(child));
+        if (s.state == 'T' || s.state == 't') return child;
+        if (!alive(s)) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  return children;
+  return -1;
 }
 
 // runs.jsonl as job id -> record without its timing fields.
@@ -231,11 +251,17 @@ class SuiteInterruption : public ::testing::Test {
       kill(target == Target::group ? -pid : pid, signal);
     } else {
       std::vector<pid_t> workers;  // a worker is running from the first job on, but look until one is seen
-      while ((workers = children_of(pid)).empty() && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      if (target == Target::one_worker) {
+        const pid_t frozen = freeze_one_child(pid, deadline);
+        if (frozen > 0) workers.push_back(frozen);
+      } else {
+        while ((workers = children_of(pid)).empty() && std::chrono::steady_clock::now() < deadline)
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
       EXPECT_FALSE(workers.empty()) << "no worker to signal";
-      if (target == Target::one_worker) workers.resize(std::min<std::size_t>(workers.size(), 1));
       for (pid_t worker : workers) kill(worker, signal);
+      if (target == Target::one_worker)
+        for (pid_t worker : workers) kill(worker, SIGCONT);  // the pending signal is delivered as it resumes
       if (target == Target::workers_then_suite) {
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
         kill(pid, signal);
