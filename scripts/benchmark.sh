@@ -22,7 +22,8 @@ while [[ ${1:-} == --* ]]; do
   esac
   shift
 done
-scripts/build.sh
+# the impactbench executable alone; --full also runs the bench/ timings, built with Google Benchmark
+if [[ $study == full ]]; then scripts/build.sh --bench; else scripts/build.sh; fi
 out=${1:-results/$(date +%Y%m%d-%H%M%S)}
 impactbench=build/cli/impactbench
 started=$(date +%s)
