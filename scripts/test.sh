@@ -1,33 +1,76 @@
 #!/usr/bin/env bash
-# The test command: installs what is missing, builds, runs every test (GoogleTest through ctest), then
-# builds the tests again with AddressSanitizer and UndefinedBehaviorSanitizer in build-sanitize/ and
-# runs them there. Any sanitizer report fails its test (-fno-sanitize-recover; ASan aborts).
-# IMPACTBENCH_SKIP_SANITIZE=1 skips the second build (for a quick local run; CI never sets it).
+# The test command (what CI's .ci/run calls): installs what is missing, builds everything in build/ and runs
+# every test (GoogleTest through ctest), then proves the layering with a build of the lower layers alone
+# (build-harness-only/), then builds the code we own again with AddressSanitizer and
+# UndefinedBehaviorSanitizer (build-sanitize/) and runs their tests there. Any sanitizer report fails its
+# test (-fno-sanitize-recover; ASan aborts). Each phase's time and the ten slowest tests are printed, so
+# that a regression shows in the log (docs/budgets.md: CI at most 30 minutes).
+# IMPACTBENCH_SKIP_SANITIZE=1 skips the sanitizer phase (for a quick local run; CI never sets it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/build.sh
-# The report's page is tested as a reader sees it, in headless Chromium (reports/tests/test_page_in_chromium.py):
-# Debian's chromium, installed when missing (as root or with sudo, as the other packages).
-command -v chromium >/dev/null || IMPACTBENCH_EXTRA_PACKAGES=chromium scripts/install-deps.sh --only-extra
-(cd build && ctest --output-on-failure -j "$(nproc)")
-# The layers (scripts/check_layers.py, ctest "layering" above): the model, the physics and the harness with
-# their unit tests build and pass with no simulator at all, in build-harness-only/.
-cmake -S . -B build-harness-only -DIMPACTBENCH_HARNESS_ONLY=ON >/dev/null
+started=$SECONDS
+phase_started=$SECONDS
+phases=()
+end_phase() {
+  local took=$((SECONDS - phase_started))
+  phases+=("$(printf '%-34s %3d:%02d' "$1" $((took / 60)) $((took % 60)))")
+  phase_started=$SECONDS
+}
+summary() {
+  local took=$((SECONDS - started))
+  echo
+  echo "test: phases (load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores)"
+  printf '  %s\n' "${phases[@]}"
+  printf '  %-34s %3d:%02d\n' "in all" $((took / 60)) $((took % 60))
+}
+trap summary EXIT
+
+# ctest starts the longest tests first when it knows their cost: a fresh build/ starts from the costs
+# kept in tests/ctest-cost-data.txt (refresh it with scripts/update-test-costs.sh), then from its own.
+seed_costs() {
+  mkdir -p "$1/Testing/Temporary"
+  [[ -f $1/Testing/Temporary/CTestCostData.txt ]] || cp tests/ctest-cost-data.txt "$1/Testing/Temporary/CTestCostData.txt"
+}
+# ctest with its output kept in DIR/ctest.log, then the ten slowest tests of that run.
+run_ctest() {
+  local dir=$1; shift
+  seed_costs "$dir"
+  local status=0
+  (cd "$dir" && ctest --output-on-failure -j "$(nproc)" "$@") 2>&1 | tee "$dir/ctest.log" || status=$?
+  echo "test: the ten slowest tests in $dir:"
+  sed -n 's/^ *[0-9]*\/[0-9]* Test *#[0-9]*: \([^ ]*\) \.*[^0-9]*\([0-9.]*\) sec$/\2 \1/p' "$dir/ctest.log" |
+    sort -rn | head -10 | awk '{ printf "  %8.1f s  %s\n", $1, $2 }'
+  return $status
+}
+
+scripts/build.sh --tests
+end_phase "install, configure and build"
+run_ctest build
+end_phase "tests ($(grep -c ' Test *#' build/ctest.log) in build/)"
+
+# The layers (scripts/check_layers.py, ctest "layering" above): the model, the physics and the harness
+# compile with no simulator at all (no engine's headers, paths or definitions), in build-harness-only/.
+# Their unit tests link these three libraries and nothing else (tests/CMakeLists.txt,
+# impactbench_harness_test): they ran above, so they are not built a second time here.
+cmake -S . -B build-harness-only -G Ninja -DIMPACTBENCH_HARNESS_ONLY=ON -DIMPACTBENCH_TESTS=OFF >/dev/null
 cmake --build build-harness-only -j "$(nproc)"
-(cd build-harness-only && ctest --output-on-failure -j "$(nproc)")
+end_phase "harness-only build"
 
 if [[ "${IMPACTBENCH_SKIP_SANITIZE:-0}" == 1 ]]; then
   echo "test: sanitizer build skipped (IMPACTBENCH_SKIP_SANITIZE=1)"
   exit 0
 fi
-# -O1 keeps the instrumented physics fast enough for CI.
-cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
-      -DIMPACTBENCH_SANITIZE=ON >/dev/null
+# -O1 keeps the instrumented physics fast enough for CI; -g1 (line tables) is all a sanitizer's report
+# needs to name the file and line.
+cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
+      -DIMPACTBENCH_SANITIZE=ON -DIMPACTBENCH_BENCH=OFF >/dev/null
 cmake --build build-sanitize -j "$(nproc)"
-# The engines' Debian libraries are not instrumented; ASan still checks every access our code makes.
-# Leak checking stays on. allocator_may_return_null=1: an allocation too large to satisfy returns null,
-# as with libc, instead of aborting; tests/mujoco_error_handling_test.cpp asks MuJoCo for 2^62 bytes to
-# check that MuJoCo's "could not allocate" error becomes an exception. It hides no memory error.
+end_phase "sanitizer build"
+# The engines' Debian libraries are not instrumented; ASan still checks every access our code makes, and
+# the tests built here are those of our code (tests/CMakeLists.txt says which). Leak checking stays on.
+# allocator_may_return_null=1: an allocation too large to satisfy returns null, as with libc, instead of
+# aborting (MuJoCo's "could not allocate" error relies on it); it hides no memory error.
 export ASAN_OPTIONS="abort_on_error=1:allocator_may_return_null=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
-(cd build-sanitize && ctest --output-on-failure -j "$(nproc)" -LE "${IMPACTBENCH_SANITIZE_EXCLUDE:-agreement}")
+run_ctest build-sanitize
+end_phase "sanitizer tests ($(grep -c ' Test *#' build-sanitize/ctest.log) in build-sanitize/)"
