@@ -16,7 +16,7 @@ fi
 out=${1:-results/performance}
 mkdir -p "$out"
 benchmark=build/bench/harness_overhead_benchmark
-[[ -x $benchmark ]] || { echo "overhead_instructions.sh: $benchmark missing: build first (scripts/build.sh)" >&2; exit 2; }
+[[ -x $benchmark ]] || { echo "overhead_instructions.sh: $benchmark missing: build it first (scripts/build.sh --bench)" >&2; exit 2; }
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 cases=$("$benchmark" --benchmark_list_tests)  # engine/law, as this build has them

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the Google Benchmarks of bench/ (built by scripts/build.sh) and writes each one's JSON into the
+# Runs the Google Benchmarks of bench/ (built by scripts/build.sh --bench) and writes each one's JSON into the
 # folder given (default results/performance): reference_benchmark.json (the reference per case and law,
 # simulated seconds per wall second), engine_step_benchmark.json (each engine's cost per step) and
 # harness_overhead_benchmark.json (the harness against a bare loop of the same engine model), each with

@@ -4,10 +4,10 @@
 #
 #   scripts/benchmark.sh [--full] [--no-search] [OUT]
 #
-# Default: the quick study of scripts/default-suite.sh (about 4 minutes after the build on this 2-core
-# machine). --full: the whole study (every published case, all three contact paths, the full step
-# search), then the bench/ timings for the report's performance section. --no-search skips the step
-# search. Every run's cost is its logged run's CPU and wall time (no timed repeats: bench/timing_check.sh
+# Default: the quick study of scripts/default-suite.sh (its budget and last measured time: docs/budgets.md),
+# with the impactbench executable alone built. --full: the whole study (every published case, all three
+# contact paths, the full step search), then the bench/ timings for the report's performance section.
+# --no-search skips the step search. Every run's cost is its logged run's CPU and wall time (no timed repeats: bench/timing_check.sh
 # shows the two agree).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,7 +23,11 @@ while [[ ${1:-} == --* ]]; do
   shift
 done
 # the impactbench executable alone; --full also runs the bench/ timings, built with Google Benchmark
+build_started=$(date +%s)
 if [[ $study == full ]]; then scripts/build.sh --bench; else scripts/build.sh; fi
+build_took=$(( $(date +%s) - build_started ))
+printf 'benchmark: installed and built in %d:%02d (docs/budgets.md: the build within 3 minutes)\n' \
+  $((build_took / 60)) $((build_took % 60))
 out=${1:-results/$(date +%Y%m%d-%H%M%S)}
 impactbench=build/cli/impactbench
 started=$(date +%s)

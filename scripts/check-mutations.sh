@@ -7,7 +7,7 @@
 # For each: apply it to the source, rebuild build/ (only what changed), run the ctest entries expected to
 # catch it, then restore the file. "caught": they failed; "SURVIVED": they passed (the suite is blind to
 # it); "build failed": not caught either. build/ is rebuilt unmutated at the end.
-#   scripts/check-mutations.sh            needs a configured build/ (scripts/build.sh) with the tests in it;
+#   scripts/check-mutations.sh            needs build/ with the tests in it (scripts/build.sh --tests);
 #                                         exit 0 when all six are caught, 1 otherwise, 2 when it cannot run
 #   scripts/check-mutations.sh --dry-run  only checks that every original text occurs once; builds nothing
 # Adding a mutation: append five fields to MUTATIONS: a name, the file, its exact original text (a literal
@@ -87,8 +87,8 @@ for ((i = 0; i < count; i++)); do
 done
 (( dry_run )) && { echo "dry run: all $count original texts found exactly once; nothing built or run"; exit 0; }
 
-[[ -f build/build.ninja || -f build/Makefile ]] || die "no configured build/ (build/build.ninja or build/Makefile): run scripts/build.sh first"
-[[ -f build/tests/CTestTestfile.cmake ]] || die "build/ has no tests (configured with BUILD_TESTING=OFF or IMPACTBENCH_HARNESS_ONLY?)"
+[[ -f build/build.ninja || -f build/Makefile ]] || die "no configured build/ (build/build.ninja or build/Makefile): run scripts/build.sh --tests first"
+[[ -f build/tests/CTestTestfile.cmake ]] || die "build/ has no tests (configured with IMPACTBENCH_TESTS=OFF: run scripts/build.sh --tests)"
 logs=build/check-mutations && mkdir -p "$logs"
 backup=$(mktemp)
 current=""  # the file mutated right now, restored on any exit

@@ -19,7 +19,7 @@ scripts/install-deps.sh
 IMPACTBENCH_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev" scripts/install-deps.sh --only-extra
 
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
-      -DIMPACTBENCH_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
+      -DIMPACTBENCH_FUZZ=ON -DIMPACTBENCH_TESTS=OFF -DIMPACTBENCH_BENCH=OFF >/dev/null
 cmake --build build-fuzz -j "$(nproc)" --target "${targets[@]}"
 
 export ASAN_OPTIONS="abort_on_error=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"

@@ -13,7 +13,7 @@ phase_started=$SECONDS
 phases=()
 end_phase() {
   local took=$((SECONDS - phase_started))
-  phases+=("$(printf '%-34s %3d:%02d' "$1" $((took / 60)) $((took % 60)))")
+  phases+=("$(printf '%-42s %3d:%02d' "$1" $((took / 60)) $((took % 60)))")
   phase_started=$SECONDS
 }
 summary() {
@@ -21,7 +21,7 @@ summary() {
   echo
   echo "test: phases (load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores)"
   printf '  %s\n' "${phases[@]}"
-  printf '  %-34s %3d:%02d\n' "in all" $((took / 60)) $((took % 60))
+  printf '  %-42s %3d:%02d\n' "in all" $((took / 60)) $((took % 60))
 }
 trap summary EXIT
 

@@ -40,7 +40,7 @@ esac
 
 [[ $(id -u) -eq 0 ]] || { echo "cluster.sh: the daemons run as root (SlurmUser=root); run as root" >&2; exit 2; }
 for tool in munged slurmctld slurmd sinfo sbatch; do
-  command -v "$tool" >/dev/null || { echo "cluster.sh: $tool missing: scripts/install-deps.sh installs slurmctld slurmd slurm-client munge" >&2; exit 2; }
+  command -v "$tool" >/dev/null || { echo "cluster.sh: $tool missing: scripts/install-deps.sh --tests installs slurmctld slurmd slurm-client munge" >&2; exit 2; }
 done
 mkdir -p "$dir"
 dir=$(cd "$dir" && pwd)
