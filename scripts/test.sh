@@ -17,13 +17,14 @@ end_phase() {
   phase_started=$SECONDS
 }
 summary() {
-  local took=$((SECONDS - started))
+  local status=$1 took=$((SECONDS - started))
   echo
+  ((status == 0)) || echo "test: FAILED (exit code $status) in the phase after those listed below"
   echo "test: phases (load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores)"
   printf '  %s\n' "${phases[@]}"
   printf '  %-42s %3d:%02d\n' "in all" $((took / 60)) $((took % 60))
 }
-trap summary EXIT
+trap 'summary $?' EXIT
 
 # ctest starts the longest tests first when it knows their cost: a fresh build/ starts from the costs
 # kept in tests/ctest-cost-data.txt (refresh it with scripts/update-test-costs.sh), then from its own.
@@ -38,8 +39,9 @@ run_ctest() {
   local status=0
   (cd "$dir" && ctest --output-on-failure -j "$(nproc)" "$@") 2>&1 | tee "$dir/ctest.log" || status=$?
   echo "test: the ten slowest tests in $dir:"
+  # awk reads all of sort's output (head would close the pipe early: SIGPIPE, and pipefail would stop the script)
   sed -n 's/^ *[0-9]*\/[0-9]* Test *#[0-9]*: \([^ ]*\) \.*[^0-9]*\([0-9.]*\) sec$/\2 \1/p' "$dir/ctest.log" |
-    sort -rn | head -10 | awk '{ printf "  %8.1f s  %s\n", $1, $2 }'
+    sort -rn | awk 'NR <= 10 { printf "  %8.1f s  %s\n", $1, $2 }'
   return $status
 }
 
