@@ -24,7 +24,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from impactbench_report import analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
 from impactbench_report import step_figures, zoom_figures  # noqa: E402
-from impactbench_report import dynamics, sweep  # noqa: E402
+from impactbench_report import dynamics, spectral, sweep  # noqa: E402
 
 CAVEATS = [
     "The experiment's figures (rig.md section 7) are data shown beside the simulators, not targets: the "
@@ -96,21 +96,21 @@ def provenance(suite, commands):
     }
 
 
-DYNAMICS = ["acceleration_histories", "phase_portraits", "poincare_sections", "spectra", "scalograms",
-            "impact_distributions", "amplitude_decay"]
+DYNAMICS = [dynamics.acceleration_histories, dynamics.phase_portraits, dynamics.poincare_sections, spectral.spectra,
+            spectral.scalograms, dynamics.impact_distributions, dynamics.amplitude_decay]
 
 
 def case_figures(suite, scenario, law, chosen, steps, tolerances, folder, stamp):
     """A case's figures in reading order: error against cost, the impact zoom, the researcher's views
-    (dynamics.py), the step search's limits."""
+    (dynamics.py, spectral.py), the step search's limits."""
     paths = [figures.error_against_cost(suite, scenario, law, folder, stamp, tolerances),
              zoom_figures.impact_zoom(suite, scenario, law, chosen, folder, stamp)]
     # The researcher's views compare series: only the runs that kept one (a step search's probes keep
     # none), and none at all when no engine run did (a panel per simulator saying "no series" is no view).
     with_series = {name: run for name, run in chosen.items() if suite.has_series(run)}
     if with_series:
-        for name in DYNAMICS:
-            paths.append(getattr(dynamics, name)(suite, scenario, law, with_series, folder, stamp))
+        for view in DYNAMICS:
+            paths.append(view(suite, scenario, law, with_series, folder, stamp))
     if data.steps_of(steps, scenario, law):
         paths.append(step_figures.step_limits(steps, scenario, law, folder, stamp))
     return [p for p in paths if p]

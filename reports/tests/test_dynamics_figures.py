@@ -1,5 +1,5 @@
-"""The vibro-impact views (impactbench_report/dynamics.py): the signal processing behind them against closed
-forms (the log decrement of a damped sine, a periodic signal's Poincare section, a sine's spectrum and
+"""The vibro-impact views (impactbench_report/dynamics.py, spectral.py): the signal processing behind them
+against closed forms (the log decrement of a damped sine, a periodic signal's Poincare section, a sine's spectrum and
 scalogram), and every figure built from a small synthetic suite written to a temporary folder: the views
 that do not apply return None, a run that kept no series gets a panel that says so, the fitted decrement
 written in the legend is the closed form's.
@@ -21,7 +21,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import matplotlib  # noqa: E402
-from impactbench_report import data, dynamics, signals  # noqa: E402
+from impactbench_report import data, dynamics, signals, spectral  # noqa: E402
 
 MOTOR_HZ = 7.0
 SERIES_RATE_HZ = 4096.0
@@ -186,8 +186,8 @@ class Figures(unittest.TestCase):
     def build(self, function, scenario):
         # text as <text> elements, so that the test can read what a figure says
         with matplotlib.rc_context({"svg.fonttype": "none"}):
-            path = getattr(dynamics, function)(self.suite, scenario, "hertz", self.chosen(scenario), self.out,
-                                               "synthetic suite")
+            view = getattr(spectral if function in ("spectra", "scalograms") else dynamics, function)
+            path = view(self.suite, scenario, "hertz", self.chosen(scenario), self.out, "synthetic suite")
         if path is None:
             return None
         self.assertTrue(os.path.exists(path), path)
