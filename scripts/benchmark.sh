@@ -7,8 +7,8 @@
 # Default: the quick study of scripts/default-suite.sh (its budget and last measured time: docs/budgets.md),
 # with the impactbench executable alone built. --full: the whole study (every published case, all three
 # contact paths, the full step search), then the bench/ timings for the report's performance section.
-# --no-search skips the step search. Every run's cost is its logged run's CPU and wall time (no timed repeats: bench/timing_check.sh
-# shows the two agree).
+# --no-search skips the step search. Every run's cost is its logged run's CPU and wall time (no timed
+# repeats: bench/timing_check.sh shows the two agree).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/default-suite.sh

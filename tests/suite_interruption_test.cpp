@@ -126,9 +126,9 @@ std::vector<pid_t> children_of(pid_t parent) {
 }
 
 // Stops (SIGSTOP) one live child of `parent` and returns it, or -1 if none is left before `deadline`. A
-// stopped worker cannot finish its job, so a signal sent to it next is the one that ends it: without this
-// the worker could end its job between being found and being signalled (the suite then finished every job
-// and exited 1, 3 times in 35).
+// stopped worker cannot finish its job, so the signal sent to it next is the one that ends it. Found early,
+// the worker is often just forked: before fork_worker blocked SIGTERM across the fork, a signal there ran
+// the suite's copied handler and was lost (the suite then finished every job and exited 1).
 pid_t freeze_one_child(pid_t parent, std::chrono::steady_clock::time_point deadline) {
   while (std::chrono::steady_clock::now() < deadline) {
     for (pid_t child : children_of(parent)) {
