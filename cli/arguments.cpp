@@ -94,7 +94,7 @@ ib::Measurement MeasurementOptions::build() const {
   ib::check_option("--sensor-rate", sensor_rate_hz, Plausible::kMinRate_hz, Plausible::kMaxRate_hz, "Hz", true);
   ib::check_option("--merge-window", merge_window_s, 0, Plausible::kMaxMergeWindow_s, "s", true);
   ib::Measurement m;
-  if (app_ && app_->count("--window") > 0) {  // given: whatever its value, it is checked (-1 and nan too)
+  if ((app_ && app_->count("--window") > 0) || window_given) {  // given: whatever its value, it is checked (-1 and nan too)
     ib::check_option("--window", window_s, 0, Plausible::kMaxDuration_s, "s");
     m.window_s = window_s;
   }

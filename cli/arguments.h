@@ -42,6 +42,7 @@ struct MeasurementOptions {
   double window_s = -1, sensor_rate_hz = 2048, merge_window_s = 0.002;
   int timed_repeats = 0;  // timed runs after the logged one (0: the logged run's own time is the cost)
   std::string series = "window";
+  bool window_given = false;  // --window given other than on a command line (a study file's window_s)
   // with_timing: the command runs simulators (run, suite), so --repeat and --series apply; score measures files only
   void add_to(CLI::App* app, bool with_timing) {
     app_ = app;

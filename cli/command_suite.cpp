@@ -18,15 +18,14 @@
 
 namespace cli {
 
-namespace {
-
 // Appends the suite's command, when it started, and the verdicts' tolerances to OUT/commands.jsonl
 // before the suite runs: the report names the commands that produced its folder (a study runs several
 // into one folder) and states the tolerances its verdicts used.
-void record_command(const std::string& out, const ib::VerdictSettings& v) {
+void record_command(const std::string& out, const ib::VerdictSettings& v, const std::string& note) {
   std::string typed = resume_command(g_argc, g_argv);
   if (std::find(g_argv, g_argv + g_argc, std::string("--resume")) == g_argv + g_argc)
     typed.resize(typed.size() - std::string(" --resume").size());
+  if (!note.empty()) typed += " (" + note + ")";
   char started[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(started, sizeof started, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
@@ -47,6 +46,8 @@ void record_command(const std::string& out, const ib::VerdictSettings& v) {
   std::filesystem::create_directories(out, error);  // when it cannot, the suite reports why (exit 3)
   if (!error) ib::append_text_file(out + "/commands.jsonl", line.dump() + "\n");
 }
+
+namespace {
 
 // --find-steps with --step-range MIN,MAX and --tolerance metric=value,... (the tolerances are the verdicts': the
 // search finds the largest step the verdict calls accurate)
@@ -85,7 +86,7 @@ ib::StepSearchSettings parse_step_search(const SuiteOptions& o, ib::VerdictSetti
 
 }  // namespace
 
-int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
+ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
   ib::SuiteSettings s;
   s.simulators = ib::simulator_catalog();
   s.inputs = o.inputs.empty() ? std::vector<std::string>{std::string(IMPACTBENCH_SCENARIO_DIR) + "/paper"} : o.inputs;
@@ -151,27 +152,35 @@ int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_o
              o.steps_per_octave != SuiteOptions{}.steps_per_octave || o.keep_series) {
     throw std::invalid_argument("--step-range, --steps-per-octave, --tolerance and --keep-series need --find-steps");
   }
-  record_command(o.out, s.measurement.verdicts);
-  const ib::SuiteOutcome outcome = ib::run_suite(s);
+  return s;
+}
+
+int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
+  const ib::SuiteSettings s = suite_settings_from(o, measurement_options);
+  record_command(o.out, s.measurement.verdicts, "");
+  return suite_exit_code(s, ib::run_suite(s));
+}
+
+int suite_exit_code(const ib::SuiteSettings& s, const ib::SuiteOutcome& outcome) {
   if (outcome.interrupted_by != 0) {
     // A step search plans its probes as they end, so its total is not known in advance.
     const std::string total = s.step_search ? "" : " of " + std::to_string(outcome.jobs_total);
     std::fprintf(stderr, "\nimpactbench: interrupted after %d%s jobs; continue with: %s\n",
-                 outcome.jobs_skipped + outcome.jobs_run, total.c_str(), resume_command(g_argc, g_argv).c_str());
+                 outcome.jobs_skipped + outcome.jobs_run, total.c_str(), s.resume_command.c_str());
     return kExitInterrupted + outcome.interrupted_by;
   }
   if (outcome.jobs_stopped > 0) {  // a worker got a signal from outside before the suite did (or alone)
     std::fprintf(stderr, "\nimpactbench: %d jobs are not recorded: stopped by signal %d from outside, or compared with a reference that was; run them with: %s\n",
-                 outcome.jobs_stopped, outcome.stopped_by, resume_command(g_argc, g_argv).c_str());
+                 outcome.jobs_stopped, outcome.stopped_by, s.resume_command.c_str());
     return kExitInterrupted + outcome.stopped_by;
   }
   std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed; "
               "of all %d results there, %d unstable or failed\n",
-              outcome.jobs_run, o.out.c_str(), outcome.jobs_skipped, outcome.not_ok, outcome.recorded, outcome.not_ok_recorded);
-  if (o.find_steps)
-    std::printf("suite: %d step searches recorded in %s/steps.csv\n", outcome.step_searches, o.out.c_str());
+              outcome.jobs_run, s.out.c_str(), outcome.jobs_skipped, outcome.not_ok, outcome.recorded, outcome.not_ok_recorded);
+  if (s.step_search)
+    std::printf("suite: %d step searches recorded in %s/steps.csv\n", outcome.step_searches, s.out.c_str());
   if (s.shard)
-    std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", o.shard.c_str());
+    std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", ib::to_string(*s.shard).c_str());
   return outcome.not_ok_recorded > 0 ? kExitRunNotOk : kExitOk;  // every result, also those of an earlier invocation
 }
 

@@ -38,7 +38,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& o, MeasurementOptions& measu
       ->capture_default_str();
 }
 
-int command_sweep(const SweepOptions& o, const MeasurementOptions& measurement_options) {
+ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOptions& measurement_options) {
   ib::SweepSettings s;
   s.simulators = ib::simulator_catalog();
   s.scenario_path = o.scenario;
@@ -109,7 +109,15 @@ int command_sweep(const SweepOptions& o, const MeasurementOptions& measurement_o
   s.measurement = measurement_options.build();
   if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
   s.resume_command = resume_command(g_argc, g_argv);
-  const ib::SweepOutcome outcome = ib::run_sweep(s);
+  return s;
+}
+
+int command_sweep(const SweepOptions& o, const MeasurementOptions& measurement_options) {
+  const ib::SweepSettings s = sweep_settings_from(o, measurement_options);
+  return sweep_exit_code(s, ib::run_sweep(s));
+}
+
+int sweep_exit_code(const ib::SweepSettings& s, const ib::SweepOutcome& outcome) {
   if (outcome.interrupted_by != 0) {
     std::fprintf(stderr, "\nimpactbench: sweep interrupted; continue with: %s\n", s.resume_command.c_str());
     return kExitInterrupted + outcome.interrupted_by;
@@ -120,8 +128,8 @@ int command_sweep(const SweepOptions& o, const MeasurementOptions& measurement_o
     return kExitInterrupted + outcome.stopped_by;
   }
   std::printf("sweep: %d ratios recorded in %s/sweep.csv (%d run now, %d already recorded), %d not ok\n",
-              outcome.rows_run + outcome.rows_skipped, o.out.c_str(), outcome.rows_run, outcome.rows_skipped, outcome.not_ok);
-  if (s.shard) std::printf("sweep: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", o.shard.c_str());
+              outcome.rows_run + outcome.rows_skipped, s.out.c_str(), outcome.rows_run, outcome.rows_skipped, outcome.not_ok);
+  if (s.shard) std::printf("sweep: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", ib::to_string(*s.shard).c_str());
   return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
 }
 

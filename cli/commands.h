@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "cli/arguments.h"
+#include "harness/suite.h"
+#include "harness/sweep.h"
 
 namespace cli {
 
@@ -43,6 +45,14 @@ int command_run(const std::string& path, const std::string& engine, const std::s
 int command_modes(const std::string& path, bool json, const std::vector<std::string>& option_pairs);
 
 int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options);
+// The suite's settings from its options, every value checked (std::invalid_argument naming the option, the
+// value and what is allowed): what `suite` and a study's [[suite]] and [[search]] parts share.
+ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOptions& measurement_options);
+// What a suite's outcome means for the exit code, said on stdout (or stderr when it stopped early).
+int suite_exit_code(const ib::SuiteSettings& s, const ib::SuiteOutcome& outcome);
+// Appends the command that writes into OUT, when it started and the verdicts' tolerances to OUT/commands.jsonl
+// (the report names the commands that produced its folder); note: which part of a study, "" for none.
+void record_command(const std::string& out, const ib::VerdictSettings& verdicts, const std::string& note);
 
 // The model an engine builds for a run, in the engine's own format, for a person to open in the
 // engine's tools (MuJoCo: MJCF for its viewer; the reference: its modal model as JSON).
@@ -67,5 +77,17 @@ int command_list(const std::string& folder);
 // `sweep` (harness/sweep.h): its options are registered by add_sweep_command, which sets `command`.
 void add_sweep_command(CLI::App& app, SweepOptions& options, MeasurementOptions& measurement, CLI::App*& command);
 int command_sweep(const SweepOptions& options, const MeasurementOptions& measurement_options);
+ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOptions& measurement_options);
+int sweep_exit_code(const ib::SweepSettings& s, const ib::SweepOutcome& outcome);
+
+// `study FILE --out DIR`: every part of a study file (study_file.h) into one folder, then its report.
+struct StudyOptions {
+  std::string file, out, shard;
+  std::string skip;  // kinds of parts left out, comma-separated: suite, search, sweep
+  int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  bool resume = false, no_report = false;
+  bool plan = false;  // --plan: check the file and say what each part runs, run nothing
+};
+int command_study(const StudyOptions& options);
 
 }  // namespace cli

@@ -131,6 +131,18 @@ int main(int argc, char** argv) {
   CLI::App* sweep = nullptr;
   add_sweep_command(app, sweep_options, sweep_measurement, sweep);
 
+  StudyOptions study_options;
+  CLI::App* study = app.add_subcommand("study", "run a study file's suites, step searches and sweeps into one folder, "
+                                                "then make its report (docs/studies.md, \"Study files\")");
+  study->add_option("file", study_options.file, "a study file (.toml), e.g. studies/default.toml")->required();
+  study->add_option("--out", study_options.out, "output folder (required unless --plan)");
+  study->add_option("--jobs", study_options.jobs, "worker processes")->capture_default_str();
+  study->add_option("--shard", study_options.shard, "K/N: every part's K-th of N shares, for a job array (merge joins them)");
+  study->add_flag("--resume", study_options.resume, "continue the study recorded in --out");
+  study->add_option("--skip", study_options.skip, "kinds of parts left out, comma-separated: suite, search, sweep");
+  study->add_flag("--no-report", study_options.no_report, "leave the report out");
+  study->add_flag("--plan", study_options.plan, "check the file and print what each part runs; run nothing");
+
   CLI::App* list = app.add_subcommand("list", "the scenarios, engines, laws and simulator options of this build");
   list->add_option("folder", list_folder, "scenario folder")->capture_default_str();
 
@@ -148,6 +160,7 @@ int main(int argc, char** argv) {
                          run_time_limit_s);
     if (suite->parsed()) return command_suite(suite_options, suite_measurement);
     if (sweep->parsed()) return command_sweep(sweep_options, sweep_measurement);
+    if (study->parsed()) return command_study(study_options);
     if (report->parsed()) return command_report(report_folder, report_out);
     if (merge->parsed()) return command_merge(merge_out, merge_inputs, merge_no_report);
     if (export_model->parsed())

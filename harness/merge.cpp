@@ -330,7 +330,7 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
     write_text_file(settings.out + "/steps.jsonl", step_jsonl);
     outcome.step_rows = static_cast<int>(repair_and_list_step_rows(settings.out).size());
   }
-  // A study's sweeps (scripts/default-suite.sh: DIR/sweeps/<name>/), each joined as a sweep.
+  // A study's sweeps (a study file's [[sweep]] parts: DIR/sweeps/<name>/), each joined as a sweep.
   std::set<std::string> sweeps;
   for (const std::string& folder : settings.inputs)
     if (fs::is_directory(folder + "/sweeps", error))

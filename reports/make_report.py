@@ -216,7 +216,7 @@ def main():
         sys.exit(f"make_report: {error}")
     if measured:
         sections.append(("Performance", measured[0], measured[1], []))
-    # A study's frequency sweeps (scripts/default-suite.sh: SUITE/sweeps/NAME/), each with its answer first.
+    # A study's frequency sweeps (a study file's [[sweep]] parts: SUITE/sweeps/NAME/), each with its answer first.
     document["sweep_answers"] = []
     sweeps_folder = os.path.join(args.suite, "sweeps")
     for name in sorted(os.listdir(sweeps_folder)) if os.path.isdir(sweeps_folder) else []:

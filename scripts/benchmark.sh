@@ -4,20 +4,19 @@
 #
 #   scripts/benchmark.sh [--full] [--no-search] [OUT]
 #
-# Default: the quick study of scripts/default-suite.sh (its budget and last measured time: docs/budgets.md),
-# with the impactbench executable alone built. --full: the whole study (every published case, all three
-# contact paths, the full step search), then the bench/ timings for the report's performance section.
-# --no-search skips the step search. Every run's cost is its logged run's CPU and wall time (no timed
-# repeats: bench/timing_check.sh shows the two agree).
+# Default: studies/default.toml (its budget and last measured time: docs/budgets.md), with the impactbench
+# executable alone built. --full: studies/full.toml (every published case, all three contact paths, the
+# full step search), then the bench/ timings for the report's performance section. --no-search skips the
+# step search. Every run's cost is its logged run's CPU and wall time (no timed repeats:
+# bench/timing_check.sh shows the two agree). A study of your own: build/cli/impactbench study FILE --out DIR.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-source scripts/default-suite.sh
 study=default
-search=1
+skip=()
 while [[ ${1:-} == --* ]]; do
   case $1 in
     --full) study=full ;;
-    --no-search) search=0 ;;
+    --no-search) skip=(--skip search) ;;
     *) echo "benchmark.sh: unknown option $1; allowed: --full, --no-search, then an output folder" >&2; exit 2 ;;
   esac
   shift
@@ -31,9 +30,10 @@ printf 'benchmark: installed and built in %d:%02d (docs/budgets.md: the build wi
 out=${1:-results/$(date +%Y%m%d-%H%M%S)}
 impactbench=build/cli/impactbench
 started=$(date +%s)
-echo "benchmark: the $study study into $out (scripts/default-suite.sh says what it runs)"
+echo "benchmark: studies/$study.toml into $out"
 status=0
-run_study "$out" || status=$?
+# the report after the bench/ timings (--full), which it shows
+"$impactbench" study "studies/$study.toml" --out "$out" --no-report "${skip[@]}" || status=$?
 if [[ $study == full ]] && (( status != 2 && status < 3 )) && ! bench/run-benchmarks.sh "$out/performance"; then
   echo "benchmark: the bench/ timings failed (above); the report is made without them" >&2
 fi

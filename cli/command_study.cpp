@@ -1,0 +1,117 @@
+// `study FILE --out DIR`: a study file's parts (study_file.h) into one folder, then its report. The suites
+// and step searches go into DIR (each after the first adds its own settings record: --extend), the sweeps
+// into DIR/sweeps/NAME; --jobs, --shard and --resume apply to every part.
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+#include "cli/commands.h"
+#include "cli/study_file.h"
+#include "harness/number_text.h"
+#include "simulators/catalog.h"
+
+namespace cli {
+
+namespace {
+
+std::string list_text(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ",") + item;
+  return text;
+}
+
+// One line per part: what it runs, "all" spelled out as this build has it.
+void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<std::string>& suite_names,
+                const std::vector<ib::SweepSettings>& sweeps, const std::vector<std::string>& sweep_names) {
+  const auto laws = [](const std::vector<ib::ContactLaw>& list) {
+    std::vector<std::string> names;
+    for (ib::ContactLaw law : list) names.push_back(ib::to_string(law));
+    return list_text(names);
+  };
+  const auto steps = [](const std::vector<double>& list) {
+    std::vector<std::string> texts;
+    for (double dt : list) texts.push_back(ib::number_text(dt));
+    return texts.empty() ? std::string("default") : list_text(texts);
+  };
+  for (std::size_t i = 0; i < suites.size(); ++i) {
+    const ib::SuiteSettings& s = suites[i];
+    std::printf("%s \"%s\": %s; engines %s; laws %s; paths %s; dt_s %s\n", s.step_search ? "search" : "suite",
+                suite_names[i].c_str(), list_text(s.inputs).c_str(), list_text(s.engines).c_str(), laws(s.laws).c_str(),
+                s.contact_paths.empty() ? "default" : list_text(s.contact_paths).c_str(),
+                s.step_search ? "searched" : steps(s.time_steps_s).c_str());
+  }
+  for (std::size_t i = 0; i < sweeps.size(); ++i) {
+    const ib::SweepSettings& s = sweeps[i];
+    std::printf("sweep \"%s\": %s; %zu ratios; engines %s; laws %s; paths %s; dt_s %s -> %s\n", sweep_names[i].c_str(),
+                s.scenario_path.c_str(), s.ratios.size(), list_text(s.engines).c_str(), laws(s.laws).c_str(),
+                s.contact_paths.empty() ? "default" : list_text(s.contact_paths).c_str(), steps(s.time_steps_s).c_str(),
+                s.out.c_str());
+  }
+}
+
+}  // namespace
+
+int command_study(const StudyOptions& o) {
+  if (o.out.empty() && !o.plan) throw std::invalid_argument("--out '': allowed: a folder path");
+  if (o.jobs < 1 || o.jobs > 1024) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: 1 to 1024");
+  const Study study = read_study(o.file, ib::simulator_names());
+  const std::string out = o.out.empty() ? "OUT" : o.out;  // --plan alone names no folder
+  std::vector<std::string> skipped;
+  if (!o.skip.empty())
+    for (const std::string& kind : split_list(o.skip, "--skip", "suite, search, sweep")) {
+      if (kind != "suite" && kind != "search" && kind != "sweep")
+        throw std::invalid_argument("--skip " + kind + ": allowed: suite, search, sweep, comma-separated");
+      skipped.push_back(kind);
+    }
+  const auto left_out = [&](StudyPart::Kind kind) {
+    const char* name = kind == StudyPart::Kind::suite ? "suite" : kind == StudyPart::Kind::search ? "search" : "sweep";
+    return std::find(skipped.begin(), skipped.end(), name) != skipped.end();
+  };
+  // Every part's settings first: a bad value anywhere stops the study before anything runs.
+  std::vector<ib::SuiteSettings> suites;
+  std::vector<ib::SweepSettings> sweeps;
+  std::vector<std::string> suite_names, sweep_names;
+  for (StudyPart part : study.parts) {
+    if (left_out(part.kind)) continue;
+    if (part.kind == StudyPart::Kind::sweep) {
+      part.sweep.out = out + "/sweeps/" + part.name;
+      part.sweep.jobs = o.jobs;
+      part.sweep.shard = o.shard;
+      part.sweep.resume = o.resume;
+      sweeps.push_back(settings_of_sweep_part(part));
+      sweep_names.push_back(part.name);
+      continue;
+    }
+    part.suite.out = out;
+    part.suite.jobs = o.jobs;
+    part.suite.shard = o.shard;
+    part.suite.resume = o.resume;
+    part.suite.extend = !suites.empty();  // the later parts have other settings: each adds its suite to the folder
+    suites.push_back(settings_of_suite_part(part));
+    suite_names.push_back(part.name);
+  }
+  if (o.plan) {
+    print_plan(suites, suite_names, sweeps, sweep_names);
+    return kExitOk;
+  }
+  std::fprintf(stderr, "study: %s, %zu suites and searches into %s, %zu sweeps into %s/sweeps/\n", o.file.c_str(),
+               suites.size(), o.out.c_str(), sweeps.size(), o.out.c_str());
+  int status = kExitOk;
+  const auto worst = [&](int code) {
+    status = std::max(status, code);
+    return code == kExitBadInput || code >= kExitOutputError;  // stop: bad input, a write error, an interruption
+  };
+  for (std::size_t i = 0; i < suites.size(); ++i) {
+    record_command(o.out, suites[i].measurement.verdicts, o.file + ": " + suite_names[i]);
+    if (worst(suite_exit_code(suites[i], ib::run_suite(suites[i])))) return status;
+  }
+  for (const ib::SweepSettings& sweep : sweeps)
+    if (worst(sweep_exit_code(sweep, ib::run_sweep(sweep)))) return status;
+  if (!o.no_report && o.shard.empty()) {
+    const int report = command_report(o.out, "");
+    if (report != kExitOk) return report;
+  }
+  return status;
+}
+
+}  // namespace cli

@@ -1,0 +1,170 @@
+// `impactbench study FILE`: a study file's parts checked as the commands' options are (one code path, one
+// set of ranges), bad keys named with their file and line, and a study's results equal to those of the
+// commands it stands for.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "command_test_support.h"
+#include "simulators/catalog.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ib::test::run_impactbench_logged_as;
+
+// A study file of this test in the temporary folder.
+fs::path study_file(const std::string& name, const std::string& text) {
+  const fs::path path = fs::temp_directory_path() / ("impactbench-study-" + std::to_string(::getpid()) + "-" + name + ".toml");
+  std::ofstream(path) << text;
+  return path;
+}
+
+ib::test::CommandOutput study(const std::string& arguments) { return run_impactbench_logged_as("study " + arguments, "study-test-"); }
+
+const char* kFreeVibration = R"([[suite]]
+name = "free vibration"
+scenarios = ["scenarios/paper/free_vibration.toml"]
+engines = ["reference"]
+laws = ["hertz", "newton"]
+duration_s = 0.5
+)";
+
+TEST(StudyFile, TheShippedStudiesAreValidAndAllMeansEveryEngineOfTheBuild) {
+  for (const char* name : {"default", "full"}) {
+    const auto out = study(std::string(IMPACTBENCH_SOURCE_DIR) + "/studies/" + name + ".toml --plan");
+    ASSERT_EQ(out.exit_code, 0) << name << ": " << out.text;
+    std::string every_engine;
+    for (const std::string& engine : ib::simulator_names()) every_engine += (every_engine.empty() ? "" : ",") + engine;
+    EXPECT_NE(out.text.find("engines " + every_engine + ";"), std::string::npos) << name << ": " << out.text;
+    EXPECT_NE(out.text.find("laws hertz,viscoelastic,newton;"), std::string::npos) << out.text;
+  }
+}
+
+TEST(StudyFile, SkipEnginesLeavesThemOutOfAll) {
+  const fs::path file = study_file("skip", R"([[suite]]
+scenarios = ["scenarios/paper/resonance.toml"]
+engines = "all"
+skip_engines = ["reference"]
+)");
+  const auto out = study(file.string() + " --plan");
+  fs::remove(file);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  const std::vector<std::string> names = ib::simulator_names();
+  EXPECT_EQ(out.text.find("engines reference"), std::string::npos) << out.text;
+  if (names.size() > 1) EXPECT_NE(out.text.find("engines " + names[1]), std::string::npos) << out.text;
+}
+
+struct BadStudy {
+  const char* name;
+  const char* text;
+  std::vector<std::string> said;  // every piece must be in the message
+};
+void PrintTo(const BadStudy& bad, std::ostream* out) { *out << bad.name; }
+
+class StudyFileErrors : public ::testing::TestWithParam<BadStudy> {};
+
+TEST_P(StudyFileErrors, ExitTwoNamingTheFileTheLineTheKeyTheValueAndWhatIsAllowed) {
+  const BadStudy& bad = GetParam();
+  const fs::path file = study_file(bad.name, bad.text);
+  const auto out = study(file.string() + " --out " + (fs::temp_directory_path() / "impactbench-study-never-written").string());
+  fs::remove(file);
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_NE(out.text.find(file.string()), std::string::npos) << out.text;
+  for (const std::string& piece : bad.said) EXPECT_NE(out.text.find(piece), std::string::npos) << piece << " in: " << out.text;
+  EXPECT_FALSE(fs::exists(fs::temp_directory_path() / "impactbench-study-never-written"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, StudyFileErrors,
+    ::testing::Values(
+        BadStudy{"unknown_key", "[[suite]]\nscenarios = [\"scenarios/paper\"]\ntime_step = 1e-4\n",
+                 {":3:", "time_step", "unknown key", "dt_s"}},
+        BadStudy{"unknown_table", "[[suites]]\nscenarios = [\"scenarios/paper\"]\n", {":1:", "suites", "[[suite]]"}},
+        BadStudy{"wrong_type", "[[suite]]\nscenarios = \"scenarios/paper\"\n",
+                 {":2:", "scenarios", "wrong type", "an array of strings"}},
+        BadStudy{"zero_step", "[[suite]]\nscenarios = [\"scenarios/paper\"]\n\ndt_s = [0]\n",
+                 {":4:", "dt_s", "--dt 0", "allowed"}},
+        BadStudy{"negative_duration", "[[search]]\nscenarios = [\"scenarios/stiff\"]\nduration_s = -1\n",
+                 {":3:", "duration_s", "-1", "allowed"}},
+        BadStudy{"unknown_engine", "[[suite]]\nscenarios = [\"scenarios/paper\"]\nengines = [\"reference\", \"havok\"]\n",
+                 {":3:", "engines", "havok"}},
+        BadStudy{"missing_scenarios", "[[suite]]\nengines = \"all\"\n", {":1:", "scenarios", "missing required key"}},
+        BadStudy{"all_misspelt", "[[suite]]\nscenarios = [\"scenarios/paper\"]\nlaws = \"every\"\n",
+                 {":3:", "laws", "\"all\" or an array of strings"}},
+        BadStudy{"sweep_without_name", "[[sweep]]\nscenario = \"scenarios/paper/resonance.toml\"\n", {":1:", "name"}},
+        BadStudy{"two_sweeps_one_folder",
+                 "[[sweep]]\nname = \"a\"\nscenario = \"scenarios/paper/resonance.toml\"\n"
+                 "[[sweep]]\nname = \"a\"\nscenario = \"scenarios/paper/resonance.toml\"\n",
+                 {":4:", "already the name of the sweep at line 1"}},
+        BadStudy{"syntax", "[[suite]\nscenarios = [\"scenarios/paper\"]\n", {":1:", "TOML syntax error"}}),
+    [](const ::testing::TestParamInfo<BadStudy>& info) { return std::string(info.param.name); });
+
+// A study's suite part records exactly what the `suite` command with the same options records: the same
+// settings record (suite.jsonl) and the same metrics, run by run.
+TEST(StudyCommand, APartGivesTheResultsOfTheCommandItStandsFor) {
+  const fs::path folder = fs::temp_directory_path() / ("impactbench-study-equal-" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  const fs::path file = study_file("equal", kFreeVibration);
+  const auto by_study = study(file.string() + " --jobs 2 --no-report --out " + (folder / "study").string());
+  fs::remove(file);
+  ASSERT_EQ(by_study.exit_code, 0) << by_study.text;
+  const auto by_suite = run_impactbench_logged_as(
+      "suite " + ib::test::paper_scenario("free_vibration") + " --engines reference --laws hertz,newton --duration 0.5 --jobs 2 --out " +
+          (folder / "suite").string(),
+      "study-test-suite-");
+  ASSERT_EQ(by_suite.exit_code, 0) << by_suite.text;
+  const auto read = [](const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  // runs.csv's rows arrive in the order the jobs end: compare them sorted, without the timing columns
+  const auto metrics = [&](const fs::path& csv) {
+    const auto out = ib::test::run_command("/usr/bin/python3 -c \"import csv,sys; rows=list(csv.DictReader(open(sys.argv[1]))); "
+                                           "keep=lambda r: {k: v for k, v in r.items() if 'time' not in k and 'per_s' not in k "
+                                           "and k not in ('scenario_file', 'steps_per_cpu_second')}; "
+                                           "print(sorted(str(sorted(keep(r).items())) for r in rows))\" " + csv.string());
+    return out.text;
+  };
+  EXPECT_EQ(metrics(folder / "study" / "runs.csv"), metrics(folder / "suite" / "runs.csv"));
+  EXPECT_FALSE(metrics(folder / "suite" / "runs.csv").empty());
+  // the settings record and the jobs; the command that wrote them differs
+  const auto record = [&](const fs::path& path) {
+    nlohmann::json line = nlohmann::json::parse(read(path));
+    line.erase("command");
+    return line;
+  };
+  EXPECT_EQ(record(folder / "study" / "suite.jsonl"), record(folder / "suite" / "suite.jsonl"));
+  fs::remove_all(folder);
+}
+
+TEST(StudyCommand, SweepsGoIntoTheirOwnFoldersAndResumeRunsNothingTwice) {
+  const fs::path folder = fs::temp_directory_path() / ("impactbench-study-sweep-" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  const fs::path file = study_file("sweep", std::string(kFreeVibration) + R"(
+[[sweep]]
+name = "coarse"
+scenario = "scenarios/paper/resonance.toml"
+ratios = "0.95:1.00:0.05"
+starts = ["up"]
+engines = ["reference"]
+rest_duration_s = 2
+duration_s = 2
+window_s = 1
+)");
+  const auto first = study(file.string() + " --no-report --out " + folder.string());
+  ASSERT_EQ(first.exit_code, 0) << first.text;
+  EXPECT_TRUE(fs::exists(folder / "runs.csv"));
+  EXPECT_TRUE(fs::exists(folder / "sweeps" / "coarse" / "sweep.csv"));
+  const auto again = study(file.string() + " --no-report --resume --out " + folder.string());
+  fs::remove(file);
+  ASSERT_EQ(again.exit_code, 0) << again.text;
+  EXPECT_NE(again.text.find("suite: 0 runs recorded"), std::string::npos) << again.text;
+  EXPECT_NE(again.text.find("(0 run now, 2 already recorded)"), std::string::npos) << again.text;
+  fs::remove_all(folder);
+}
+
+}  // namespace
