@@ -101,9 +101,18 @@ int command_study(const StudyOptions& o) {
     status = std::max(status, code);
     return code == kExitBadInput || code >= kExitOutputError;  // stop: bad input, a write error, an interruption
   };
+  // The [[suite]] parts as one plan (no part waits for another), then each step search.
+  std::vector<ib::SuiteSettings> together;
   for (std::size_t i = 0; i < suites.size(); ++i) {
     record_command(o.out, suites[i].measurement.verdicts, o.file + ": " + suite_names[i]);
-    if (worst(suite_exit_code(suites[i], ib::run_suite(suites[i])))) return status;
+    if (!suites[i].step_search) together.push_back(suites[i]);
+  }
+  if (!together.empty() && worst(suite_exit_code(together.front(), ib::run_suites(together)))) return status;
+  for (std::size_t i = 0; i < suites.size(); ++i) {
+    if (!suites[i].step_search) continue;
+    ib::SuiteSettings search = suites[i];
+    search.extend = search.extend || !together.empty();
+    if (worst(suite_exit_code(search, ib::run_suite(search)))) return status;
   }
   for (const ib::SweepSettings& sweep : sweeps)
     if (worst(sweep_exit_code(sweep, ib::run_sweep(sweep)))) return status;

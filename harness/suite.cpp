@@ -36,6 +36,16 @@ SuiteSettings with_one_tolerance_record(SuiteSettings settings) {
   return settings;
 }
 
+std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSettings>& parts) {
+  if (parts.empty()) throw std::logic_error("a suite with no part");
+  if (parts.size() > 1)
+    for (const SuiteSettings& part : parts)
+      if (part.step_search) throw std::logic_error("a step search runs as a suite of its own, not as a part of several");
+  std::vector<SuiteSettings> checked;
+  for (const SuiteSettings& part : parts) checked.push_back(with_one_tolerance_record(part));
+  return checked;
+}
+
 SuiteOutcome SuiteRunner::run() {
   std::error_code error;
   fs::create_directories(settings_.out, error);
@@ -56,13 +66,15 @@ SuiteOutcome SuiteRunner::run() {
   if (settings_.shard) {
     std::vector<std::string> whole = planned_job_ids();
     for (std::string& key : planned_step_keys()) whole.push_back(std::move(key));
-    nlohmann::ordered_json settings = settings_record();
-    settings.erase("scenario_files");  // the shards' machines may name the files differently
-    whole.push_back(settings.dump());
+    for (std::size_t part = 0; part < parts_.size(); ++part) {
+      nlohmann::ordered_json settings = settings_record(part);
+      settings.erase("scenario_files");  // the shards' machines may name the files differently
+      whole.push_back(settings.dump());
+    }
     suite = plan_digest(whole);
     keep_only_this_shard();
   }
-  check_and_record_settings();
+  for (std::size_t part = 0; part < parts_.size(); ++part) check_and_record_settings(part);
   if (settings_.shard) record_plan(suite);
   for (const PlannedJob& job : jobs_)
     if (!job.same_run_as.empty()) scored_from_.emplace(job.same_run_as, &job);
@@ -120,9 +132,11 @@ SuiteOutcome SuiteRunner::run() {
 
 namespace ib {
 
-SuiteOutcome run_suite(const SuiteSettings& settings) {
+SuiteOutcome run_suite(const SuiteSettings& settings) { return run_suites({settings}); }
+
+SuiteOutcome run_suites(const std::vector<SuiteSettings>& parts) {
   const suite_internal::InterruptionHandler handler;  // outlives the runner, which stops its workers when it ends
-  return suite_internal::SuiteRunner(settings).run();
+  return suite_internal::SuiteRunner(parts).run();
 }
 
 }  // namespace ib

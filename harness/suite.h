@@ -64,4 +64,10 @@ struct SuiteOutcome {
 // Throws std::invalid_argument for a --resume in a folder that holds another shard or a whole suite.
 SuiteOutcome run_suite(const SuiteSettings& settings);
 
+// Several suites into one folder as one plan on one pool of workers (a study's [[suite]] parts): no part
+// waits for another to end, the costliest ready job starts first. The folder, workers, time limit, resume,
+// extend, shard and simulators are the first part's; each part records its own settings line (suite.jsonl,
+// as --extend would), and a job that two parts plan runs once. A step search runs alone (one part).
+SuiteOutcome run_suites(const std::vector<SuiteSettings>& parts);
+
 }  // namespace ib

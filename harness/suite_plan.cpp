@@ -152,8 +152,17 @@ static std::string unreadable_job_id(const std::string& file, bool stem_shared) 
 }
 
 void SuiteRunner::plan() {
+  std::set<std::string> planned;  // a job two parts plan runs once, with the first part's settings
+  part_jobs_.resize(parts_.size());
+  part_files_.resize(parts_.size());
+  for (std::size_t part = 0; part < parts_.size(); ++part) plan_part(part, planned);
+}
+
+void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& planned) {
+  const SuiteSettings& part = parts_[part_index];
+  std::vector<std::string>& part_jobs = part_jobs_[part_index];
   std::vector<std::string> files;
-  for (const std::string& input : settings_.inputs) {
+  for (const std::string& input : part.inputs) {
     std::error_code error;
     if (fs::is_directory(input, error)) {
       const std::vector<std::string> found = find_scenario_files(input);
@@ -178,14 +187,25 @@ void SuiteRunner::plan() {
                              }),
               files.end());
   for (const std::string& file : files) ++stems[fs::path(file).stem().string()];
-  std::set<std::string> planned;
+  part_files_[part_index] = files;
+  const auto add_unrunnable = [&](RunRecord record) {
+    part_jobs.push_back(record.job_id);
+    for (const RunRecord& r : unrunnable_)
+      if (r.job_id == record.job_id) return;
+    unrunnable_.push_back(std::move(record));
+  };
+  const auto add_job = [&](const PlannedJob& job) {
+    part_jobs.push_back(job.id);
+    add(job, planned);
+  };
   std::map<std::string, std::string> file_of_name;  // the job ids start with the scenario's name: one file each
   for (const std::string& file : files) {
     try {
       scenarios_.push_back(load_scenario(file));
+      scenario_part_.push_back(part_index);
     } catch (const std::exception& e) {
-      unrunnable_.push_back(unrunnable(unreadable_job_id(file, stems[fs::path(file).stem().string()] > 1),
-                                       fs::path(file).stem().string(), file, "", "", e.what()));
+      add_unrunnable(unrunnable(unreadable_job_id(file, stems[fs::path(file).stem().string()] > 1),
+                                fs::path(file).stem().string(), file, "", "", e.what()));
       continue;
     }
     const auto [named, fresh] = file_of_name.emplace(scenarios_.back().name, file);
@@ -195,33 +215,33 @@ void SuiteRunner::plan() {
                                   "and run folders are named after it)");
     const std::size_t index = scenarios_.size() - 1;
     Scenario& s = scenarios_.back();
-    const bool cut = settings_.max_duration_s > 0 && s.duration_s > settings_.max_duration_s;
+    const bool cut = part.max_duration_s > 0 && s.duration_s > part.max_duration_s;
     if (cut) {
-      s.duration_s = settings_.max_duration_s;  // the scoring window, the last part of the run, is kept
+      s.duration_s = part.max_duration_s;  // the scoring window, the last part of the run, is kept
       s.scoring_window_s = std::min(s.scoring_window_s, s.duration_s);
     }
-    if (cut || settings_.measurement.window_s) warn_if_window_in_transient(s, settings_.measurement);
+    if (cut || part.measurement.window_s) warn_if_window_in_transient(s, part.measurement);
     // The native contact path ignores the scenario's law: its run for the first law answers for all.
     std::optional<ContactLaw> first_law;
-    for (ContactLaw law : settings_.laws)
+    for (ContactLaw law : part.laws)
       if (!first_law && s.contact.has(law)) first_law = law;
-    for (ContactLaw law : settings_.laws) {
+    for (ContactLaw law : part.laws) {
       if (!s.contact.has(law)) {
-        unrunnable_.push_back(unrunnable(s.name + "/" + to_string(law) + "/unavailable", s.name, file, "", to_string(law),
-                                         "the scenario has no [contact." + std::string(to_string(law)) + "] table"));
+        add_unrunnable(unrunnable(s.name + "/" + to_string(law) + "/unavailable", s.name, file, "", to_string(law),
+                                  "the scenario has no [contact." + std::string(to_string(law)) + "] table"));
         continue;
       }
-      PlannedJob beam = make_job(index, JobKind::beam_reference, "reference", law, 0, settings_.reference_options);
-      add(beam, planned);
-      for (const std::string& engine : settings_.engines) {
+      PlannedJob beam = make_job(index, JobKind::beam_reference, "reference", law, 0, part.reference_options);
+      add_job(beam);
+      for (const std::string& engine : part.engines) {
         if (engine == "reference") continue;
-        const auto engine_options = settings_.engine_options.count(engine) ? settings_.engine_options.at(engine)
-                                                                           : std::map<std::string, std::string>{};
-        const std::vector<double> steps = settings_.time_steps_s.empty() || settings_.step_search
+        const auto engine_options = part.engine_options.count(engine) ? part.engine_options.at(engine)
+                                                                      : std::map<std::string, std::string>{};
+        const std::vector<double> steps = part.time_steps_s.empty() || part.step_search
                                               ? std::vector<double>{0}
-                                              : settings_.time_steps_s;
+                                              : part.time_steps_s;
         const std::vector<std::string> paths =
-            settings_.contact_paths.empty() ? std::vector<std::string>{""} : settings_.contact_paths;
+            part.contact_paths.empty() ? std::vector<std::string>{""} : part.contact_paths;
         for (const std::string& path : paths)
         for (double dt : steps) {
           auto options = engine_options;
@@ -230,19 +250,19 @@ void SuiteRunner::plan() {
           job.beam_reference = beam.id;
           if (auto simulator = settings_.simulators.make(engine)) {
             if (const auto links = simulator->chain_links(s, job.spec.settings)) {
-              auto chain_options = settings_.reference_options;
+              auto chain_options = part.reference_options;
               for (const auto& [name, value] : settings_.simulators.chain_reference_options(*links)) chain_options[name] = value;
               PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options);
               chain.beam_reference = beam.id;
               chain.chain_links = *links;
               job.chain_reference = chain.id;
               job.chain_links = *links;
-              add(chain, planned);
+              add_job(chain);
             }
           }
-          if (settings_.step_search) {
+          if (part.step_search) {
             RunSettings coarsest = job.spec.settings;  // the search's largest step on this scenario
-            coarsest.time_step_s = settings_.step_search->max_step_s;
+            coarsest.time_step_s = part.step_search->max_step_s;
             check_run_size(s, coarsest);
             if (planned.insert(job.id).second) step_groups_.push_back(job);  // its probes are planned by the search
             continue;
@@ -250,7 +270,7 @@ void SuiteRunner::plan() {
           const auto contact = options.find("contact");
           if (contact != options.end() && contact->second == "native" && law != *first_law)
             job.same_run_as = make_job(index, JobKind::engine, engine, *first_law, dt, options).id;
-          add(job, planned);
+          add_job(job);
         }
       }
     }
@@ -266,7 +286,7 @@ PlannedJob SuiteRunner::make_job(std::size_t scenario, JobKind kind, const std::
   job.spec.engine = engine;
   job.spec.settings.law = law;
   job.spec.settings.time_step_s = dt;
-  job.spec.settings.output_rate_hz = settings_.output_rate_hz;
+  job.spec.settings.output_rate_hz = parts_[scenario_part_[scenario]].output_rate_hz;
   job.spec.settings.options = options;
   job.id = job_id(scenarios_[scenario].name, job.spec);
   return job;
@@ -317,7 +337,7 @@ void SuiteRunner::describe_plan(int to_run) const {
     ++by_engine[job.spec.engine];
     const Scenario& s = scenarios_[job.scenario];
     char text[96];
-    const MetricSettings window = metric_settings(s, settings_.measurement);
+    const MetricSettings window = metric_settings(s, part_of(job).measurement);
     std::snprintf(text, sizeof text, "%s (%g s, scored from %g s)", s.name.c_str(), s.duration_s, window.window_start_s);
     names.insert(text);
     laws.insert(to_string(job.spec.settings.law));

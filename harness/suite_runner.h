@@ -103,10 +103,14 @@ struct ScoredFrom {
 
 // The step search judges "within tolerance" with the verdicts' own tolerances: one record.
 SuiteSettings with_one_tolerance_record(SuiteSettings settings);
+std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSettings>& parts);
 
+// The suite's parts (run_suites): one plan, one pool of workers. What every part shares (the folder, the
+// workers, the time limit, resume, shards) is the first part's; what decides a job's run (its scenario as
+// cut, its measurement) is its own part's.
 class SuiteRunner {
  public:
-  explicit SuiteRunner(const SuiteSettings& settings) : settings_(with_one_tolerance_record(settings)) {}
+  explicit SuiteRunner(const std::vector<SuiteSettings>& parts) : parts_(with_one_tolerance_record(parts)) {}
   // On an exception (a result that cannot be written), no worker outlives the runner.
   ~SuiteRunner() { stop_workers(/*collect_finished=*/false); }
   SuiteRunner(const SuiteRunner&) = delete;
@@ -151,11 +155,16 @@ class SuiteRunner {
   void plan();
 
   // DIR/suite.jsonl (suite_settings.cpp): what decides this suite's results, and its job ids.
-  nlohmann::ordered_json settings_record() const;
+  nlohmann::ordered_json settings_record(std::size_t part) const;
   // Refuses (std::invalid_argument) a --resume whose settings equal none of the folder's suites, naming
   // the keys that differ, unless --extend; with --extend, a shared job recorded under other settings.
-  // Then records this suite's line unless it is there.
-  void check_and_record_settings();
+  // Then records this suite's line unless it is there. A part after the first extends the folder, and
+  // refuses a job it shares with an earlier part under other result-deciding settings.
+  void check_and_record_settings(std::size_t part);
+
+  // The part a job belongs to: that of its scenario, as loaded and cut for that part.
+  const SuiteSettings& part_of(const PlannedJob& job) const { return parts_[scenario_part_[job.scenario]]; }
+  void plan_part(std::size_t part, std::set<std::string>& planned);
 
   PlannedJob make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,
                       const std::map<std::string, std::string>& options) const;
@@ -175,7 +184,7 @@ class SuiteRunner {
   void add(const PlannedJob& job, std::set<std::string>& planned);
 
   // The reference a job is compared with, read from its folder once and kept; null if it did not finish.
-  const ReferenceData* reference(const std::string& id, const Scenario& scenario);
+  const ReferenceData* reference(const std::string& id, const PlannedJob& job);  // read as job's part measures
 
   void start(const PlannedJob& job);
 
@@ -221,8 +230,12 @@ class SuiteRunner {
   // share the worker processes. Probes already in runs.jsonl (--resume) are read, not run again.
   void run_step_searches();
 
-  const SuiteSettings settings_;  // a copy: the tolerance record is set in it (with_one_tolerance_record)
+  const std::vector<SuiteSettings> parts_;  // copies: the tolerance record is set in them (with_one_tolerance_record)
+  const SuiteSettings& settings_ = parts_.front();  // what the parts share
   std::vector<Scenario> scenarios_;
+  std::vector<std::size_t> scenario_part_;               // the part each scenario was loaded (and cut) for
+  std::vector<std::vector<std::string>> part_jobs_;       // each part's job ids, also those an earlier part planned
+  std::vector<std::vector<std::string>> part_files_;      // each part's scenario files, readable or not
   std::vector<PlannedJob> jobs_;
   std::vector<PlannedJob> step_groups_;  // --find-steps: one job (dt = 0) per group, not run itself
   std::deque<PlannedJob> probe_jobs_;    // the searches' probes (a deque keeps their addresses)

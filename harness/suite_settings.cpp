@@ -82,25 +82,27 @@ std::vector<SuitePart> read_parts(const std::string& folder) {
 
 }  // namespace
 
-nlohmann::ordered_json SuiteRunner::settings_record() const {
+nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
+  const SuiteSettings& settings = parts_[part];
   Json s;
   Json files = Json::object();
-  for (const Scenario& scenario : scenarios_) files[scenario.source_path] = file_digest(scenario.source_path);
+  for (std::size_t i = 0; i < scenarios_.size(); ++i)
+    if (scenario_part_[i] == part) files[scenarios_[i].source_path] = file_digest(scenarios_[i].source_path);
   // a file that cannot be read is "unreadable" whatever it holds: a --resume after fixing it runs it
-  for (const RunRecord& r : unrunnable_)
-    if (!files.contains(r.scenario_file)) files[r.scenario_file] = "unreadable";
+  for (const std::string& file : part_files_[part])
+    if (!files.contains(file)) files[file] = "unreadable";
   s["scenario_files"] = files;
-  s["engines"] = settings_.engines;
+  s["engines"] = settings.engines;
   std::vector<std::string> laws;
-  for (ContactLaw law : settings_.laws) laws.push_back(to_string(law));
+  for (ContactLaw law : settings.laws) laws.push_back(to_string(law));
   s["laws"] = laws;
-  s["time_steps_s"] = settings_.time_steps_s;
-  s["contact_paths"] = settings_.contact_paths;
-  s["engine_options"] = settings_.engine_options;
-  s["reference_options"] = settings_.reference_options;
-  s["output_rate_hz"] = settings_.output_rate_hz;
-  s["max_duration_s"] = settings_.max_duration_s;
-  const Measurement& m = settings_.measurement;
+  s["time_steps_s"] = settings.time_steps_s;
+  s["contact_paths"] = settings.contact_paths;
+  s["engine_options"] = settings.engine_options;
+  s["reference_options"] = settings.reference_options;
+  s["output_rate_hz"] = settings.output_rate_hz;
+  s["max_duration_s"] = settings.max_duration_s;
+  const Measurement& m = settings.measurement;
   s["window_s"] = m.window_s ? Json(*m.window_s) : Json(nullptr);
   s["sensor_rate_hz"] = m.sensor_rate_hz;
   s["merge_window_s"] = m.merge_window_s;
@@ -111,9 +113,9 @@ nlohmann::ordered_json SuiteRunner::settings_record() const {
   s["stability_bounds"] = {m.verdicts.stability.displacement_bound_fraction_of_length,
                            m.verdicts.stability.penetration_bound_gaps, m.verdicts.stability.penetration_bound_floor_m,
                            m.verdicts.stability.energy_growth_tolerance};
-  if (settings_.step_search)
-    s["step_search"] = {settings_.step_search->min_step_s, settings_.step_search->max_step_s,
-                        settings_.step_search->points_per_octave};
+  if (settings.step_search)
+    s["step_search"] = {settings.step_search->min_step_s, settings.step_search->max_step_s,
+                        settings.step_search->points_per_octave};
   else
     s["step_search"] = nullptr;
   return s;
@@ -142,10 +144,27 @@ std::string line_of(const Json& settings, const std::vector<std::string>& jobs, 
 
 }  // namespace
 
-void SuiteRunner::check_and_record_settings() {
-  const Json current = settings_record();
+void SuiteRunner::check_and_record_settings(std::size_t this_part) {
+  const Json current = settings_record(this_part);
   std::vector<SuitePart> parts = read_parts(settings_.out);
-  const std::vector<std::string> planned = planned_job_ids();
+  // this part's jobs in planned order (a shard's: those it kept), also those an earlier part plans
+  const std::set<std::string> mine(part_jobs_[this_part].begin(), part_jobs_[this_part].end());
+  std::vector<std::string> planned;
+  for (const std::string& id : planned_job_ids())
+    if (mine.count(id)) planned.push_back(id);
+  // A job an earlier part of this run planned runs once, under that part's settings: they must decide its
+  // result as this part's would.
+  for (std::size_t earlier = 0; earlier < this_part; ++earlier) {
+    const std::set<std::string> theirs(part_jobs_[earlier].begin(), part_jobs_[earlier].end());
+    for (const std::string& id : planned) {
+      if (!theirs.count(id)) continue;
+      const std::string keys = differing_keys(settings_record(earlier), current, kMatrixKeys);
+      if (!keys.empty())
+        throw std::invalid_argument("job " + id + " is planned by two parts with other settings (" + keys +
+                                    " differ): give them other scenarios, laws or steps, or the same settings");
+      break;
+    }
+  }
   for (const SuitePart& part : parts)
     if (part.settings == current) return;  // the same suite: --resume continues it
   for (SuitePart& part : parts) {
@@ -172,7 +191,7 @@ void SuiteRunner::check_and_record_settings() {
     replace_text_file(settings_.out + kSettingsFile, text);
     return;
   }
-  if (!parts.empty() && !settings_.extend) {
+  if (!parts.empty() && !settings_.extend && this_part == 0) {
     // name the keys that differ from the suite closest to this one
     std::string keys, command;
     for (const SuitePart& part : parts) {

@@ -155,13 +155,14 @@ void SuiteRunner::stop_workers(bool collect_finished) {
 }
 
 // The reference a job is compared with, read from its folder once and kept; null if it did not finish.
-const ReferenceData* SuiteRunner::reference(const std::string& id, const Scenario& scenario) {
+const ReferenceData* SuiteRunner::reference(const std::string& id, const PlannedJob& job) {
   if (id.empty()) return nullptr;
   auto found = references_.find(id);
   if (found == references_.end()) {
     std::unique_ptr<ReferenceData> data;
     try {
-      data = std::make_unique<ReferenceData>(load_reference(settings_.out + "/runs/" + id, scenario, settings_.measurement));
+      data = std::make_unique<ReferenceData>(load_reference(settings_.out + "/runs/" + id, scenarios_[job.scenario],
+                                                             part_of(job).measurement));
     } catch (const std::exception&) {
       data = nullptr;  // the reference failed: the job is recorded without errors against it
     }
@@ -178,15 +179,15 @@ void SuiteRunner::start(const PlannedJob& job) {
   if (error) throw OutputError(output_error_text(folder, "create the run folder", error.value()));
   const Scenario& scenario = scenarios_[job.scenario];
   // Load the references in this process, so that the job's process inherits them.
-  const ReferenceData* beam = reference(job.beam_reference, scenario);
-  const ReferenceData* chain = reference(job.chain_reference, scenario);
+  const ReferenceData* beam = reference(job.beam_reference, job);
+  const ReferenceData* chain = reference(job.chain_reference, job);
   std::vector<ScoredFrom> scored;
   for (const PlannedJob* other : unrecorded_scored_from(job)) {
     const std::string other_folder = folder_of(*other);
     fs::remove_all(other_folder, error);
     fs::create_directories(other_folder, error);
     if (error) throw OutputError(output_error_text(other_folder, "create the run folder", error.value()));
-    scored.push_back({other, reference(other->beam_reference, scenario), reference(other->chain_reference, scenario)});
+    scored.push_back({other, reference(other->beam_reference, *other), reference(other->chain_reference, *other)});
   }
   std::fflush(nullptr);
   int message_pipe[2] = {-1, -1};
@@ -207,9 +208,9 @@ void SuiteRunner::start(const PlannedJob& job) {
 // with it, also on --resume), a step-search probe none unless asked (its summary and events say
 // whether the step is stable and accurate), any other run what --series says.
 Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
-  Measurement m = settings_.measurement;
+  Measurement m = part_of(job).measurement;
   if (job.kind != JobKind::engine && m.series == SeriesOutput::none) m.series = SeriesOutput::window;
-  if (job.step_probe && !settings_.keep_probe_series) m.series = SeriesOutput::none;
+  if (job.step_probe && !part_of(job).keep_probe_series) m.series = SeriesOutput::none;
   return m;
 }
 
