@@ -86,6 +86,7 @@ int command_study(const StudyOptions& o) {
     part.suite.jobs = o.jobs;
     part.suite.shard = o.shard;
     part.suite.resume = o.resume;
+    part.suite.reference_cache = o.reference_cache;
     part.suite.extend = !suites.empty();  // the later parts have other settings: each adds its suite to the folder
     suites.push_back(settings_of_suite_part(part));
     suite_names.push_back(part.name);

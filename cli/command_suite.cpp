@@ -141,6 +141,7 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
   s.out = o.out;
   s.resume = o.resume;
   s.extend = o.extend;
+  s.reference_cache = o.reference_cache;
   s.measurement = measurement_options.build();
   if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
   s.resume_command = resume_command(g_argc, g_argv);
@@ -177,6 +178,8 @@ int suite_exit_code(const ib::SuiteSettings& s, const ib::SuiteOutcome& outcome)
   std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed; "
               "of all %d results there, %d unstable or failed\n",
               outcome.jobs_run, s.out.c_str(), outcome.jobs_skipped, outcome.not_ok, outcome.recorded, outcome.not_ok_recorded);
+  if (!s.reference_cache.empty())
+    std::printf("suite: %d reference runs copied from %s, not solved\n", outcome.references_from_cache, s.reference_cache.c_str());
   if (s.step_search)
     std::printf("suite: %d step searches recorded in %s/steps.csv\n", outcome.step_searches, s.out.c_str());
   if (s.shard)

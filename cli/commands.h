@@ -26,6 +26,7 @@ struct SuiteOptions {
   int steps_per_octave = 4;
   std::string step_range = "1e-6,1e-3", tolerances;
   std::string shard;  // K/N, empty: the whole suite
+  std::string reference_cache;  // a folder sharing reference runs between output folders
 };
 
 struct SweepOptions {
@@ -84,6 +85,7 @@ int sweep_exit_code(const ib::SweepSettings& s, const ib::SweepOutcome& outcome)
 struct StudyOptions {
   std::string file, out, shard;
   std::string skip;  // kinds of parts left out, comma-separated: suite, search, sweep
+  std::string reference_cache;  // a folder sharing reference runs between output folders
   int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   bool resume = false, no_report = false;
   bool plan = false;  // --plan: check the file and say what each part runs, run nothing

@@ -69,6 +69,9 @@ int main(int argc, char** argv) {
   suite->add_option("--duration", suite_options.max_duration_s,
                     "run scenarios longer than this for this long only, keeping their scoring window [s]");
   suite->add_option("--option", suite_options.options, "engine.name=value, repeatable (e.g. reference.n=5)");
+  suite->add_option("--reference-cache", suite_options.reference_cache,
+                    "a folder that shares reference runs between output folders: a reference it holds (same scenario "
+                    "content, settings and executable) is copied, not solved; one solved is stored there");
   suite_measurement.add_to(suite, /*with_timing=*/true);
   suite->add_flag("--find-steps", suite_options.find_steps,
                   "per scenario, law, engine and options: search the largest stable step and the largest step at "
@@ -139,6 +142,8 @@ int main(int argc, char** argv) {
   study->add_option("--jobs", study_options.jobs, "worker processes")->capture_default_str();
   study->add_option("--shard", study_options.shard, "K/N: every part's K-th of N shares, for a job array (merge joins them)");
   study->add_flag("--resume", study_options.resume, "continue the study recorded in --out");
+  study->add_option("--reference-cache", study_options.reference_cache,
+                    "a folder that shares reference runs between output folders (as suite --reference-cache)");
   study->add_option("--skip", study_options.skip, "kinds of parts left out, comma-separated: suite, search, sweep");
   study->add_flag("--no-report", study_options.no_report, "leave the report out");
   study->add_flag("--plan", study_options.plan, "check the file and print what each part runs; run nothing");

@@ -38,6 +38,9 @@ struct SuiteSettings {
   // DIR/steps.jsonl when its search ends. time_steps_s is then ignored for the engines.
   std::optional<StepSearchSettings> step_search;
   bool keep_probe_series = false;                  // the probes' series.csv.gz (default: summary and events only)
+  // Set: reference runs are shared with other output folders through this one (harness/reference_cache.h):
+  // a reference whose key is there is copied, not solved; one solved here is stored there.
+  std::string reference_cache;
   // Set: runs only this shard of the suite (shard_plan.h) and records its plan in DIR/shard.jsonl.
   // --resume then continues the same shard: a folder holding another shard, or a whole suite, is refused.
   std::optional<Shard> shard;
@@ -55,6 +58,7 @@ struct SuiteOutcome {
   int interrupted_by = 0;   // the signal (SIGINT, SIGTERM) that stopped the suite early; 0: it ran to the end
   int jobs_stopped = 0;     // jobs whose process a signal from outside stopped (not recorded: --resume runs them)
   int stopped_by = 0;       // that signal (the last one seen)
+  int references_from_cache = 0;  // recorded from --reference-cache, not solved
 };
 
 // Runs the suite (or its shard); progress goes to stderr (a bar on a terminal, lines otherwise). SIGINT or SIGTERM

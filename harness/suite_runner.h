@@ -187,6 +187,10 @@ class SuiteRunner {
   const ReferenceData* reference(const std::string& id, const PlannedJob& job);  // read as job's part measures
 
   void start(const PlannedJob& job);
+  // A reference job whose run the reference cache may hold or keep (SuiteSettings::reference_cache).
+  bool cacheable(const PlannedJob& job) const {
+    return job.kind != JobKind::engine && !settings_.reference_cache.empty() && unrecorded_scored_from(job).empty();
+  }
 
   // A job compared with a reference that a signal from outside stopped: it waits for --resume too (run
   // now, it would be recorded without its comparison).

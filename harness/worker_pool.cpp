@@ -24,6 +24,7 @@
 #include "harness/number_text.h"
 #include "harness/progress.h"
 #include "harness/recorded_run.h"
+#include "harness/reference_cache.h"
 #include "harness/reporters.h"
 #include "harness/run_files.h"
 #include "model/scenario_toml.h"
@@ -178,6 +179,13 @@ void SuiteRunner::start(const PlannedJob& job) {
   fs::create_directories(folder, error);
   if (error) throw OutputError(output_error_text(folder, "create the run folder", error.value()));
   const Scenario& scenario = scenarios_[job.scenario];
+  if (cacheable(job) &&
+      restore_cached_reference(settings_.reference_cache, reference_cache_key(scenario, job.spec, measurement_of(job)), folder)) {
+    progress_->estimate().start(job.id, progress_->now_s());
+    append_row_of(job);  // as if its process had just ended
+    ++outcome_.references_from_cache;
+    return;
+  }
   // Load the references in this process, so that the job's process inherits them.
   const ReferenceData* beam = reference(job.beam_reference, job);
   const ReferenceData* chain = reference(job.chain_reference, job);
@@ -313,6 +321,9 @@ std::string SuiteRunner::collect(const PlannedJob& job, int status, bool timed_o
     throw OutputError(output_error.empty() ? output_error_text(folder, "write the run's files", 0) : output_error);
   const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
   if (clean) {
+    if (cacheable(job) && read_recorded_run(read_file(folder + "/row.jsonl")).verdict == Verdict::ok)
+      store_cached_reference(settings_.reference_cache,
+                             reference_cache_key(scenarios_[job.scenario], job.spec, measurement_of(job)), folder);
     const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
     std::string json;
     if (!recorded_.count(job.id)) {
