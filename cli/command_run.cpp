@@ -144,6 +144,11 @@ int command_run(const std::string& path, const std::string& engine, const std::s
     scenario.duration_s = max_duration_s;
     scenario.scoring_window_s = std::min(scenario.scoring_window_s, scenario.duration_s);
   }
+  // the run the cross checks name: the cut one's length is --duration's, not the file's
+  const std::string run_length =
+      "(" + (cut ? "--duration " + value_text(max_duration_s) : path + ": duration_s = " + value_text(scenario.duration_s)) + " s)";
+  if (series_start_s >= scenario.duration_s)  // given (not given: -1, the scoring window's start)
+    throw std::invalid_argument("--series-start " + value_text(series_start_s) + ": allowed: before the run's end " + run_length);
   require_engine(engine);
   if (out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
   ib::JobSpec job;
@@ -163,8 +168,7 @@ int command_run(const std::string& path, const std::string& engine, const std::s
   const ib::Measurement measurement = measurement_options.build();
   require_series_resolves_sensor(rate_hz, measurement.sensor_rate_hz);
   if (measurement.window_s)
-    require_at_most(Shared::window, *measurement.window_s, scenario.duration_s,
-                    "the run (" + (cut ? "--duration " + value_text(max_duration_s) : path + ": duration_s = " + value_text(scenario.duration_s)) + " s)");
+    require_at_most(Shared::window, *measurement.window_s, scenario.duration_s, "the run " + run_length);
   const bool window_moved = cut || measurement.window_s;
   const std::optional<int> code =
       within_time_limit(time_limit_s, [&]() { return run_and_print(scenario, job, measurement, engine, out, window_moved); });

@@ -140,6 +140,10 @@ TEST(CliOptionRanges, TheSeriesIsNoCoarserThanTheSensorAndTheWindowInsideTheRun)
   const Output run = impactbench(typed.at("run") + " --duration 2 --window 3");
   EXPECT_EQ(run.exit_code, 2) << run.text;
   EXPECT_EQ(message_line(run.text, "--window"), "impactbench: --window 3: allowed: at most the run (--duration 2 s)") << run.text;
+  const Output start = impactbench(typed.at("run") + " --duration 2 --series-start 2.5");  // the cut run's end, not the file's
+  EXPECT_EQ(start.exit_code, 2) << start.text;
+  EXPECT_EQ(message_line(start.text, "--series-start"), "impactbench: --series-start 2.5: allowed: before the run's end (--duration 2 s)")
+      << start.text;
   const Output sweep = impactbench(typed.at("sweep") + " --duration 2 --window 3");
   EXPECT_EQ(message_line(sweep.text, "--window"), message_line(run.text, "--window")) << sweep.text;
   EXPECT_FALSE(fs::exists(dir));
