@@ -4,7 +4,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "harness/plausibility.h"
 #include "simulators/catalog.h"
 
 namespace cli {
@@ -90,18 +89,11 @@ double parse_positive(const std::string& text, const std::string& option) {
 }
 
 ib::Measurement MeasurementOptions::build() const {
-  using ib::Plausible;
-  ib::check_option("--sensor-rate", sensor_rate_hz, Plausible::kMinRate_hz, Plausible::kMaxRate_hz, "Hz", true);
-  ib::check_option("--merge-window", merge_window_s, 0, Plausible::kMaxMergeWindow_s, "s", true);
   ib::Measurement m;
-  if ((app_ && app_->count("--window") > 0) || window_given) {  // given: whatever its value, it is checked (-1 and nan too)
-    ib::check_option("--window", window_s, 0, Plausible::kMaxDuration_s, "s");
-    m.window_s = window_s;
-  }
+  // given (and so checked, on the command line as read, in a study file as its key is read): else the scenario's
+  if ((app_ && app_->count("--window") > 0) || window_given) m.window_s = window_s;
   m.sensor_rate_hz = sensor_rate_hz;
   m.merge_window_s = merge_window_s;
-  if (timed_repeats < 0 || timed_repeats > 100)
-    throw std::invalid_argument("--repeat " + std::to_string(timed_repeats) + ": allowed: 0 to 100 timed runs");
   m.timed_repeats = timed_repeats;
   if (series == "window") m.series = ib::SeriesOutput::window;
   else if (series == "all") m.series = ib::SeriesOutput::all;

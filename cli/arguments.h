@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/option_rules.h"
 #include "harness/run_job.h"
 #include "physics/contact_laws.h"
 
@@ -46,19 +47,20 @@ struct MeasurementOptions {
   // with_timing: the command runs simulators (run, suite), so --repeat and --series apply; score measures files only
   void add_to(CLI::App* app, bool with_timing) {
     app_ = app;
-    app->add_option("--window", window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's");
-    app->add_option("--sensor-rate", sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]")->capture_default_str();
-    app->add_option("--merge-window", merge_window_s, "onsets closer than this are one impact [s]")->capture_default_str();
+    add_shared_option(app, Shared::window, window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's",
+                      /*show_default=*/false);
+    add_shared_option(app, Shared::sensor_rate, sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]");
+    add_shared_option(app, Shared::merge_window, merge_window_s, "onsets closer than this are one impact [s]");
     if (with_timing)
-      app->add_option("--repeat", timed_repeats,
-                      "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's own)")
-          ->capture_default_str();
+      add_shared_option(app, Shared::repeat, timed_repeats,
+                        "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's own)");
     if (with_timing)
       app->add_option("--series", series,
                       "what a run's folder keeps of its series (series.csv.gz): window (the scoring window), all "
                       "(the whole run) or none (a suite's references keep their window)")
           ->capture_default_str();
   }
+  // The option values are checked as they are read (option_rules.h); this checks --series and builds.
   ib::Measurement build() const;  // throws std::invalid_argument naming the option, the value and what is allowed
 
  private:

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -61,8 +62,8 @@ void print_record(const ib::RunRecord& r) {
 
 
 int run_and_print(const ib::Scenario& scenario, ib::JobSpec job, const ib::Measurement& measurement,
-                  const std::string& engine, const std::string& out) {
-  if (measurement.window_s) ib::warn_if_window_in_transient(scenario, measurement);
+                  const std::string& engine, const std::string& out, bool window_moved) {
+  if (window_moved) ib::warn_if_window_in_transient(scenario, measurement);
   // An engine is compared with the reference of the same scenario and law, run here first.
   std::optional<ib::ReferenceData> beam, chain;
   if (engine != "reference") {
@@ -134,10 +135,21 @@ std::optional<int> within_time_limit(double time_limit_s, const std::function<in
 
 int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
                 double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
-                const MeasurementOptions& measurement_options, double time_limit_s) {
-  const ib::Scenario scenario = ib::load_scenario(path);
+                const MeasurementOptions& measurement_options, double time_limit_s, double max_duration_s) {
+  ib::Scenario scenario = ib::load_scenario(path);
+  // --duration as a suite's (harness/suite_plan.cpp): a longer scenario is cut, its scoring window, the
+  // last part of the run, kept (shortened to the run when longer)
+  const bool cut = max_duration_s > 0 && scenario.duration_s > max_duration_s;
+  if (cut) {
+    scenario.duration_s = max_duration_s;
+    scenario.scoring_window_s = std::min(scenario.scoring_window_s, scenario.duration_s);
+  }
+  // the run the cross checks name: the cut one's length is --duration's, not the file's
+  const std::string run_length =
+      "(" + (cut ? "--duration " + value_text(max_duration_s) : path + ": duration_s = " + value_text(scenario.duration_s)) + " s)";
+  if (series_start_s >= scenario.duration_s)  // given (not given: -1, the scoring window's start)
+    throw std::invalid_argument("--series-start " + value_text(series_start_s) + ": allowed: before the run's end " + run_length);
   require_engine(engine);
-  ib::check_option("--time-limit", time_limit_s, 0, ib::Plausible::kMaxTimeLimit_s, "s");
   if (out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
   ib::JobSpec job;
   job.scenario_path = path;
@@ -154,10 +166,12 @@ int command_run(const std::string& path, const std::string& engine, const std::s
     ib::check_run_size(scenario, sized);
   }
   const ib::Measurement measurement = measurement_options.build();
-  if (measurement.window_s && *measurement.window_s > scenario.duration_s)
-    throw std::invalid_argument("--window " + std::to_string(*measurement.window_s) + ": allowed: at most the run (" + path +
-                                ": duration_s = " + std::to_string(scenario.duration_s) + " s)");
-  const std::optional<int> code = within_time_limit(time_limit_s, [&]() { return run_and_print(scenario, job, measurement, engine, out); });
+  require_series_resolves_sensor(rate_hz, measurement.sensor_rate_hz);
+  if (measurement.window_s)
+    require_at_most(Shared::window, *measurement.window_s, scenario.duration_s, "the run " + run_length);
+  const bool window_moved = cut || measurement.window_s;
+  const std::optional<int> code =
+      within_time_limit(time_limit_s, [&]() { return run_and_print(scenario, job, measurement, engine, out, window_moved); });
   if (code) return *code;
   // recorded as a suite records a job past its limit
   ib::RunRecord record;

@@ -96,26 +96,12 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
   for (const auto& e : s.engines) require_engine(e);
   s.laws.clear();
   for (const auto& l : split_list(o.laws, "--laws", "hertz, viscoelastic, newton")) s.laws.push_back(parse_law(l));
-  using ib::Plausible;
-  if (!o.time_steps.empty())
-    for (const auto& dt : split_list(o.time_steps, "--dt", "time steps in seconds")) {
-      std::size_t used = 0;
-      double value = 0;
-      try {
-        value = std::stod(dt, &used);
-      } catch (const std::exception&) {
-      }
-      if (used != dt.size()) throw std::invalid_argument("--dt " + dt + ": not a number; allowed: time steps in seconds, comma-separated");
-      ib::check_option("--dt", value, Plausible::kMinTimeStep_s, Plausible::kMaxTimeStep_s, "s", true);
-      s.time_steps_s.push_back(value);
-    }
+  if (!o.time_steps.empty()) s.time_steps_s = parse_values(Shared::dt, o.time_steps);
   for (const auto& path : o.paths.empty() ? std::vector<std::string>{} : split_list(o.paths, "--paths", ib::contact_path_names())) {
     if (!ib::contact_path_from_string(path))
       throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
     s.contact_paths.push_back(path);
   }
-  if (o.jobs < 1 || o.jobs > 1024) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: 1 to 1024");
-  ib::check_option("--time-limit", o.time_limit_s, 0, Plausible::kMaxTimeLimit_s, "s");
   if (o.out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
   // --option ENGINE.NAME=VALUE
   for (const auto& pair : o.options) {
@@ -132,9 +118,7 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
     run.options = engine == "reference" ? s.reference_options : s.engine_options[engine];
     ib::make_simulator(engine)->check_settings(run);
   }
-  ib::check_option("--rate", o.rate_hz, Plausible::kMinRate_hz, Plausible::kMaxRate_hz, "Hz", true);
-  s.output_rate_hz = o.rate_hz;
-  if (o.duration_given) ib::check_option("--duration", o.max_duration_s, 0, Plausible::kMaxDuration_s, "s");
+  s.output_rate_hz = o.rate_hz;  // --rate, --duration, --jobs, --time-limit: checked as read (option_rules.h)
   s.max_duration_s = o.max_duration_s;
   s.jobs = o.jobs;
   s.time_limit_s = o.time_limit_s;
@@ -143,6 +127,7 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
   s.extend = o.extend;
   s.reference_cache = o.reference_cache;
   s.measurement = measurement_options.build();
+  require_series_resolves_sensor(s.output_rate_hz, s.measurement.sensor_rate_hz);
   if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
   s.resume_command = resume_command(g_argc, g_argv);
   if (o.find_steps) {

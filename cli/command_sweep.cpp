@@ -4,7 +4,6 @@
 #include <stdexcept>
 
 #include "cli/commands.h"
-#include "harness/plausibility.h"
 #include "harness/sweep.h"
 #include "model/simulator_options.h"
 #include "simulators/catalog.h"
@@ -21,19 +20,19 @@ void add_sweep_command(CLI::App& app, SweepOptions& o, MeasurementOptions& measu
   command->add_option("--engines", o.engines, "comma-separated simulators")->capture_default_str();
   command->add_option("--laws", o.laws, "comma-separated laws")->capture_default_str();
   command->add_option("--paths", o.paths, "comma-separated contact paths of the engines; default: each engine's");
-  command->add_option("--dt", o.time_steps, "comma-separated time steps of fixed-step engines [s]; default: each engine's");
+  add_shared_list_option(command, Shared::dt, o.time_steps, "comma-separated time steps of fixed-step engines [s]; default: each engine's");
   command->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.rtol=1e-10)");
-  command->add_option("--duration", o.duration_s, "each continued ratio's run [s], whole motor periods")->capture_default_str();
-  command->add_option("--rest-duration", o.rest_duration_s,
-                      "a start from rest's run (also a continuation's first ratio) [s]; default: the scenario's duration");
-  command->add_option("--window", o.window_s, "the last S seconds of each run are scored [s]")->capture_default_str();
-  command->add_option("--rate", o.rate_hz, "output series sample rate [Hz]")->capture_default_str();
-  command->add_option("--jobs", o.jobs, "worker processes (one chain each)")->capture_default_str();
-  command->add_option("--time-limit", o.time_limit_s, "per ratio; a chain past it is stopped and recorded [s]")->capture_default_str();
+  add_shared_option(command, Shared::duration, o.duration_s, "each continued ratio's run [s], whole motor periods");
+  add_shared_option(command, Shared::rest_duration, o.rest_duration_s,
+                    "a start from rest's run (also a continuation's first ratio) [s]; default: the scenario's duration", false);
+  add_shared_option(command, Shared::window, o.window_s, "the last S seconds of each run are scored [s]");
+  add_shared_option(command, Shared::rate, o.rate_hz, "output series sample rate [Hz]");
+  add_shared_option(command, Shared::jobs, o.jobs, "worker processes (one chain each)");
+  add_shared_option(command, Shared::time_limit, o.time_limit_s, "per ratio; a chain past it is stopped and recorded [s]");
   command->add_option("--shard", o.shard, "K/N: run every N-th chain only (configuration and start), for a job array");
   command->add_flag("--resume", o.resume, "continue the sweep in --out: the rows recorded are kept, the rest run");
   command->add_option("--out", o.out, "output folder")->required();
-  command->add_option("--sensor-rate", measurement.sensor_rate_hz, "accelerometer sample rate [Hz]")->capture_default_str();
+  add_shared_option(command, Shared::sensor_rate, measurement.sensor_rate_hz, "accelerometer sample rate [Hz]");
   command->add_option("--series", measurement.series, "what each ratio's folder keeps of its series: none, window or all")
       ->capture_default_str();
 }
@@ -62,11 +61,7 @@ ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOp
   s.laws.clear();
   for (const auto& l : split_list(o.laws, "--laws", "hertz, viscoelastic, newton")) s.laws.push_back(parse_law(l));
   if (s.laws.empty()) throw std::invalid_argument("--laws '" + o.laws + "': allowed: hertz, viscoelastic, newton, comma-separated");
-  if (!o.time_steps.empty())
-    for (const auto& dt : split_list(o.time_steps, "--dt", "time steps in seconds")) {
-      s.time_steps_s.push_back(parse_positive(dt, "--dt"));
-      ib::check_option("--dt", s.time_steps_s.back(), ib::Plausible::kMinTimeStep_s, ib::Plausible::kMaxTimeStep_s, "s", true);
-    }
+  if (!o.time_steps.empty()) s.time_steps_s = parse_values(Shared::dt, o.time_steps);
   for (const auto& path : o.paths.empty() ? std::vector<std::string>{} : split_list(o.paths, "--paths", ib::contact_path_names())) {
     if (!ib::contact_path_from_string(path))
       throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
@@ -86,18 +81,9 @@ ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOp
     run.options = engine == "reference" ? s.reference_options : s.engine_options[engine];
     ib::make_simulator(engine)->check_settings(run);
   }
-  // physical ranges: a run of a few periods to an hour of rig time; the window inside the run
-  if (!(o.duration_s >= 1 && o.duration_s <= 3600)) throw std::invalid_argument("--duration " + std::to_string(o.duration_s) + ": allowed: 1 to 3600 s");
-  if (o.rest_duration_s >= 0) {
-    if (!(o.rest_duration_s >= 1 && o.rest_duration_s <= 3600))
-      throw std::invalid_argument("--rest-duration " + std::to_string(o.rest_duration_s) + ": allowed: 1 to 3600 s");
-    s.rest_duration_s = o.rest_duration_s;
-  }
-  if (!(o.window_s > 0 && o.window_s <= o.duration_s))
-    throw std::invalid_argument("--window " + std::to_string(o.window_s) + ": allowed: > 0 s and at most --duration");
-  if (!(o.rate_hz >= 256 && o.rate_hz <= 1e6)) throw std::invalid_argument("--rate " + std::to_string(o.rate_hz) + ": allowed: 256 to 1e6 Hz");
-  if (o.jobs < 1 || o.jobs > 1024) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: 1 to 1024");
-  if (!(o.time_limit_s > 0)) throw std::invalid_argument("--time-limit: allowed: > 0 s");
+  // --duration, --rest-duration, --window, --rate, --jobs, --time-limit: checked as read (option_rules.h)
+  if (o.rest_duration_s >= 0) s.rest_duration_s = o.rest_duration_s;
+  require_at_most(Shared::window, o.window_s, o.duration_s, "the run (--duration " + value_text(o.duration_s) + " s)");
   if (o.out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
   s.continuation_duration_s = o.duration_s;
   s.window_s = o.window_s;
@@ -107,6 +93,7 @@ ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOp
   s.out = o.out;
   s.resume = o.resume;
   s.measurement = measurement_options.build();
+  require_series_resolves_sensor(s.output_rate_hz, s.measurement.sensor_rate_hz);
   if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
   s.resume_command = resume_command(g_argc, g_argv);
   return s;

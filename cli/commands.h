@@ -18,9 +18,8 @@ struct SuiteOptions {
   std::vector<std::string> inputs;
   std::string engines = "reference", laws = "hertz,viscoelastic,newton", time_steps, paths, out;
   int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
-  double time_limit_s = 600, rate_hz = 4096, max_duration_s = 0;
+  double time_limit_s = 600, rate_hz = 4096, max_duration_s = 0;  // max_duration_s 0: not given (given: > 0)
   bool resume = false, extend = false;
-  bool duration_given = false;  // --duration was given (0 is then refused, not "no limit")
   std::vector<std::string> options;
   bool find_steps = false, keep_series = false;
   int steps_per_octave = 4;
@@ -41,7 +40,7 @@ struct SweepOptions {
 int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
                 double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
                 const MeasurementOptions& measurement_options,
-                double time_limit_s);
+                double time_limit_s, double max_duration_s);  // max_duration_s: 0, the scenario's whole run
 
 int command_modes(const std::string& path, bool json, const std::vector<std::string>& option_pairs);
 

@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
 
   std::string scenario_path, engine = "reference", law = "hertz", out_dir, list_folder = std::string(IMPACTBENCH_SCENARIO_DIR);
   bool json = false;
-  double rate_hz = 4096, series_start_s = -1, time_step_s = 0, run_time_limit_s = 600;
+  double rate_hz = 4096, series_start_s = -1, time_step_s = 0, run_time_limit_s = 600, run_duration_s = 0;
   std::vector<std::string> options;
   MeasurementOptions run_measurement, suite_measurement;
   SuiteOptions suite_options;
@@ -42,32 +42,34 @@ int main(int argc, char** argv) {
   run->add_option("--engine", engine, "simulator (see 'impactbench list')")->capture_default_str();
   run->add_option("--law", law, "contact law: hertz, viscoelastic or newton")->capture_default_str();
   run->add_option("--out", out_dir, "output folder")->required();
-  run->add_option("--rate", rate_hz, "output series sample rate [Hz]")->capture_default_str();
-  run->add_option("--series-start", series_start_s, "first output sample [s]; default: start of the scoring window");
-  run->add_option("--dt", time_step_s, "time step of fixed-step engines [s]");
+  add_shared_option(run, Shared::rate, rate_hz, "output series sample rate [Hz]");
+  add_shared_option(run, Shared::series_start, series_start_s, "first output sample [s]; default: start of the scoring window", false);
+  add_shared_option(run, Shared::dt, time_step_s, "time step of fixed-step engines [s]; default: each engine's", false);
+  add_shared_option(run, Shared::duration, run_duration_s,
+                    "run a scenario longer than this for this long only, keeping its scoring window [s]", false);
   run->add_option("--option", options, "simulator option name=value, repeatable (see 'impactbench list')");
   run_measurement.add_to(run, /*with_timing=*/true);
-  run->add_option("--time-limit", run_time_limit_s, "the run (its references included) is stopped past this and recorded as failed [s]")
-      ->capture_default_str();
+  add_shared_option(run, Shared::time_limit, run_time_limit_s,
+                    "the run (its references included) is stopped past this and recorded as failed [s]");
 
   CLI::App* suite = app.add_subcommand("suite", "run scenarios x laws x engines x time steps in worker processes; "
                                                 "append DIR/runs.csv, DIR/runs.jsonl and DIR/runs/<job>/");
   suite->add_option("scenarios", suite_options.inputs, "scenario files or folders; default: the published scenarios");
   suite->add_option("--engines", suite_options.engines, "comma-separated engines")->capture_default_str();
   suite->add_option("--laws", suite_options.laws, "comma-separated laws")->capture_default_str();
-  suite->add_option("--dt", suite_options.time_steps, "comma-separated time steps of fixed-step engines [s]");
+  add_shared_list_option(suite, Shared::dt, suite_options.time_steps, "comma-separated time steps of fixed-step engines [s]");
   suite->add_option("--paths", suite_options.paths, "comma-separated contact paths of the engines: matched, injected, native; default: each engine's");
-  suite->add_option("--jobs", suite_options.jobs, "worker processes")->capture_default_str();
+  add_shared_option(suite, Shared::jobs, suite_options.jobs, "worker processes");
   suite->add_option("--out", suite_options.out, "output folder")->required();
   suite->add_flag("--resume", suite_options.resume,
                   "continue the suite recorded in the output folder (same settings): skip the jobs already recorded");
   suite->add_flag("--extend", suite_options.extend,
                   "add this suite to a folder that holds suites with other settings (a study's parts); a job it shares "
                   "with the folder must have been recorded with the same settings");
-  suite->add_option("--time-limit", suite_options.time_limit_s, "per job; a job past it is stopped and recorded [s]")->capture_default_str();
-  suite->add_option("--rate", suite_options.rate_hz, "output series sample rate [Hz]")->capture_default_str();
-  suite->add_option("--duration", suite_options.max_duration_s,
-                    "run scenarios longer than this for this long only, keeping their scoring window [s]");
+  add_shared_option(suite, Shared::time_limit, suite_options.time_limit_s, "per job; a job past it is stopped and recorded [s]");
+  add_shared_option(suite, Shared::rate, suite_options.rate_hz, "output series sample rate [Hz]");
+  add_shared_option(suite, Shared::duration, suite_options.max_duration_s,
+                    "run scenarios longer than this for this long only, keeping their scoring window [s]", false);
   suite->add_option("--option", suite_options.options, "engine.name=value, repeatable (e.g. reference.n=5)");
   suite->add_option("--reference-cache", suite_options.reference_cache,
                     "a folder that shares reference runs between output folders: a reference it holds (same scenario "
@@ -106,12 +108,11 @@ int main(int argc, char** argv) {
   export_model->add_option("scenario", scenario_path, "scenario file (.toml)")->required();
   export_model->add_option("--engine", export_engine, "engine")->capture_default_str();
   export_model->add_option("--law", law, "contact law: hertz, viscoelastic or newton")->capture_default_str();
-  export_model->add_option("--dt", time_step_s, "time step [s] (0: the engine's default)");
+  add_shared_option(export_model, Shared::dt, time_step_s, "time step [s]; default: the engine's", false);
   export_model->add_option("--option", options, "engine option name=value, repeatable");
   export_model->add_option("--out", export_out, "output file; default: standard output");
   double export_rate_hz = 4096;
-  export_model->add_option("--rate", export_rate_hz, "reference: output sample rate of the run the model is for [Hz]")
-      ->capture_default_str();
+  add_shared_option(export_model, Shared::rate, export_rate_hz, "reference: output sample rate of the run the model is for [Hz]");
 
   std::string score_folder, score_scenario, score_reference;
   MeasurementOptions score_measurement;
@@ -156,13 +157,15 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     const int code = app.exit(error);
     return code == 0 ? kExitOk : kExitBadInput;
+  } catch (const std::invalid_argument& error) {  // a shared option's value, checked as it is read (option_rules.h)
+    std::fprintf(stderr, "impactbench: %s\n", error.what());
+    return kExitBadInput;
   }
-  suite_options.duration_given = suite->count("--duration") > 0;
   try {
     if (modes->parsed()) return command_modes(scenario_path, json, options);
     if (run->parsed())
       return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options, run_measurement,
-                         run_time_limit_s);
+                         run_time_limit_s, run_duration_s);
     if (suite->parsed()) return command_suite(suite_options, suite_measurement);
     if (sweep->parsed()) return command_sweep(sweep_options, sweep_measurement);
     if (study->parsed()) return command_study(study_options);

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/option_rules.h"
 #include "model/scenario_toml.h"
 #include "model/toml_schema.h"
 
@@ -202,6 +203,18 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
       checker.fail(part.line, dotted + "." + key, dotted + "." + key + ": missing required key; allowed: " + meaning);
   };
   part.name = given.count("name") ? given["name"] : std::string(kind_name(kind)) + " " + std::to_string(index + 1);
+  // Each number is checked as its command-line option is, as soon as it is read (cli/option_rules.h).
+  const std::pair<const char*, Shared> numbers[] = {{"rate_hz", Shared::rate},           {"sensor_rate_hz", Shared::sensor_rate},
+                                                    {"time_limit_s", Shared::time_limit}, {"window_s", Shared::window},
+                                                    {"duration_s", Shared::duration},     {"rest_duration_s", Shared::rest_duration}};
+  for (const auto& [key, option] : numbers) {
+    if (!given.count(key)) continue;
+    try {
+      parse_value(option, given[key]);
+    } catch (const std::invalid_argument& error) {
+      checker.fail(part.key_lines[key], dotted + "." + key, dotted + "." + key + ": " + error.what());
+    }
+  }
   std::string engine_list = given.count("engines") ? expand_all("engines", given["engines"], engines) : "";
   if (given.count("skip_engines")) engine_list = without(engine_list.empty() ? joined(engines) : engine_list, given["skip_engines"]);
   MeasurementOptions& m = part.measurement;
@@ -240,10 +253,7 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
   if (given.count("options")) s.options = split(given["options"], ',');
   if (given.count("rate_hz")) s.rate_hz = std::stod(given["rate_hz"]);
   if (given.count("time_limit_s")) s.time_limit_s = std::stod(given["time_limit_s"]);
-  if (given.count("duration_s")) {
-    s.max_duration_s = std::stod(given["duration_s"]);
-    s.duration_given = true;
-  }
+  if (given.count("duration_s")) s.max_duration_s = std::stod(given["duration_s"]);
   if (given.count("window_s")) {
     m.window_s = std::stod(given["window_s"]);
     m.window_given = true;
