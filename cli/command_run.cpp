@@ -137,13 +137,7 @@ int command_run(const std::string& path, const std::string& engine, const std::s
                 double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
                 const MeasurementOptions& measurement_options, double time_limit_s, double max_duration_s) {
   ib::Scenario scenario = ib::load_scenario(path);
-  // --duration as a suite's (harness/suite_plan.cpp): a longer scenario is cut, its scoring window, the
-  // last part of the run, kept (shortened to the run when longer)
-  const bool cut = max_duration_s > 0 && scenario.duration_s > max_duration_s;
-  if (cut) {
-    scenario.duration_s = max_duration_s;
-    scenario.scoring_window_s = std::min(scenario.scoring_window_s, scenario.duration_s);
-  }
+  const bool cut = ib::cut_run(scenario, max_duration_s);  // --duration, as a suite's
   // the run the cross checks name: the cut one's length is --duration's, not the file's
   const std::string run_length =
       "(" + (cut ? "--duration " + value_text(max_duration_s) : path + ": duration_s = " + value_text(scenario.duration_s)) + " s)";

@@ -215,11 +215,7 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
                                   "and run folders are named after it)");
     const std::size_t index = scenarios_.size() - 1;
     Scenario& s = scenarios_.back();
-    const bool cut = part.max_duration_s > 0 && s.duration_s > part.max_duration_s;
-    if (cut) {
-      s.duration_s = part.max_duration_s;  // the scoring window, the last part of the run, is kept
-      s.scoring_window_s = std::min(s.scoring_window_s, s.duration_s);
-    }
+    const bool cut = cut_run(s, part.max_duration_s);
     if (cut || part.measurement.window_s) warn_if_window_in_transient(s, part.measurement);
     // The native contact path ignores the scenario's law: its run for the first law answers for all.
     std::optional<ContactLaw> first_law;

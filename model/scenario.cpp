@@ -2,6 +2,8 @@
 // contact laws, and the default rig of rig.md section 1.
 #include "model/scenario.h"
 
+#include <algorithm>
+
 namespace ib {
 
 // EI = columns E b h^3 / 12: the columns bend together about their thin direction h.
@@ -49,6 +51,13 @@ bool ContactSpec::has(ContactLaw law) const {
 }
 
 // The values of scenarios/paper/resonance.toml (rig.md sections 1 and 7).
+bool cut_run(Scenario& scenario, double duration_s) {
+  if (!(duration_s > 0) || scenario.duration_s <= duration_s) return false;
+  scenario.duration_s = duration_s;
+  scenario.scoring_window_s = std::min(scenario.scoring_window_s, scenario.duration_s);
+  return true;
+}
+
 Scenario default_rig() {
   Scenario s;
   s.name = "resonance";

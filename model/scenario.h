@@ -96,4 +96,9 @@ struct Scenario {
 // The default rig of rig.md section 1 with the resonance excitation; used by tests and as a template.
 Scenario default_rig();
 
+// A run of at most duration_s (--duration of run and suite, a study's duration_s): a longer scenario is cut
+// to it, its scoring window, the last part of the run, kept (shortened to the run when longer). Returns
+// whether it was cut. The one place of this rule.
+bool cut_run(Scenario& scenario, double duration_s);
+
 }  // namespace ib
