@@ -200,7 +200,11 @@ void SuiteRunner::plan() {
       s.duration_s = settings_.max_duration_s;  // the scoring window, the last part of the run, is kept
       s.scoring_window_s = std::min(s.scoring_window_s, s.duration_s);
     }
-    if (cut || settings_.measurement.window_s) warn_if_window_in_transient(s, settings_.measurement);
+    // A window the user moved into the start-up transient: said now and recorded with every run of the
+    // scenario (JobSpec::warnings), the references included; a scenario file's own window is its author's choice.
+    std::vector<std::string> warnings;
+    if (cut || settings_.measurement.window_s)
+      if (std::string w = warn_if_window_in_transient(s, settings_.measurement); !w.empty()) warnings.push_back(w);
     // The native contact path ignores the scenario's law: its run for the first law answers for all.
     std::optional<ContactLaw> first_law;
     for (ContactLaw law : settings_.laws)
@@ -212,6 +216,7 @@ void SuiteRunner::plan() {
         continue;
       }
       PlannedJob beam = make_job(index, JobKind::beam_reference, "reference", law, 0, settings_.reference_options);
+      beam.spec.warnings = warnings;
       add(beam, planned);
       for (const std::string& engine : settings_.engines) {
         if (engine == "reference") continue;
@@ -227,12 +232,14 @@ void SuiteRunner::plan() {
           auto options = engine_options;
           if (!path.empty()) options["contact"] = path;
           PlannedJob job = make_job(index, JobKind::engine, engine, law, dt, options);
+          job.spec.warnings = warnings;
           job.beam_reference = beam.id;
           if (auto simulator = settings_.simulators.make(engine)) {
             if (const auto links = simulator->chain_links(s, job.spec.settings)) {
               auto chain_options = settings_.reference_options;
               for (const auto& [name, value] : settings_.simulators.chain_reference_options(*links)) chain_options[name] = value;
               PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options);
+              chain.spec.warnings = warnings;
               chain.beam_reference = beam.id;
               chain.chain_links = *links;
               job.chain_reference = chain.id;
