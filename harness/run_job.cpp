@@ -176,6 +176,12 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   record.window_end_s = metrics_settings.window_end_s;
   record.output_rate_hz = settings.output_rate_hz;
   record.warnings = job.warnings;
+  // A window the caller chose (--window) on a start from rest: `impactbench run`'s case. A suite's or a
+  // sweep's plan has put it in job.warnings already (a suite's also for a cut --duration): not twice.
+  if (measurement.window_s && !settings.initial_state)
+    if (std::string w = window_in_transient_warning(scenario, measurement);
+        !w.empty() && std::find(record.warnings.begin(), record.warnings.end(), w) == record.warnings.end())
+      record.warnings.push_back(w);
 
   const double load_at_start = load_average_now();
   RunResult result = simulator->run(scenario, settings);
