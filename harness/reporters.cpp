@@ -18,6 +18,8 @@ using Json = nlohmann::ordered_json;
 Json to_json(const RunRecord& record) {
   Json j = json_object(fields(record));
   j["timed_out"] = record.timed_out;
+  // A list, in the JSON records only (runs.csv has one line per run and no column for it): docs/results.md.
+  j["warnings"] = record.warnings;
   Json diagnostics = Json::object();
   for (const auto& [name, value] : record.diagnostics) diagnostics[name] = json_number(value);
   j["diagnostics"] = diagnostics;

@@ -44,15 +44,23 @@ MetricSettings metric_settings(const Scenario& scenario, const Measurement& meas
   return m;
 }
 
-void warn_if_window_in_transient(const Scenario& scenario, const Measurement& measurement) {
+std::string window_in_transient_warning(const Scenario& scenario, const Measurement& measurement) {
   const double window_start_s = metric_settings(scenario, measurement).window_start_s;
   const double transient_s = start_up_transient_s(scenario);
-  if (window_start_s >= transient_s) return;
-  std::fprintf(stderr,
-               "impactbench: warning: %s: the scoring window starts at %g s, before the start-up transient's end "
-               "(%.3g s, in which a first mode's free response decays to 5 %%: ln(20) / (zeta omega_1)); impacts may "
-               "settle it sooner, but the metrics may include start-up motion\n",
-               scenario.name.c_str(), window_start_s, transient_s);
+  if (window_start_s >= transient_s) return "";
+  // the numbers as the stderr line always printed them (%g, %.3g); the name unbounded
+  char numbers[160];
+  std::snprintf(numbers, sizeof numbers, "starts at %g s, before the start-up transient's end (%.3g s", window_start_s,
+                transient_s);
+  return scenario.name + ": the scoring window " + numbers +
+         ", in which a first mode's free response decays to 5 %: ln(20) / (zeta omega_1)); impacts may settle it "
+         "sooner, but the metrics may include start-up motion";
+}
+
+std::string warn_if_window_in_transient(const Scenario& scenario, const Measurement& measurement) {
+  const std::string warning = window_in_transient_warning(scenario, measurement);
+  if (!warning.empty()) std::fprintf(stderr, "impactbench: warning: %s\n", warning.c_str());
+  return warning;
 }
 
 double median(std::vector<double> values) {
@@ -167,6 +175,13 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   record.window_start_s = metrics_settings.window_start_s;
   record.window_end_s = metrics_settings.window_end_s;
   record.output_rate_hz = settings.output_rate_hz;
+  record.warnings = job.warnings;
+  // A window the caller chose (--window) on a start from rest: `impactbench run`'s case. A suite's or a
+  // sweep's plan has put it in job.warnings already (a suite's also for a cut --duration): not twice.
+  if (measurement.window_s && !settings.initial_state)
+    if (std::string w = window_in_transient_warning(scenario, measurement);
+        !w.empty() && std::find(record.warnings.begin(), record.warnings.end(), w) == record.warnings.end())
+      record.warnings.push_back(w);
 
   const double load_at_start = load_average_now();
   RunResult result = simulator->run(scenario, settings);

@@ -23,6 +23,9 @@ struct JobSpec {
   // every one is. A stable run is then "ok" for stability with its accuracy "not available: <why>" in its
   // reason: never a silent ok.
   std::string missing_reference;
+  // What the plan warns about this run (warn_if_window_in_transient): copied into its record, so that a
+  // warning stays with the results it is about (docs/results.md) rather than on stderr alone.
+  std::vector<std::string> warnings;
 };
 
 // Which part of a run's series its folder keeps (series.csv.gz). The metrics need only the scoring window,
@@ -59,8 +62,11 @@ std::string options_text(const std::map<std::string, std::string>& options);
 MetricSettings metric_settings(const Scenario& scenario, const Measurement& measurement);
 
 // Says on stderr when the scoring window starts before a start from rest has settled
-// (start_up_transient_s): a --duration or --window that lets start-up motion into the metrics.
-void warn_if_window_in_transient(const Scenario& scenario, const Measurement& measurement);
+// (start_up_transient_s): a --duration or --window that lets start-up motion into the metrics. Returns
+// the warning (without the "impactbench: warning: " prefix), "" when there is none, for the record.
+std::string warn_if_window_in_transient(const Scenario& scenario, const Measurement& measurement);
+// The same warning's text alone, nothing printed ("" when the window starts after the transient).
+std::string window_in_transient_warning(const Scenario& scenario, const Measurement& measurement);
 
 // Runs one job and returns its record; with run_folder, writes summary.json, series.csv and events.csv
 // there. Throws ScenarioError / std::invalid_argument for bad input (nothing was run).

@@ -3,7 +3,26 @@
 #include <algorithm>
 #include <limits>
 
+#include "model/simulator_options.h"
+
 namespace ib {
+
+std::string contact_path_of(const std::string& engine, const std::string& options_text) {
+  if (engine.empty() || engine == "reference") return "";
+  const std::string key = "contact=";
+  for (std::size_t start = 0; start <= options_text.size();) {
+    const std::size_t end = std::min(options_text.find(';', start), options_text.size());
+    if (options_text.compare(start, key.size(), key) == 0 && end - start > key.size())
+      return options_text.substr(start + key.size(), end - start - key.size());
+    start = end + 1;
+  }
+  return to_string(ContactPath::matched);
+}
+
+std::string law_simulated_of(const std::string& engine, const std::string& contact_path) {
+  if (engine.empty()) return "";
+  return contact_path == to_string(ContactPath::native) ? "no" : "yes";
+}
 
 std::vector<Field> fields(const RunRecord& r) {
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
@@ -14,6 +33,8 @@ std::vector<Field> fields(const RunRecord& r) {
       {"engine", r.engine},
       {"time_step_s", r.time_step_s, true},
       {"options", r.options},
+      {"contact_path", contact_path_of(r.engine, r.options)},
+      {"law_simulated", law_simulated_of(r.engine, contact_path_of(r.engine, r.options))},
       {"same_run_as", r.same_run_as},
       {"chain_links", static_cast<double>(r.chain_links)},
       {"verdict", std::string(to_string(r.verdict))},

@@ -46,7 +46,17 @@ struct RunRecord {
   double cpu_time_min_s = 0, cpu_time_max_s = 0;    // and of their CPU times [s]
   double logged_wall_time_s = 0, logged_cpu_time_s = 0;  // the logged run's own times [s]
   std::vector<std::pair<std::string, double>> diagnostics;  // simulator-specific, named with units
+  // What the plan warned about this run (a scoring window inside the start-up transient): kept with its
+  // results (runs.jsonl and summary.json "warnings", the report's list), not on stderr alone.
+  std::vector<std::string> warnings;
 };
+
+// runs.csv's contact_path: an engine's option "contact" (matched when not given, simulator_options.h);
+// "" for the reference, which has no contact path, and for a row without an engine (nothing ran).
+std::string contact_path_of(const std::string& engine, const std::string& options_text);
+// runs.csv's law_simulated: "no" on the native path (the engine used its own contact, the row's law only
+// names the references it is scored against: docs/results.md), "yes" for every other run, "" without an engine.
+std::string law_simulated_of(const std::string& engine, const std::string& contact_path);
 
 // The record as a row of runs.csv / runs.jsonl (Field: jsonl_table.h). Every record yields the same names in the same order (missing values are NaN), so that rows of
 // different runs line up in one table.

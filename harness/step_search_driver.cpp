@@ -61,6 +61,7 @@ void SuiteRunner::run_step_searches() {
         probe.beam_reference = g.job->beam_reference;
         probe.chain_reference = g.job->chain_reference;
         probe.chain_links = g.job->chain_links;
+        probe.spec.warnings = g.job->spec.warnings;
         probe.step_probe = true;
         if (!recorded.count(probe.id)) break;
         g.search->add(*next, probe_from_json(recorded[probe.id], g.with_chain));  // run before (--resume)

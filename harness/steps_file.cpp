@@ -10,6 +10,7 @@
 #include "harness/jsonl_table.h"
 #include "harness/number_text.h"
 #include "harness/run_files.h"
+#include "harness/run_record.h"
 
 namespace ib {
 namespace {
@@ -44,6 +45,8 @@ std::vector<Field> step_fields(const StepRow& row) {
       {"law", g.law},
       {"engine", g.engine},
       {"options", g.options},
+      {"contact_path", contact_path_of(g.engine, g.options)},  // runs.csv's columns (run_record.h)
+      {"law_simulated", law_simulated_of(g.engine, contact_path_of(g.engine, g.options))},
       {"chain_links", static_cast<double>(g.chain_links)},
       {"accuracy_reference", g.accuracy_reference},
       {"step_range_min_s", s.min_step_s, true},

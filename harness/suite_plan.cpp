@@ -216,7 +216,11 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
     const std::size_t index = scenarios_.size() - 1;
     Scenario& s = scenarios_.back();
     const bool cut = cut_run(s, part.max_duration_s);
-    if (cut || part.measurement.window_s) warn_if_window_in_transient(s, part.measurement);
+    // A window the user moved into the start-up transient: said now and recorded with every run of the
+    // scenario (JobSpec::warnings), the references included; a scenario file's own window is its author's choice.
+    std::vector<std::string> warnings;
+    if (cut || part.measurement.window_s)
+      if (std::string w = warn_if_window_in_transient(s, part.measurement); !w.empty()) warnings.push_back(w);
     // The native contact path ignores the scenario's law: its run for the first law answers for all.
     std::optional<ContactLaw> first_law;
     for (ContactLaw law : part.laws)
@@ -228,6 +232,7 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
         continue;
       }
       PlannedJob beam = make_job(index, JobKind::beam_reference, "reference", law, 0, part.reference_options);
+      beam.spec.warnings = warnings;
       add_job(beam);
       for (const std::string& engine : part.engines) {
         if (engine == "reference") continue;
@@ -243,12 +248,14 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
           auto options = engine_options;
           if (!path.empty()) options["contact"] = path;
           PlannedJob job = make_job(index, JobKind::engine, engine, law, dt, options);
+          job.spec.warnings = warnings;
           job.beam_reference = beam.id;
           if (auto simulator = settings_.simulators.make(engine)) {
             if (const auto links = simulator->chain_links(s, job.spec.settings)) {
               auto chain_options = part.reference_options;
               for (const auto& [name, value] : settings_.simulators.chain_reference_options(*links)) chain_options[name] = value;
               PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options);
+              chain.spec.warnings = warnings;
               chain.beam_reference = beam.id;
               chain.chain_links = *links;
               job.chain_reference = chain.id;

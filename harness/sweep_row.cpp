@@ -18,25 +18,32 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// What a row says in sweep.csv, in one fixed order (missing values NaN), from its run's record.
+// What a row says in sweep.csv, in one fixed order (missing values NaN), from its run's record. A quantity
+// runs.csv also has is named and scaled as runs.csv names it (metrics.cpp flatten(), run_record.cpp fields()),
+// so that one reader serves both tables (docs/sweeps.md lists the pairs).
 struct RowFigures {
   std::string engine_version, verdict = "failed", reason, regime;
   bool timed_out = false;
   double time_step_s = kNaN, impacts = kNaN, impacts_per_cycle = kNaN, period = kNaN, impacts_per_period = kNaN;
-  double sensor_peak_m_s2[2] = {kNaN, kNaN}, peak_displacement_m[2] = {kNaN, kNaN};
-  double mean_approach_velocity_m_s = kNaN, mean_contact_duration_s = kNaN, samples = kNaN;
+  double sensor_peak_acceleration_g[2] = {kNaN, kNaN}, peak_displacement_m[2] = {kNaN, kNaN};
+  double mean_approach_velocity_m_s = kNaN, contact_duration_mean_s = kNaN, samples = kNaN;
   double steps = kNaN, cpu_time_s = kNaN, wall_time_s = kNaN, load_average = kNaN;
+  std::vector<std::string> warnings;  // row.json only (sweep.csv leaves lists out, as runs.csv does)
 };
 
 std::vector<Field> row_fields(const SweepRow& row, const RowScenario& at, const RowFigures& f) {
   const JobSpec& job = row.job;
+  const std::string options = options_text(job.settings.options);
+  const std::string path = contact_path_of(job.engine, options);
   return {
       {"id", row.id},
       {"scenario", at.scenario.name},
       {"engine", job.engine},
       {"engine_version", f.engine_version},
       {"law", to_string(job.settings.law)},
-      {"options", options_text(job.settings.options)},
+      {"options", options},
+      {"contact_path", path},
+      {"law_simulated", law_simulated_of(job.engine, path)},
       {"time_step_s", std::isfinite(f.time_step_s) ? f.time_step_s : job.settings.time_step_s, true},
       {"start", to_string(row.start)},
       {"ratio", row.ratio, true},
@@ -46,17 +53,17 @@ std::vector<Field> row_fields(const SweepRow& row, const RowScenario& at, const 
       {"verdict", f.verdict},
       {"reason", f.reason},
       {"timed_out", f.timed_out ? 1.0 : 0.0},
-      {"impacts_in_window", f.impacts},
+      {"impacts", f.impacts},
       {"impacts_per_cycle", f.impacts_per_cycle},
       {"regime", f.regime},
       {"period_n", f.period},
       {"impacts_per_period", f.impacts_per_period},
-      {"frame1_sensor_peak_m_s2", f.sensor_peak_m_s2[0]},
-      {"frame2_sensor_peak_m_s2", f.sensor_peak_m_s2[1]},
-      {"frame1_peak_tip_displacement_m", f.peak_displacement_m[0]},
-      {"frame2_peak_tip_displacement_m", f.peak_displacement_m[1]},
+      {"frame1_sensor_peak_acceleration_g", f.sensor_peak_acceleration_g[0]},
+      {"frame2_sensor_peak_acceleration_g", f.sensor_peak_acceleration_g[1]},
+      {"frame1_peak_displacement_m", f.peak_displacement_m[0]},
+      {"frame2_peak_displacement_m", f.peak_displacement_m[1]},
       {"mean_approach_velocity_m_s", f.mean_approach_velocity_m_s},
-      {"mean_contact_duration_s", f.mean_contact_duration_s},
+      {"contact_duration_mean_s", f.contact_duration_mean_s},
       {"poincare_samples", f.samples},
       {"steps", f.steps},
       {"cpu_time_s", f.cpu_time_s},
@@ -65,9 +72,12 @@ std::vector<Field> row_fields(const SweepRow& row, const RowScenario& at, const 
   };
 }
 
-void write_row(const std::string& folder, const std::vector<Field>& fields) {
+void write_row(const std::string& folder, const std::vector<Field>& fields, const RowFigures& f) {
+  nlohmann::ordered_json row = json_object(fields);
+  row["timed_out"] = f.timed_out;  // a boolean, as runs.jsonl's (in its place among the fields)
+  row["warnings"] = f.warnings;    // a list, as runs.jsonl's
   // row.json last and by rename: its presence marks the row done, never half-written
-  replace_text_file(folder + "/row.json", json_object(fields).dump() + "\n");
+  replace_text_file(folder + "/row.json", row.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
 }
 
 std::string poincare_text(const SweepRow& row, const std::vector<PoincareSample>& samples) {
@@ -109,13 +119,17 @@ std::optional<SavedState> run_sweep_row(const Scenario& base, const SweepRow& ro
   measurement.window_s = at.window_s;
   ReferenceData kept;
   RowFigures f;
+  // Only a start from rest has a start-up transient; a continued ratio starts from a settled state.
+  if (row.first_of_chain)
+    if (std::string w = window_in_transient_warning(at.scenario, measurement); !w.empty()) job.warnings.push_back(w);
+  f.warnings = job.warnings;
   RunRecord record;
   try {
     record = run_job(at.scenario, job, measurement, nullptr, nullptr, folder, &kept, settings.simulators.make);
   } catch (const std::invalid_argument& e) {  // a state the simulator refuses, a law it lacks: recorded
     f.reason = e.what();
     std::filesystem::create_directories(folder);
-    write_row(folder, row_fields(row, at, f));
+    write_row(folder, row_fields(row, at, f), f);
     return std::nullopt;
   }
   // Without series (--series none, the default) a row keeps no events.csv either: the row's metrics and
@@ -142,17 +156,17 @@ std::optional<SavedState> run_sweep_row(const Scenario& base, const SweepRow& ro
     f.period = regime.kind == RegimeKind::periodic ? regime.period : kNaN;
     f.impacts_per_period = regime.impacts_per_period;
     for (int k = 0; k < 2; ++k) {
-      f.sensor_peak_m_s2[k] = m.frames[k].sensor_peak_acceleration_g * kStandardGravity_m_s2;
+      f.sensor_peak_acceleration_g[k] = m.frames[k].sensor_peak_acceleration_g;
       f.peak_displacement_m[k] = m.frames[k].peak_displacement_m;
     }
     f.mean_approach_velocity_m_s = m.mean_approach_velocity_m_s;
-    f.mean_contact_duration_s = m.contact_duration_mean_s;
+    f.contact_duration_mean_s = m.contact_duration_mean_s;
     f.samples = static_cast<double>(samples.size());
   }
   write_text_file(folder + "/poincare.csv", poincare_text(row, samples));
   const bool continues = record.verdict == Verdict::ok && kept.final_state.has_value();
   if (continues) replace_text_file(folder + "/state.txt", saved_state_text(*kept.final_state));
-  write_row(folder, row_fields(row, at, f));
+  write_row(folder, row_fields(row, at, f), f);
   return continues ? kept.final_state : std::nullopt;
 }
 
@@ -165,7 +179,7 @@ void record_row_not_run(const Scenario& base, const SweepRow& row, const SweepSe
   f.reason = reason;
   f.timed_out = timed_out;
   write_text_file(folder + "/poincare.csv", poincare_text(row, {}));
-  write_row(folder, row_fields(row, row_scenario(base, row, settings), f));
+  write_row(folder, row_fields(row, row_scenario(base, row, settings), f), f);
 }
 
 std::optional<SavedState> read_row_state(const std::string& folder) {

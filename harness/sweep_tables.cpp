@@ -37,12 +37,16 @@ int write_sweep_tables(const std::string& folder, const std::vector<std::string>
     if (text.empty()) continue;
     const auto row = nlohmann::ordered_json::parse(text, nullptr, /*allow_exceptions=*/false);
     if (!row.is_object()) throw std::runtime_error(row_folder + "/row.json: not a JSON object; remove the folder and run with --resume");
+    // A list (the row's warnings) is in sweep.jsonl alone: a CSV cell holds one value (runs.csv does the same).
     if (csv.empty()) {
-      for (auto it = row.begin(); it != row.end(); ++it) csv += (it == row.begin() ? "" : ",") + it.key();
+      bool first = true;
+      for (auto it = row.begin(); it != row.end(); ++it)
+        if (!it.value().is_structured()) csv += (first ? "" : ",") + it.key(), first = false;
       csv += "\n";
     }
     bool first = true;
-    for (auto it = row.begin(); it != row.end(); ++it, first = false) csv += (first ? "" : ",") + csv_cell(it.value());
+    for (auto it = row.begin(); it != row.end(); ++it)
+      if (!it.value().is_structured()) csv += (first ? "" : ",") + csv_cell(it.value()), first = false;
     csv += "\n";
     jsonl += row.dump() + "\n";
     const std::string samples = read_whole(row_folder + "/poincare.csv");

@@ -258,6 +258,7 @@ static std::string missing_reference(const PlannedJob& job, const ReferenceData*
                         e.what());
     record.time_step_s = job.spec.settings.time_step_s;
     record.options = options_text(job.spec.settings.options);
+    record.warnings = job.spec.warnings;
   }
   record.job_id = job.id;
   record.chain_links = job.chain_links;
@@ -349,6 +350,7 @@ std::string SuiteRunner::collect(const PlannedJob& job, int status, bool timed_o
                                 describe_exit(status, settings_.time_limit_s, timed_out, last_line(folder + "/log.txt")));
   record.time_step_s = job.spec.settings.time_step_s;
   record.options = options_text(job.spec.settings.options);
+  record.warnings = job.spec.warnings;
   record.chain_links = job.chain_links;
   record.duration_s = s.duration_s;
   record.timed_out = timed_out;

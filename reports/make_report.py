@@ -228,6 +228,7 @@ def main():
         except data.ResultsError as error:
             sys.exit(f"make_report: {error}")
         document["sweep_answers"].append(f"Frequency sweep ({name}): " + sweep.summary_sentence(data_of_sweep))
+        document["warnings"] += data_of_sweep.warning_entries()  # the page's one Warnings list
         sections += sweep.sections(data_of_sweep, figures_folder, stamp, f"Frequency sweep ({name})")
     if document["sweep_answers"]:
         with open(os.path.join(out, "summary.json"), "w") as f:
@@ -263,10 +264,13 @@ def sweep_report(folder, out):
     settings = json.dumps(data_of_sweep.settings, indent=1)
     loads = sorted(r["load_average"] for r in data_of_sweep.rows if not math.isnan(r["load_average"]))
     machine_line = f"{machine()}; load average {loads[0]:.2f} to {loads[-1]:.2f}" if loads else machine()
-    lines = ["# impactbench: frequency sweep", "", sweep.summary_sentence(data_of_sweep), ""]
+    warnings = data_of_sweep.warning_entries()
+    lines = ["# impactbench: frequency sweep", "", sweep.summary_sentence(data_of_sweep)]
+    lines += first_screen.warnings_markdown(warnings, unit="rows") + [""]
     parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
              f"<title>impactbench sweep report</title><style>{STYLE}</style></head><body>",
-             "<h1>impactbench: frequency sweep</h1>", f"<p class='lede'>{html.escape(sweep.summary_sentence(data_of_sweep))}</p>"]
+             "<h1>impactbench: frequency sweep</h1>", f"<p class='lede'>{html.escape(sweep.summary_sentence(data_of_sweep))}</p>",
+             first_screen.warnings_html(warnings, unit="rows")]
     for title, text, table_html, paths in sections:
         lines += [f"## {title}", "", text, ""] + [f"![{os.path.basename(p)}]({os.path.relpath(p, out)})" for p in paths] + [""]
         parts.append(f"<h2 id='{anchor(title)}'>{html.escape(title)}</h2>{table_html}")

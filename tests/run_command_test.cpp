@@ -81,9 +81,15 @@ TEST(RunCommand, AWindowInTheStartUpTransientWarns) {
                           "transient's end (22.9 s"),
             std::string::npos)
       << out.text;
+  // and recorded with the run's results (docs/results.md#warnings), once
+  auto summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
+  ASSERT_EQ(summary["warnings"].size(), 1u) << summary["warnings"].dump();
+  EXPECT_EQ(summary["warnings"][0].get<std::string>().rfind("pre_resonance: the scoring window starts at 5 s, before", 0), 0u);
   out = impactbench("run " + paper("pre_resonance") + " --series none --out " + dir.string());
   ASSERT_EQ(out.exit_code, 0) << out.text;
   EXPECT_EQ(out.text.find("warning"), std::string::npos) << out.text;
+  summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
+  EXPECT_EQ(summary["warnings"], nlohmann::json::array());
   fs::remove_all(dir);
 }
 

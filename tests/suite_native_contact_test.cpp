@@ -92,6 +92,14 @@ TEST_F(SuiteNativeContact, OneNativeRunScoredAgainstEveryLaw) {
   // matched runs are each law's own
   for (const std::string law : {"hertz", "viscoelastic", "newton"})
     EXPECT_EQ(by_id["short_free/counted/" + law + "/contact=matched"]["same_run_as"], "") << law;
+  // The contact path in a column of its own; a native row keeps the law of the references it was scored
+  // against, and says that the engine did not simulate it (docs/results.md).
+  for (const auto& [id, row] : by_id) {
+    const bool native = id.find("contact=native") != std::string::npos;
+    const std::string path = row["engine"] == "reference" ? "" : native ? "native" : "matched";
+    EXPECT_EQ(row["contact_path"], path) << id;
+    EXPECT_EQ(row["law_simulated"], native ? "no" : "yes") << id;
+  }
 }
 
 TEST_F(SuiteNativeContact, AResumedSuiteRecordsALostScoredRowAgain) {

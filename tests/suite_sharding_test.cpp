@@ -338,7 +338,7 @@ TEST_F(SuiteSharding, MergeRefusesWhatItCannotJoin) {
   const CommandOutput header =
       command("merge " + out + " " + quoted(shard(1)) + " " + quoted(shard(2)) + " " + quoted(renamed) + " --no-report");
   EXPECT_EQ(header.exit_code, 2) << header.text;
-  EXPECT_NE(header.text.find((renamed / "runs.csv").string() + ": header differs from this build's: column 9 is 'outcome', "
+  EXPECT_NE(header.text.find((renamed / "runs.csv").string() + ": header differs from this build's: column 11 is 'outcome', "
                              "expected 'verdict'"),
             std::string::npos) << header.text;
   // two shards that disagree on a job (a reference both ran)

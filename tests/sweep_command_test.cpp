@@ -46,7 +46,8 @@ TEST(SweepCommand, WritesItsTablesAndAResumeWithOtherSettingsIsRefused) {
   std::ifstream table(out / "sweep.csv");
   std::string header, row;
   std::getline(table, header);
-  EXPECT_EQ(header.rfind("id,scenario,engine,engine_version,law,options,time_step_s,start,ratio,motor_frequency_hz,", 0), 0u);
+  EXPECT_EQ(header.rfind("id,scenario,engine,engine_version,law,options,contact_path,law_simulated,time_step_s,start,ratio,"
+                         "motor_frequency_hz,", 0), 0u);
   int rows = 0;
   while (std::getline(table, row)) ++rows;
   EXPECT_EQ(rows, 2);

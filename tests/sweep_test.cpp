@@ -7,9 +7,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "harness/merge.h"
+#include "harness/reporters.h"
 #include "reference_fixtures.h"
 #include "simulators/catalog.h"
 
@@ -158,6 +161,61 @@ TEST(SweepResults, TheSameWholeResumedAndShardedThenMerged) {
   EXPECT_EQ(merged.runs, 9);
   EXPECT_EQ(without_timing(read_all(root + "/merged/sweep.csv")), expected);
   EXPECT_EQ(read_all(root + "/merged/poincare.csv"), read_all(root + "/whole/poincare.csv"));
+}
+
+std::vector<std::string> csv_columns(const std::string& header_line) {
+  std::vector<std::string> columns;
+  std::istringstream cells(header_line);
+  for (std::string cell; std::getline(cells, cell, ',');) columns.push_back(cell);
+  return columns;
+}
+
+// One vocabulary: a quantity sweep.csv shares with runs.csv has runs.csv's name and unit (the sensor peak in
+// g, not m/s^2), with the run record's own value (summary.json, written by the code that writes runs.csv); the contact path has its column; a start from rest whose
+// window lies in the start-up transient carries the warning in its records (row.json, summary.json).
+TEST(SweepResults, SharedQuantitiesHaveTheRunsCsvNamesUnitsAndValues) {
+  const std::string root = ::testing::TempDir() + "/sweep_vocabulary";
+  fs::remove_all(root);
+  SweepSettings s = small_sweep(root);
+  s.ratios = {1.0};
+  s.starts = {SweepStart::rest};
+  s.engines = {"reference", "mujoco"};
+  s.contact_paths = {"native"};
+  ASSERT_EQ(run_sweep(s).rows_run, 2);
+  std::ifstream table(root + "/sweep.csv");
+  std::string header;
+  std::getline(table, header);
+  const std::vector<std::string> runs = csv_columns(csv_header(RunRecord{}).substr(0, csv_header(RunRecord{}).size() - 1));
+  const std::set<std::string> runs_columns(runs.begin(), runs.end());
+  // the sweep's own: what a run of a suite does not have (its place in the sweep, the regime, the samples)
+  const std::set<std::string> sweep_only = {"id", "start", "ratio", "motor_frequency_hz", "window_s", "timed_out",
+                                            "regime", "period_n", "impacts_per_period", "poincare_samples"};
+  for (const std::string& column : csv_columns(header))
+    EXPECT_TRUE(runs_columns.count(column) || sweep_only.count(column)) << column << " is not a runs.csv column";
+  for (const char* shared : {"frame1_sensor_peak_acceleration_g", "frame2_sensor_peak_acceleration_g",
+                             "frame1_peak_displacement_m", "frame2_peak_displacement_m", "contact_duration_mean_s",
+                             "mean_approach_velocity_m_s", "impacts", "impacts_per_cycle", "contact_path", "law_simulated"})
+    EXPECT_NE(("," + header + ",").find(std::string(",") + shared + ","), std::string::npos) << shared;
+
+  for (const std::string engine : {"reference", "mujoco"}) {
+    const std::string folder = root + "/runs/resonance/" + engine + "/hertz" + (engine == "mujoco" ? "/contact=native" : "") +
+                               "/rest/r=1";
+    const auto row = nlohmann::json::parse(read_all(folder + "/row.json"));
+    const auto summary = nlohmann::json::parse(read_all(folder + "/summary.json"));
+    ASSERT_EQ(row["verdict"], "ok") << folder << ": " << row["reason"];
+    for (const char* same : {"frame1_sensor_peak_acceleration_g", "frame2_peak_displacement_m", "contact_duration_mean_s",
+                             "impacts", "contact_path", "law_simulated"})
+      EXPECT_EQ(row[same], summary[same]) << engine << " " << same;
+    EXPECT_EQ(row["contact_path"], engine == "mujoco" ? "native" : "");
+    EXPECT_EQ(row["law_simulated"], engine == "mujoco" ? "no" : "yes");
+    EXPECT_EQ(row["timed_out"], false);
+    // 4 s from rest scored from 2 s: inside the 22.9 s transient
+    ASSERT_EQ(row["warnings"].size(), 1u) << row.dump();
+    EXPECT_NE(row["warnings"][0].get<std::string>().find("before the start-up transient's end (22.9 s"), std::string::npos);
+    EXPECT_EQ(summary["warnings"], row["warnings"]);
+  }
+  EXPECT_EQ(header.find("warnings"), std::string::npos);  // a list: sweep.jsonl's alone
+  EXPECT_NE(read_all(root + "/sweep.jsonl").find("start-up transient"), std::string::npos);
 }
 
 TEST(SweepResults, AResumeWithOtherSettingsOrAScenarioWithoutAMotorIsRefusedBeforeAnyRun) {

@@ -138,11 +138,13 @@ def restitution(run, law):
     return data.read_scenario(run["scenario_file"]).get("contact", {}).get("newton", {}).get("restitution")
 
 
-def engine_standing(engine, cases, tolerances):
-    """One engine across the cases: per contact kind, in how many cases its best run is within the
-    verdict tolerances of the beam, its worst case, its CPU cost; and how many of its runs were unstable."""
+def engine_standing(engine, cases, tolerances, runs=()):
+    """One engine across the cases: per contact kind, how many of its runs (`runs`: the suite's) took that
+    contact path, in how many cases its best run is within the verdict tolerances of the beam, its worst
+    case, its CPU cost; and how many of its runs were unstable."""
     standing = {"engine": engine}
     for kind, paths in (("tuned", analysis.TUNED), ("out_of_box", (analysis.NATIVE,))):
+        ran = sum(r["engine"] == engine and not r["same_run_as"] and analysis.contact_path(r) in paths for r in runs)
         bests = []
         for case in cases:
             entries = [c["best_run"] for c in case["configurations"] if c["best_run"]
@@ -156,7 +158,7 @@ def engine_standing(engine, cases, tolerances):
         costs = sorted(e["runs_csv"]["cpu_time_per_simulated_s"] for _, e in scored
                        if e["runs_csv"].get("cpu_time_per_simulated_s") is not None)
         standing[kind] = {
-            "cases_with_a_stable_run": len(bests), "cases_within_tolerance_vs_beam": len(within),
+            "runs": ran, "cases_with_a_stable_run": len(bests), "cases_within_tolerance_vs_beam": len(within),
             "worst": None if worst is None else {"scenario": worst[0]["scenario"], "law": worst[0]["law"],
                                                  "job_id": worst[1]["job_id"], **worst[1]["largest_error_vs_beam"]},
             "cpu_time_per_simulated_s_median": costs[len(costs) // 2] if costs else None}
@@ -168,7 +170,7 @@ def summarise(suite, steps, experiment, tolerances, provenance):
     engines = sorted({r["engine"] for r in suite.runs if r["engine"] not in ("reference", "")})
     standings = []
     for engine in engines:
-        standing = engine_standing(engine, cases, tolerances)
+        standing = engine_standing(engine, cases, tolerances, suite.runs)
         runs = [r for r in suite.runs if r["engine"] == engine and not r["same_run_as"]]
         unstable = [r for r in runs if r["verdict"] == "unstable"]
         standing["runs"] = len(runs)
@@ -196,8 +198,28 @@ def summarise(suite, steps, experiment, tolerances, provenance):
     for entry in configurations.values():
         entry["settings"] = settings.merged(entry.pop("per_law"))
     return {"schema_version": SCHEMA_VERSION, "schema": "docs/summary-json.md", "suite": provenance,
-            "verdict_tolerances": tolerances, "cases": cases, "engines": standings,
+            "verdict_tolerances": tolerances, "warnings": warnings(suite), "cases": cases, "engines": standings,
             "configurations": configurations}
+
+
+def warnings(suite):
+    """What the suite warned about its runs (runs.jsonl "warnings"), one entry per warning with the runs
+    it concerns, in the runs' order: [{"warning", "job_ids"}]."""
+    found = {}
+    for run in suite.runs:
+        for text in suite.warnings(run):
+            found.setdefault(text, []).append(run["job_id"])
+    return [{"warning": text, "job_ids": ids} for text, ids in found.items()]
+
+
+def warning_lines(entries, most=10, unit="runs"):
+    """The report's "Warnings" list: one line per warning with how many runs it concerns, at most `most`
+    lines and a last one counting the rest (a sweep's rows from rest can each carry their own)."""
+    lines = [f"{e['warning']} ({len(e['job_ids'])} {unit if len(e['job_ids']) != 1 else unit.rstrip('s')})"
+             for e in entries[:most]]
+    if len(entries) > most:
+        lines.append(f"and {len(entries) - most} more warnings (runs.jsonl, sweep.jsonl: \"warnings\")")
+    return lines
 
 
 def error_text(largest):
@@ -213,6 +235,10 @@ def standing_line(s):
     parts = []
     for kind, label in (("tuned", "tuned"), ("out_of_box", "native contact")):
         k = s[kind]
+        # "no stable run" only where runs of this kind exist: a suite without --paths native never ran one
+        if k.get("runs", 1) == 0:
+            parts.append(f"{label}: not run")
+            continue
         if k["cases_with_a_stable_run"] == 0:
             parts.append(f"{label}: no stable run")
             continue

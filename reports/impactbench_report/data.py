@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 G = 9.80665  # standard gravity [m/s^2]
 
 # runs.csv columns that are text; every other column is a number (empty: not applicable).
-TEXT_COLUMNS = {"job_id", "scenario", "law", "engine", "options", "same_run_as", "verdict", "reason", "scenario_file",
-                "engine_version"}
+TEXT_COLUMNS = {"job_id", "scenario", "law", "engine", "options", "contact_path", "law_simulated", "same_run_as", "verdict",
+                "reason", "scenario_file", "engine_version"}
 
 
 @dataclass
@@ -70,6 +70,11 @@ class Suite:
 
     def diagnostics(self, run):
         return self.record(run).get("diagnostics") or {}
+
+    def warnings(self, run):
+        """What the suite warned about a run (runs.jsonl "warnings": a scoring window inside the start-up
+        transient), [] when nothing (or a runs.jsonl older than the field)."""
+        return [w for w in self.record(run).get("warnings") or [] if isinstance(w, str)]
 
     def motor_frequency_hz(self, scenario):
         """The motor's frequency in a case (the beam reference reports it), NaN without a motor or a

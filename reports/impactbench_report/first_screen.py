@@ -4,7 +4,7 @@ ran where. Every number printed here is in summary.json, which names the runs.cs
 
 import html
 
-from .answer import ENGINE_NAMES, error_text
+from .answer import ENGINE_NAMES, error_text, warning_lines
 from .tables import step_text
 
 ANSWER_HEADER = ["case, law", "best out of the box: engine, step [s]", "largest error vs beam",
@@ -92,6 +92,7 @@ def html_page_top(document, facts):
              "<ul class='engines'>"]
     parts += [f"<li>{html.escape(s['line'])}</li>" for s in document["engines"]]
     parts.append("</ul>")
+    parts.append(warnings_html(document.get("warnings", [])))
     tolerances = document["verdict_tolerances"]
     parts.append("<p class='convention'>Errors are signed and named by what they are measured against: "
                  "<b>vs beam</b>, the continuous-beam reference (the physical question), or <b>vs own chain</b>, "
@@ -104,6 +105,22 @@ def html_page_top(document, facts):
                  "The best configuration is the one with the smallest largest error vs beam, measured in "
                  "multiples of these tolerances, then the cheaper. References carry no accuracy verdict.</p>")
     return "\n".join(parts)
+
+
+def warnings_html(entries, unit="runs"):
+    """The "Warnings" list (id "warnings"): what the results recorded as doubtful, on the first screen,
+    where a reader of the answer sees it; "" when there is none."""
+    if not entries:
+        return ""
+    return ("<h2 id='warnings'>Warnings</h2><ul class='warnings'>"
+            + "".join(f"<li>{html.escape(line)}</li>" for line in warning_lines(entries, unit=unit)) + "</ul>")
+
+
+def warnings_markdown(entries, unit="runs"):
+    """The same list in Markdown: its lines, [] when there is none."""
+    if not entries:
+        return []
+    return ["", "## Warnings", ""] + [f"- {line}" for line in warning_lines(entries, unit=unit)]
 
 
 def html_settings_and_provenance(document, facts):
@@ -132,6 +149,7 @@ def markdown(document, facts):
              markdown_table(ANSWER_HEADER, answer_rows(document)[0]), ""]
     lines += answer_rows(document)[1] + [""]
     lines += [f"- {s['line']}" for s in document["engines"]]
+    lines += warnings_markdown(document.get("warnings", []))
     lines += ["", "## Settings behind every configuration", ""]
     lines += [f"- **{name}**: " + "; ".join(f"{k}: {v}" for k, v in c["settings"].items())
               for name, c in document["configurations"].items()]
@@ -139,4 +157,4 @@ def markdown(document, facts):
     return "\n".join(lines)
 
 
-__all__ = ["html_page_top", "html_settings_and_provenance", "markdown", "ENGINE_NAMES"]
+__all__ = ["html_page_top", "html_settings_and_provenance", "markdown", "warnings_html", "warnings_markdown", "ENGINE_NAMES"]

@@ -15,11 +15,20 @@ STARTS = ("up", "down", "rest")
 
 
 class Sweep:
-    """A sweep folder read: its rows (dicts, numbers as floats where the column is numeric) and the
-    Poincare samples of each row id."""
+    """A sweep folder read: its rows (dicts, numbers as floats where the column is numeric), the
+    Poincare samples of each row id and the warnings of each row id (sweep.jsonl)."""
 
-    def __init__(self, folder, rows, samples, settings):
+    def __init__(self, folder, rows, samples, settings, warnings=None):
         self.folder, self.rows, self.samples, self.settings = folder, rows, samples, settings
+        self.warnings = warnings or {}
+
+    def warning_entries(self):
+        """The rows' warnings as the report lists them (answer.warning_lines): [{"warning", "job_ids"}]."""
+        found = {}
+        for r in self.rows:
+            for text in self.warnings.get(r["id"], []):
+                found.setdefault(text, []).append(r["id"])
+        return [{"warning": text, "job_ids": ids} for text, ids in found.items()]
 
     def simulators(self):
         """Configurations (engine, options, time step) in the order they first appear, the reference first.
@@ -56,10 +65,12 @@ def label(config):
     return f"{engine} {options or 'default'}, dt {step:g} s"
 
 
-NUMBERS = ("ratio", "time_step_s", "motor_frequency_hz", "duration_s", "window_s", "impacts_in_window",
-           "impacts_per_cycle", "period_n", "impacts_per_period", "frame1_sensor_peak_m_s2", "frame2_sensor_peak_m_s2",
-           "frame1_peak_tip_displacement_m", "frame2_peak_tip_displacement_m", "mean_approach_velocity_m_s",
-           "mean_contact_duration_s", "poincare_samples", "steps", "cpu_time_s", "wall_time_s", "load_average")
+# sweep.csv's numeric columns; a quantity runs.csv has too carries runs.csv's name and unit (docs/sweeps.md).
+NUMBERS = ("ratio", "time_step_s", "motor_frequency_hz", "duration_s", "window_s", "impacts",
+           "impacts_per_cycle", "period_n", "impacts_per_period", "frame1_sensor_peak_acceleration_g",
+           "frame2_sensor_peak_acceleration_g", "frame1_peak_displacement_m", "frame2_peak_displacement_m",
+           "mean_approach_velocity_m_s", "contact_duration_mean_s", "poincare_samples", "steps", "cpu_time_s",
+           "wall_time_s", "load_average")
 
 
 def number(text, path, line, column):
@@ -106,7 +117,24 @@ def read(folder):
             settings = json.load(f)
     except (OSError, json.JSONDecodeError):
         pass  # the tables say what ran; the settings only add the scenario's name
-    return Sweep(folder, rows, samples, settings)
+    return Sweep(folder, rows, samples, settings, read_warnings(os.path.join(folder, "sweep.jsonl")))
+
+
+def read_warnings(path):
+    """Each row id's warnings from sweep.jsonl (a list per row: sweep.csv has no column for a list); {}
+    without the file. A line that is not JSON is skipped: sweep.csv, read before, is the rows' source."""
+    warnings = {}
+    if not os.path.isfile(path):
+        return warnings
+    with open(path) as f:
+        for line in f:
+            try:
+                row = json.loads(line)
+            except json.JSONDecodeError:
+                continue
+            if isinstance(row, dict) and isinstance(row.get("warnings"), list):
+                warnings[row.get("id", "")] = [w for w in row["warnings"] if isinstance(w, str)]
+    return warnings
 
 
 def impacts(row):
@@ -207,8 +235,9 @@ def agreement(sweep):
                 differ = [(r, q) for r, q in paired if not (r["verdict"] == "ok" and r["regime"] == q["regime"])]
                 ipc = [abs(r["impacts_per_cycle"] - q["impacts_per_cycle"]) for r, q in paired
                        if r["verdict"] == "ok" and not math.isnan(r["impacts_per_cycle"]) and not math.isnan(q["impacts_per_cycle"])]
-                peaks = sorted(abs(r["frame1_sensor_peak_m_s2"] / q["frame1_sensor_peak_m_s2"] - 1) for r, q in paired
-                               if impacts(r) and impacts(q) and q["frame1_sensor_peak_m_s2"] > 0)
+                peaks = sorted(abs(r["frame1_sensor_peak_acceleration_g"] / q["frame1_sensor_peak_acceleration_g"] - 1)
+                               for r, q in paired
+                               if impacts(r) and impacts(q) and q["frame1_sensor_peak_acceleration_g"] > 0)
                 table.append({
                     "configuration": label(config), "law": law, "start": start, "ratios": len(paired),
                     "agreement": len(same) / len(paired),

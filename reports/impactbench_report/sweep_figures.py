@@ -101,7 +101,7 @@ def response(data, law, folder, stamp, name):
             xs = [r["ratio"] for r in rows]
             top.plot(xs, [r["impacts_per_cycle"] for r in rows], START_STYLES[start], color=colour, linewidth=width,
                      marker="." if start == "rest" else None, markersize=3)
-            bottom.plot(xs, [r["frame1_sensor_peak_m_s2"] for r in rows], START_STYLES[start], color=colour,
+            bottom.plot(xs, [r["frame1_sensor_peak_acceleration_g"] for r in rows], START_STYLES[start], color=colour,
                         linewidth=width, marker="." if start == "rest" else None, markersize=3)
         handles.append(Line2D([], [], color=colour, linewidth=width, label=sweep.label(config)))
     handles += [Line2D([], [], color="grey", linestyle=START_STYLES[s], label=f"swept {s}" if s != "rest" else "from rest")
@@ -110,7 +110,7 @@ def response(data, law, folder, stamp, name):
         mark_experiment(ax, label=ax is top)
         ax.grid(alpha=0.3)
     top.set_ylabel("impacts per motor cycle [-]")
-    bottom.set_ylabel("frame 1 sensor peak [m/s²]")
+    bottom.set_ylabel("frame 1 sensor peak [g]")
     bottom.set_xlabel("motor speed / f_1 [-]")
     top.legend(handles=handles, fontsize=6, loc="upper right", ncol=2)
     figure.tight_layout(rect=(0, 0, 1, 0.93))

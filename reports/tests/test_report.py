@@ -43,9 +43,12 @@ class Report(unittest.TestCase):
     def setUpClass(cls):
         cls.folder = tempfile.mkdtemp(prefix="impactbench_report_test_")
         cls.suite = os.path.join(cls.folder, "suite")
+        # --window 2: the scenarios' own windows (the free vibration's 0.3 s run is scored whole either way),
+        # named on the command line so that the suite warns about short_resonance's, inside its start-up
+        # transient; no --paths: the engines' default (matched) alone, no native run
         run = subprocess.run([EXECUTABLE, "suite", SCENARIOS, "--engines", "reference,mujoco,ode,bullet",
-                              "--laws", "viscoelastic,newton", "--dt", "1e-4,5e-5", "--jobs", "2", "--out", cls.suite],
-                             capture_output=True, text=True)
+                              "--laws", "viscoelastic,newton", "--dt", "1e-4,5e-5", "--window", "2", "--jobs", "2",
+                              "--out", cls.suite], capture_output=True, text=True)
         # unstable runs (exit code 1) are findings the report must show, not failures of this test
         assert run.returncode in (0, 1), run.stderr
         report = subprocess.run([EXECUTABLE, "report", cls.suite], capture_output=True, text=True)
@@ -153,6 +156,55 @@ class Report(unittest.TestCase):
                         self.assertLessEqual(best_score, independent_score(r, tolerances) + 1e-12, r["job_id"])
         self.assertGreater(traced, 100)
         self.assertEqual({e["engine"] for e in summary["engines"]}, {"mujoco", "ode", "bullet"})
+
+    def test_a_suite_without_native_runs_says_not_run_rather_than_no_stable_run(self):
+        self.assertFalse(any(path_of(r) == "native" for r in self.rows if r["engine"] != "reference"))
+        with open(os.path.join(self.report, "summary.json")) as f:
+            summary = json.load(f)
+        with open(os.path.join(self.report, "index.html")) as f:
+            page = f.read()
+        with open(os.path.join(self.report, "summary.md")) as f:
+            markdown = f.read()
+        for standing in summary["engines"]:
+            self.assertEqual(standing["out_of_box"]["runs"], 0)
+            self.assertGreater(standing["tuned"]["runs"], 0)
+            self.assertIn("native contact: not run", standing["line"])
+            self.assertIn(standing["line"], markdown)
+        self.assertNotIn("native contact: no stable run", page + markdown)
+
+    def test_the_contact_path_has_a_column_of_its_own(self):
+        for r in self.rows:
+            if r["engine"] in ("reference", ""):
+                self.assertEqual((r["contact_path"], r["law_simulated"]), ("", "yes" if r["engine"] else ""), r["job_id"])
+            else:
+                self.assertEqual((r["contact_path"], r["law_simulated"]), (path_of(r), "yes"), r["job_id"])
+
+    def test_a_warning_is_recorded_with_its_runs_and_listed_in_the_report(self):
+        warned = {}
+        with open(os.path.join(self.suite, "runs.jsonl")) as f:
+            for line in f:
+                record = json.loads(line)
+                warned[record["job_id"]] = record["warnings"]
+        self.assertEqual(set(warned), {r["job_id"] for r in self.rows})
+        for job_id, warnings in warned.items():
+            if job_id.startswith("short_resonance/"):
+                self.assertEqual(len(warnings), 1, job_id)
+                self.assertIn("short_resonance: the scoring window starts at 1 s, before the start-up transient's end",
+                              warnings[0])
+            else:
+                self.assertEqual(warnings, [], job_id)  # no motor: no start-up transient
+        with open(os.path.join(self.suite, "runs", next(iter(w for w in warned if w.startswith("short_resonance/"))),
+                               "summary.json")) as f:
+            self.assertEqual(json.load(f)["warnings"], warned[next(w for w in warned if w.startswith("short_resonance/"))])
+        text = next(w[0] for w in warned.values() if w)
+        count = sum(1 for w in warned.values() if w)
+        with open(os.path.join(self.report, "index.html")) as f:
+            page = f.read().replace("&#x27;", "'")
+        with open(os.path.join(self.report, "summary.md")) as f:
+            markdown = f.read()
+        self.assertIn("<h2 id='warnings'>Warnings</h2>", page)
+        self.assertIn(f"<li>{text} ({count} runs)</li>", page)
+        self.assertIn(f"## Warnings\n\n- {text} ({count} runs)", markdown)
 
     def test_without_steps_csv_there_is_no_steps_view(self):
         self.assertFalse(os.path.exists(os.path.join(self.suite, "steps.csv")))

@@ -16,23 +16,31 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from impactbench_report import sweep  # noqa: E402
 
 MAKE_REPORT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "make_report.py")
-COLUMNS = ("id,scenario,engine,engine_version,law,options,time_step_s,start,ratio,motor_frequency_hz,duration_s,window_s,"
-           "verdict,reason,timed_out,impacts_in_window,impacts_per_cycle,regime,period_n,impacts_per_period,"
-           "frame1_sensor_peak_m_s2,frame2_sensor_peak_m_s2,frame1_peak_tip_displacement_m,frame2_peak_tip_displacement_m,"
-           "mean_approach_velocity_m_s,mean_contact_duration_s,poincare_samples,steps,cpu_time_s,wall_time_s,load_average")
+# sweep.csv's header as harness/sweep_row.cpp writes it (the quantities runs.csv has under runs.csv's names)
+COLUMNS = ("id,scenario,engine,engine_version,law,options,contact_path,law_simulated,time_step_s,start,ratio,"
+           "motor_frequency_hz,duration_s,window_s,verdict,reason,timed_out,impacts,impacts_per_cycle,regime,period_n,"
+           "impacts_per_period,frame1_sensor_peak_acceleration_g,frame2_sensor_peak_acceleration_g,"
+           "frame1_peak_displacement_m,frame2_peak_displacement_m,mean_approach_velocity_m_s,contact_duration_mean_s,"
+           "poincare_samples,steps,cpu_time_s,wall_time_s,load_average")
 
 
-def row(engine, start, ratio, regime, impacts_per_cycle, peak=100.0, verdict="ok", options=""):
+def row(engine, start, ratio, regime, impacts_per_cycle, peak=10.0, verdict="ok", options=""):
     prefix = f"resonance/{engine}/hertz" + (f"/{options}" if options else "")
-    return (f"{prefix}/{start}/r={ratio:g},resonance,{engine},v1,hertz,{options},{1e-4 if engine != 'reference' else 0},"
-            f"{start},{ratio},{6.95 * ratio},30,10,{verdict},,0,{round(70 * impacts_per_cycle)},{impacts_per_cycle},"
+    path = "" if engine == "reference" else (options.partition("contact=")[2] or "matched")
+    return (f"{prefix}/{start}/r={ratio:g},resonance,{engine},v1,hertz,{options},{path},"
+            f"{'no' if path == 'native' else 'yes'},{1e-4 if engine != 'reference' else 0},"
+            f"{start},{ratio},{6.95 * ratio},30,10,{verdict},,false,{round(70 * impacts_per_cycle)},{impacts_per_cycle},"
             f"{regime},,,{peak},{peak},0.001,0.0005,0.1,0.0003,70,1000,1.5,1.5,1.0")
 
 
-def write_sweep(folder, rows):
+def write_sweep(folder, rows, warnings=None):
+    """sweep.csv, poincare.csv, sweep.json, and sweep.jsonl with the rows' warnings ({row id: [text]})."""
     os.makedirs(folder, exist_ok=True)
     with open(os.path.join(folder, "sweep.csv"), "w") as f:
         f.write(COLUMNS + "\n" + "\n".join(rows) + "\n")
+    with open(os.path.join(folder, "sweep.jsonl"), "w") as f:
+        for r in rows:
+            f.write(json.dumps({"id": r.split(",")[0], "warnings": (warnings or {}).get(r.split(",")[0], [])}) + "\n")
     with open(os.path.join(folder, "poincare.csv"), "w") as f:
         f.write("id,period_index,time_s,frame1_tip_displacement_m,frame1_tip_velocity_m_s,frame2_tip_displacement_m,"
                 "frame2_tip_velocity_m_s\n")
@@ -66,7 +74,7 @@ class SweepAnswer(unittest.TestCase):
         self.assertIn("at 1.17 f_1 it impacts, 1.00 impacts per cycle (period-1)", text)
 
     def test_regime_agreement_counts_and_lists_the_ratios_where_an_engine_differs(self):
-        engine = [row("mujoco", "up", 1.0, "period-1", 1.0, peak=110.0, options="contact=matched"),
+        engine = [row("mujoco", "up", 1.0, "period-1", 1.0, peak=11.0, options="contact=matched"),
                   row("mujoco", "up", 1.08, "no impact", 0.0, options="contact=matched"),
                   row("mujoco", "up", 1.17, "", 0.0, verdict="unstable", options="contact=matched")]
         table = sweep.agreement(self.read(reference_rows() + engine))
@@ -90,6 +98,27 @@ class SweepReport(unittest.TestCase):
             page = f.read()
         self.assertLess(page.index("keeps impacting up to r = 1.08"), page.index("<figure"))
         self.assertTrue(os.path.exists(os.path.join(folder, "report", "figures", "sweep_Frequency_sweep_hertz_bifurcation.svg")))
+
+    def test_a_rows_warning_is_listed_in_the_html_and_markdown_reports(self):
+        folder = tempfile.mkdtemp(prefix="impactbench_sweep_warning_")
+        rows = reference_rows()
+        warning = "resonance: the scoring window starts at 2 s, before the start-up transient's end (22.9 s"
+        write_sweep(folder, rows, {rows[0].split(",")[0]: [warning + ")"]})
+        run = subprocess.run([sys.executable, MAKE_REPORT, folder], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        with open(os.path.join(folder, "report", "index.html")) as f:
+            page = f.read()
+        with open(os.path.join(folder, "report", "summary.md")) as f:
+            markdown = f.read()
+        self.assertIn("<h2 id='warnings'>Warnings</h2>", page)
+        self.assertIn(warning, page.replace("&#x27;", "'"))
+        self.assertIn("## Warnings", markdown)
+        self.assertIn(f"- {warning}) (1 row)", markdown)
+        write_sweep(folder, rows)  # no warning: no list
+        run = subprocess.run([sys.executable, MAKE_REPORT, folder], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        with open(os.path.join(folder, "report", "summary.md")) as f:
+            self.assertNotIn("Warnings", f.read())
 
     def test_a_broken_sweep_csv_names_the_file_and_line_never_a_traceback(self):
         folder = tempfile.mkdtemp(prefix="impactbench_sweep_broken_")
