@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "harness/suite.h"
-#include "reference/reference_simulator.h"
+#include "mirror_simulator.h"
 #include "simulators/catalog.h"
 #include "suite_test_support.h"
 
@@ -20,12 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The reference on a 4-link chain under another name: an engine whose jobs have a chain reference too.
-class Mirror final : public Simulator {
- public:
-  std::string name() const override { return "mirror"; }
-  std::string version() const override { return "test"; }
-  std::vector<std::pair<std::string, std::string>> option_help() const override { return {}; }
+using test::Mirror;
+}
   RunResult run(const Scenario& s, const RunSettings& settings) override {
     RunSettings chain = settings;
     chain.options = chain_reference_options(4);

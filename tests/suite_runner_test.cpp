@@ -18,7 +18,7 @@
 #include <thread>
 #include <vector>
 
-#include "reference/reference_simulator.h"
+#include "mirror_simulator.h"
 #include "harness/reporters.h"
 
 namespace ib {
@@ -26,13 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Runs the reference on a 4-link chain under another name: an engine that builds a 4-link chain (so a
-// chain reference is planned for it) and agrees exactly with the reference on that chain.
-class Mirror final : public Simulator {
- public:
-  std::string name() const override { return "mirror"; }
-  std::string version() const override { return "test"; }
-  std::vector<std::pair<std::string, std::string>> option_help() const override { return {}; }
+using test::Mirror;
+}
   RunResult run(const Scenario& s, const RunSettings& settings) override {
     RunSettings chain = settings;
     chain.options = chain_reference_options(4);
