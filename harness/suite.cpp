@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "harness/engines_file.h"
 #include "harness/recorded_run.h"
 #include "harness/reporters.h"
 #include "harness/run_files.h"
@@ -122,7 +123,7 @@ namespace ib {
 
 SuiteOutcome run_suite(const SuiteSettings& settings) {
   const suite_internal::InterruptionHandler handler;  // outlives the runner, which stops its workers when it ends
-  return suite_internal::SuiteRunner(settings).run();
+  return with_engines_file(settings.out, settings.simulators, suite_internal::SuiteRunner(settings).run());
 }
 
 }  // namespace ib

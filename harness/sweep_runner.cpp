@@ -13,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "harness/engines_file.h"
 #include "harness/folder_lock.h"
 #include "harness/jsonl_table.h"
 #include "harness/number_text.h"
@@ -304,7 +305,7 @@ SweepOutcome SweepRunner::run() {
 
 SweepOutcome run_sweep(const SweepSettings& settings) {
   SweepRunner runner(settings);
-  return runner.run();
+  return with_engines_file(settings.out, settings.simulators, runner.run());
 }
 
 }  // namespace ib
