@@ -2,7 +2,9 @@
 """scripts/check_engine_names.py catches what it is for, on fake trees: an engine named in code outside its
 folder fails with the file and line (whatever the case, for a new engine too), while its own folder, the
 allow-list and comments pass; a file on the to-be-rewritten list that names no engine any more fails too."""
+import json
 import pathlib
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -55,7 +57,38 @@ def main():
     expect_finding({listed: "int nothing = 0;\n"}, [listed, "remove it from TO_REWRITE"])
     code, out = check({**GOOD, listed: 'const char* e = "ode";\n'})
     assert code == 0, out
-    print("check_engine_names: every misplaced name caught, the clean tree passed")
+    toy_engine_in_a_copy_of_the_tree()
+    print("check_engine_names: every misplaced name caught, the clean tree passed, a toy engine added cleanly")
+
+
+def toy_engine_in_a_copy_of_the_tree():
+    """A new engine is its folder and one line: a copy of this repository with a toy engine, adapters/tinyphys/ (its
+    descriptor, a simulator including its own library's header) and its name on the registering line
+    passes both checkers; the same toy named in the harness fails the name check."""
+    repository = CHECK.parents[1]
+    with tempfile.TemporaryDirectory() as d:
+        root = pathlib.Path(d) / "tree"
+        shutil.copytree(repository, root, ignore=shutil.ignore_patterns("build*", ".git", "__pycache__"))
+        toy = root / "adapters" / "tinyphys"
+        toy.mkdir()
+        (toy / "descriptor.json").write_text(json.dumps({
+            "name": "tinyphys", "display_name": "TinyPhys", "summary": "a scripted toy engine", "packages": ["libtoy-dev"],
+            "library_headers": "^tinyphyslib/", "colours": {"matched": "#101010", "injected": "#202020", "native": "#303030"},
+            "diagnostics": []}))
+        (toy / "tinyphys_simulator.h").write_text('#pragma once\n#include "model/simulator.h"\n')
+        (toy / "tinyphys_simulator.cpp").write_text('#include <tinyphyslib/world.h>\n#include "adapters/tinyphys/tinyphys_simulator.h"\n'
+                                              '#include "adapters/common/rig.h"\nconst char* kName = "tinyphys";\n')
+        registering = root / "adapters" / "CMakeLists.txt"
+        text = registering.read_text()
+        line = next(l for l in text.splitlines() if l.startswith("set(impactbench_all_engines "))
+        registering.write_text(text.replace(line, line[:-1] + " tinyphys)"))
+        for checker in ("check_layers.py", "check_engine_names.py"):
+            r = subprocess.run([sys.executable, str(root / "scripts" / checker), str(root)], capture_output=True, text=True)
+            assert r.returncode == 0, f"{checker} refused the new engine:\n{r.stdout}"
+        (root / "harness" / "tinyphys_defaults.cpp").write_text('const char* kEngine = "tinyphys";\n')
+        r = subprocess.run([sys.executable, str(root / "scripts" / "check_engine_names.py"), str(root)],
+                           capture_output=True, text=True)
+        assert r.returncode == 1 and "harness/tinyphys_defaults.cpp:1" in r.stdout, r.stdout
 
 
 if __name__ == "__main__":
