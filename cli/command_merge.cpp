@@ -1,15 +1,30 @@
 #include "cli/commands.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
+#include "harness/engines_file.h"
 #include "harness/merge.h"
+#include "harness/run_files.h"
+#include "simulators/catalog.h"
 
 namespace cli {
 
 // The shards' folders joined into one suite folder (harness/merge.h), then its report, made as `report` makes it.
 int command_merge(const std::string& out, const std::vector<std::string>& shards, bool no_report) {
   const ib::MergeOutcome outcome = ib::merge_suites(ib::MergeSettings{shards, out});
+  // The engines that made the results (engines.json): a shard's, which every shard of one suite writes
+  // alike; this binary's only when no shard has one (shards of an older build).
+  namespace fs = std::filesystem;
+  const auto made_by = std::find_if(shards.begin(), shards.end(), [](const std::string& s) { return fs::exists(s + "/engines.json"); });
+  if (made_by == shards.end()) {
+    ib::write_engines_file(out, ib::simulator_catalog());
+  } else {
+    std::error_code error;
+    fs::copy_file(*made_by + "/engines.json", out + "/engines.json", fs::copy_options::overwrite_existing, error);
+    if (error) throw ib::OutputError(ib::output_error_text(out + "/engines.json", "copy " + *made_by + "/engines.json", error.value()));
+  }
   if (std::filesystem::exists(out + "/sweep.json"))
     std::printf("merge: %d sweep rows in %s/sweep.csv from %zu folders\n", outcome.runs, out.c_str(), shards.size());
   else

@@ -74,6 +74,10 @@ int command_merge(const std::string& out, const std::vector<std::string>& shards
 
 int command_list(const std::string& folder);
 
+// Every simulator of this build with its descriptor; json: the text of a result folder's engines.json;
+// names: the names alone, comma-separated (what --engines takes).
+int command_engines(bool json, bool names);
+
 // `sweep` (harness/sweep.h): its options are registered by add_sweep_command, which sets `command`.
 void add_sweep_command(CLI::App& app, SweepOptions& options, MeasurementOptions& measurement, CLI::App*& command);
 int command_sweep(const SweepOptions& options, const MeasurementOptions& measurement_options);

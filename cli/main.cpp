@@ -149,6 +149,11 @@ int main(int argc, char** argv) {
   study->add_flag("--no-report", study_options.no_report, "leave the report out");
   study->add_flag("--plan", study_options.plan, "check the file and print what each part runs; run nothing");
 
+  bool engines_json = false, engines_names = false;
+  CLI::App* engines = app.add_subcommand("engines", "every simulator of this build: name, version, Debian packages, report colours, diagnostics keys");
+  engines->add_flag("--json", engines_json, "print the descriptors as JSON (what a suite writes to DIR/engines.json)");
+  engines->add_flag("--names", engines_names, "print the simulators' names alone, comma-separated (for --engines)")->excludes("--json");
+
   CLI::App* list = app.add_subcommand("list", "the scenarios, engines, laws and simulator options of this build");
   list->add_option("folder", list_folder, "scenario folder")->capture_default_str();
 
@@ -174,6 +179,7 @@ int main(int argc, char** argv) {
     if (export_model->parsed())
       return command_export(scenario_path, export_engine, law, export_out, time_step_s, export_rate_hz, options);
     if (score->parsed()) return command_score(score_folder, score_scenario, score_reference, json, score_measurement);
+    if (engines->parsed()) return command_engines(engines_json, engines_names);
     return command_list(list_folder);
   } catch (const ib::OutputError& error) {
     std::fprintf(stderr, "impactbench: %s\n", error.what());

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "harness/run_files.h"
 #include "harness/shard_plan.h"
 
 namespace ib {
@@ -16,19 +17,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string whole_file(const std::string& path, bool& ok) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  ok = static_cast<bool>(in) || in.eof();
-  return text.str();
-}
-
 // The digest and size of a file's bytes: what its content is, whatever its name.
 std::string content_digest(const std::string& path) {
-  bool ok = false;
-  const std::string bytes = whole_file(path, ok);
-  return ok ? plan_digest({bytes}) + "/" + std::to_string(bytes.size()) : "unreadable";
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return "unreadable";
+  const std::string bytes = read_text_file(path);
+  return plan_digest({bytes}) + "/" + std::to_string(bytes.size());
 }
 
 // This executable's bytes: the reference's code and everything that writes its results.
@@ -78,9 +72,8 @@ nlohmann::ordered_json reference_cache_key(const Scenario& scenario, const JobSp
 bool restore_cached_reference(const std::string& cache_folder, const nlohmann::ordered_json& key,
                               const std::string& run_folder) {
   const fs::path entry = fs::path(cache_folder) / plan_digest({key.dump()});
-  bool ok = false;
-  const std::string held = whole_file((entry / "key.json").string(), ok);
-  if (!ok || held.empty()) return false;
+  const std::string held = read_text_file((entry / "key.json").string());
+  if (held.empty()) return false;
   const auto held_key = nlohmann::ordered_json::parse(held, nullptr, /*allow_exceptions=*/false);
   // (a discarded value compares unequal to nothing: ask for it first)
   if (held_key.is_discarded() || !(held_key == key) || !fs::exists(entry / "row.jsonl") || !fs::exists(entry / "row.csv"))
@@ -105,9 +98,8 @@ void store_cached_reference(const std::string& cache_folder, const nlohmann::ord
                             const std::string& run_folder) {
   const fs::path entry = fs::path(cache_folder) / plan_digest({key.dump()});
   std::error_code error;
-  bool ok = false;
-  const std::string held = whole_file((entry / "key.json").string(), ok);
-  if (ok && nlohmann::ordered_json::parse(held, nullptr, /*allow_exceptions=*/false) == key) return;
+  if (nlohmann::ordered_json::parse(read_text_file((entry / "key.json").string()), nullptr, /*allow_exceptions=*/false) == key)
+    return;
   // written beside and renamed into place, so that a reader never sees half an entry
   const fs::path partial = fs::path(cache_folder) / (".partial-" + std::to_string(::getpid()) + "-" + entry.filename().string());
   try {

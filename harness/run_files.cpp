@@ -96,6 +96,13 @@ int put_text(const std::string& path, const char* mode, const std::string& text,
 
 }  // namespace
 
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 void write_text_file(const std::string& path, const std::string& text) {
   if (const int error = put_text(path, "w", text)) throw OutputError(output_error_text(path, "write", error));
 }

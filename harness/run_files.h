@@ -27,6 +27,9 @@ std::string output_error_text(const std::string& path, const std::string& action
 // failed write leaves the old file as it was); each checked after writing, flushing and closing.
 // Throw OutputError.
 void write_text_file(const std::string& path, const std::string& text);
+// The whole of a file as it is; "" when it is absent or cannot be read (callers that must tell the two
+// apart check first). The one whole-file reader of the harness.
+std::string read_text_file(const std::string& path);
 void append_text_file(const std::string& path, const std::string& text);
 void replace_text_file(const std::string& path, const std::string& text);
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "harness/engines_file.h"
 #include "harness/recorded_run.h"
 #include "harness/reporters.h"
 #include "harness/run_files.h"
@@ -136,7 +137,7 @@ SuiteOutcome run_suite(const SuiteSettings& settings) { return run_suites({setti
 
 SuiteOutcome run_suites(const std::vector<SuiteSettings>& parts) {
   const suite_internal::InterruptionHandler handler;  // outlives the runner, which stops its workers when it ends
-  return suite_internal::SuiteRunner(parts).run();
+  return with_engines_file(parts.front().out, parts.front().simulators, suite_internal::SuiteRunner(parts).run());
 }
 
 }  // namespace ib

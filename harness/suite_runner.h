@@ -62,7 +62,6 @@ std::string last_line(const std::string& path);
 // process of a task in no particular order: a worker can get it before the suite does. A crash (SIGSEGV,
 // SIGABRT, SIGFPE, ...) is a finding.
 bool stopped_from_outside(int status, bool timed_out);
-std::string read_file(const std::string& path);
 
 // ---- Interruption: SIGINT and SIGTERM stop the suite between results, never in the middle of one.
 // The handler only notes the signal; the runner stops its workers, records nothing half-done and

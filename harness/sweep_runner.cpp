@@ -13,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "harness/engines_file.h"
 #include "harness/folder_lock.h"
 #include "harness/jsonl_table.h"
 #include "harness/number_text.h"
@@ -52,13 +53,6 @@ nlohmann::ordered_json settings_record(const SweepSettings& s, const Scenario& s
   j["sensor_rate_hz"] = s.measurement.sensor_rate_hz;
   j["merge_window_s"] = s.measurement.merge_window_s;
   return j;
-}
-
-std::string read_whole(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 class SweepRunner {
@@ -112,7 +106,7 @@ void SweepRunner::prepare_folder() {
   const std::string path = s_.out + "/sweep.json";
   if (std::filesystem::exists(path)) {
     if (!s_.resume) throw std::invalid_argument(s_.out + " holds a sweep already (sweep.json); continue it with --resume or choose another --out");
-    const auto held = nlohmann::ordered_json::parse(read_whole(path), nullptr, false);
+    const auto held = nlohmann::ordered_json::parse(read_text_file(path), nullptr, false);
     if (held.is_discarded()) throw std::invalid_argument(path + ": not a sweep's settings (not JSON); remove the folder to start again");
     const std::string keys = differing_keys(held, record);
     if (!keys.empty())
@@ -291,7 +285,7 @@ SweepOutcome SweepRunner::run() {
   for (const SweepChain& chain : mine_) done += rows_done(chain);
   outcome_.rows_run = done - outcome_.rows_skipped;
   // not_ok over every recorded row, so that a resumed sweep's exit code covers all its results
-  const auto table = read_whole(s_.out + "/sweep.jsonl");
+  const auto table = read_text_file(s_.out + "/sweep.jsonl");
   std::istringstream lines(table);
   for (std::string line; std::getline(lines, line);) {
     const auto row = nlohmann::json::parse(line, nullptr, false);
@@ -304,7 +298,7 @@ SweepOutcome SweepRunner::run() {
 
 SweepOutcome run_sweep(const SweepSettings& settings) {
   SweepRunner runner(settings);
-  return runner.run();
+  return with_engines_file(settings.out, settings.simulators, runner.run());
 }
 
 }  // namespace ib

@@ -12,13 +12,6 @@ namespace ib {
 
 namespace {
 
-std::string read_whole(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return {};
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::string csv_cell(const nlohmann::ordered_json& value) {
   if (value.is_null()) return "";
@@ -33,7 +26,7 @@ int write_sweep_tables(const std::string& folder, const std::vector<std::string>
   int rows = 0;
   for (const std::string& id : row_ids) {
     const std::string row_folder = folder + "/runs/" + id;
-    const std::string text = read_whole(row_folder + "/row.json");
+    const std::string text = read_text_file(row_folder + "/row.json");
     if (text.empty()) continue;
     const auto row = nlohmann::ordered_json::parse(text, nullptr, /*allow_exceptions=*/false);
     if (!row.is_object()) throw std::runtime_error(row_folder + "/row.json: not a JSON object; remove the folder and run with --resume");
@@ -49,7 +42,7 @@ int write_sweep_tables(const std::string& folder, const std::vector<std::string>
       if (!it.value().is_structured()) csv += (first ? "" : ",") + csv_cell(it.value()), first = false;
     csv += "\n";
     jsonl += row.dump() + "\n";
-    const std::string samples = read_whole(row_folder + "/poincare.csv");
+    const std::string samples = read_text_file(row_folder + "/poincare.csv");
     const auto header_end = samples.find('\n');
     if (poincare.empty() && header_end != std::string::npos) poincare = samples.substr(0, header_end + 1);
     if (header_end != std::string::npos) poincare += samples.substr(header_end + 1);

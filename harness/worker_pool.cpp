@@ -57,13 +57,6 @@ std::string last_line(const std::string& path) {
   return last.size() > 300 ? last.substr(0, 300) + "..." : last;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 // ---- Interruption: SIGINT and SIGTERM stop the suite between results, never in the middle of one.
 // The handler only notes the signal; the runner stops its workers, records nothing half-done and
 // returns. A terminal's Ctrl-C reaches the workers too (same process group): they die at once, and
@@ -322,7 +315,7 @@ std::string SuiteRunner::collect(const PlannedJob& job, int status, bool timed_o
     throw OutputError(output_error.empty() ? output_error_text(folder, "write the run's files", 0) : output_error);
   const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
   if (clean) {
-    if (cacheable(job) && read_recorded_run(read_file(folder + "/row.jsonl")).verdict == Verdict::ok)
+    if (cacheable(job) && read_recorded_run(read_text_file(folder + "/row.jsonl")).verdict == Verdict::ok)
       store_cached_reference(settings_.reference_cache,
                              reference_cache_key(scenarios_[job.scenario], job.spec, measurement_of(job)), folder);
     const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
@@ -330,7 +323,7 @@ std::string SuiteRunner::collect(const PlannedJob& job, int status, bool timed_o
     if (!recorded_.count(job.id)) {
       json = append_row_of(job);
     } else {  // recorded before: run again only for the jobs scored from it
-      json = read_file(folder + "/row.jsonl");
+      json = read_text_file(folder + "/row.jsonl");
       remove_row_files(folder);
     }
     for (const PlannedJob* other : scored) append_row_of(*other);
@@ -381,7 +374,7 @@ std::vector<const PlannedJob*> SuiteRunner::unrecorded_scored_from(const Planned
 // from another's run did none of its own, and its time is that run's).
 std::string SuiteRunner::append_row_of(const PlannedJob& job) {
   const std::string folder = folder_of(job);
-  const std::string json = read_file(folder + "/row.jsonl"), csv = read_file(folder + "/row.csv");
+  const std::string json = read_text_file(folder + "/row.jsonl"), csv = read_text_file(folder + "/row.csv");
   append_rows(settings_.out, csv, json);
   recorded_.insert(job.id);
   // what the progress estimate reads back: the steps taken (fewer than planned when it stopped

@@ -6,4 +6,14 @@ double series_start_s(const RunSettings& settings, const Scenario& scenario) {
   return settings.series_start_s >= 0 ? settings.series_start_s : scenario.scoring_start_s();
 }
 
+SimulatorDescriptor descriptor_of(const SimulatorCatalog& catalog, const std::string& name) {
+  for (const SimulatorDescriptor& d : catalog.descriptors)
+    if (d.name == name) return d;
+  // a test's catalog, or a simulator without a descriptor file: known by its name alone
+  SimulatorDescriptor bare;
+  bare.name = name;
+  bare.display_name = name;
+  return bare;
+}
+
 }  // namespace ib

@@ -11,6 +11,7 @@
 
 #include "model/saved_state.h"
 #include "model/scenario.h"
+#include "model/simulator_descriptor.h"
 #include "model/trajectory.h"
 
 namespace ib {
@@ -79,6 +80,12 @@ struct SimulatorCatalog {
   // The options that make the reference run on the K-link chain an engine builds, so that the engine
   // is also scored against exactly the system it simulates (Simulator::chain_links).
   std::function<std::map<std::string, std::string>(int links)> chain_reference_options;
+  // Each simulator's descriptor (model/simulator_descriptor.h), in the order of `names`; a test's own
+  // catalog may leave it empty (then a simulator is known by its name alone).
+  std::vector<SimulatorDescriptor> descriptors;
 };
+
+// The descriptor of `name` in the catalog, or one holding the name alone when the catalog has none.
+SimulatorDescriptor descriptor_of(const SimulatorCatalog& catalog, const std::string& name);
 
 }  // namespace ib

@@ -4,7 +4,10 @@
 # One Markdown row per engine x case x law: tolerances against the chain and the beam reference, then
 # the measured errors (impacts per cycle as a difference, the others in %).
 set -euo pipefail
-grep -o 'agreement: engine=.*' "$1" | sort -u | awk '
+# the engines in their registration order (adapters/CMakeLists.txt, the one line that names them)
+engines=$(sed -n 's/^set(impactbench_all_engines \(.*\))$/\1/p' "$(dirname "$0")/../adapters/CMakeLists.txt")
+[[ -n $engines ]] || { echo "agreement-table.sh: no engine list in adapters/CMakeLists.txt (set(impactbench_all_engines ...))" >&2; exit 2; }
+grep -o 'agreement: engine=.*' "$1" | sort -u | awk -v engines="$engines" '
 function pct(x) { return sprintf("%+.1f", 100 * x) }
 function tp(x) { return sprintf("%g", 100 * x) }
 { for (i = 2; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
@@ -14,7 +17,7 @@ function tp(x) { return sprintf("%g", 100 * x) }
   else cell = sprintf("%s / %s | %s / %s", tp(v["chain_tolerance"]), tp(v["beam_tolerance"]), pct(v["chain_error"]), pct(v["beam_error"]))
   c[k, m] = cell }
 END {
-  eo["mujoco"] = 1; eo["ode"] = 2; eo["bullet"] = 3; eo["dart"] = 4; eo["simbody"] = 5; co["resonance"] = 1; co["pre_resonance"] = 2; co["post_resonance"] = 3; co["free_vibration"] = 4
+  ne = split(engines, en, " "); for (i = 1; i <= ne; ++i) eo[en[i]] = i; co["resonance"] = 1; co["pre_resonance"] = 2; co["post_resonance"] = 3; co["free_vibration"] = 4
   lo["hertz"] = 1; lo["viscoelastic"] = 2; lo["newton"] = 3
   for (i = 1; i <= n; ++i) { split(order[i], p, "|"); key[i] = eo[p[1]] * 100 + co[p[2]] * 10 + lo[p[3]] }
   for (i = 1; i <= n; ++i) for (j = i + 1; j <= n; ++j) if (key[j] < key[i]) { t = key[i]; key[i] = key[j]; key[j] = t; t = order[i]; order[i] = order[j]; order[j] = t }

@@ -5,52 +5,73 @@
 
 A folder's files may include their own folder and the folders this table allows, nothing else; the
 harness is above the simulators in the chain of commands but links only the model and the physics: it
-receives the simulators through a catalog (model/simulator.h). Each engine's library headers are included
-only in its own adapter folder. Includes carry their folder ("model/scenario.h"), so a project header
+receives the simulators through a catalog (model/simulator.h). Each engine's library headers (the
+"library_headers" pattern of adapters/<engine>/descriptor.json) are included only in its own adapter
+folder; the engines are the folders of adapters/, so a new one needs no line here. Includes carry their folder ("model/scenario.h"), so a project header
 named without one is an error too. tests/, bench/ and fuzz/ may include anything.
 
     scripts/check_layers.py [ROOT]     exit 0: every include follows the rule; 1: each breach listed
 """
+import json
 import pathlib
 import re
 import sys
 
-ENGINES = ("mujoco", "ode", "bullet", "dart", "simbody")
-ALLOWED = {
+BASE = {
     "model": set(),
     "physics": {"model"},
     "reference": {"model", "physics"},
     "adapters/common": {"model", "physics"},
-    **{f"adapters/{e}": {"model", "physics", "adapters/common"} for e in ENGINES},
-    "simulators": {"model", "physics", "reference", "adapters/common", *(f"adapters/{e}" for e in ENGINES)},
     "harness": {"model", "physics"},
     "cli": {"model", "physics", "reference", "harness", "simulators"},  # the reference for `modes` (its mode options)
 }
-# Angle-bracket includes that belong to one engine's adapter only.
-ENGINE_HEADERS = {
-    "mujoco": re.compile(r"^mujoco/"),
-    "ode": re.compile(r"^ode/"),
-    "bullet": re.compile(r"^(btBulletDynamicsCommon\.h|LinearMath/|BulletDynamics/|BulletCollision/)"),
-    "dart": re.compile(r"^dart/"),
-    "simbody": re.compile(r"^(Simbody\.h|simbody/|SimTKcommon|SimTKmath)"),
-}
+
+
+def engines(root: pathlib.Path):
+    """The engines of the tree: every folder of adapters/ but common/ (docs/adding-an-engine.md), with the
+    pattern of its library's angle-bracket includes from its descriptor.json ("library_headers"; none
+    when the folder has no descriptor yet: its includes are then checked for layers only)."""
+    found = {}
+    for folder in sorted(p for p in (root / "adapters").glob("*") if p.is_dir() and p.name != "common"):
+        descriptor = folder / "descriptor.json"
+        pattern = ""
+        if descriptor.exists():
+            try:
+                pattern = json.loads(descriptor.read_text()).get("library_headers", "")
+            except ValueError as error:
+                raise SystemExit(f"check_layers: {descriptor}: not JSON ({error})")
+        found[folder.name] = re.compile(pattern) if pattern else None
+    return found
+
+
+def allowed(engine_names):
+    """What each layer may include, the engines' folders among them."""
+    table = dict(BASE)
+    for e in engine_names:
+        table[f"adapters/{e}"] = {"model", "physics", "adapters/common"}
+    table["simulators"] = {"model", "physics", "reference", "adapters/common", *(f"adapters/{e}" for e in engine_names)}
+    return table
+
+
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 
-def layer_of(relative: pathlib.PurePosixPath):
+def layer_of(relative: pathlib.PurePosixPath, table):
     parts = relative.parts
     if parts[0] == "adapters" and len(parts) > 2:
         return f"adapters/{parts[1]}"
-    return parts[0] if parts[0] in ALLOWED and len(parts) > 1 else None
+    return parts[0] if parts[0] in table and len(parts) > 1 else None
 
 
 def breaches(root: pathlib.Path):
+    engine_headers = engines(root)
+    table = allowed(engine_headers)
     headers = {p.relative_to(root).as_posix() for p in root.rglob("*.h") if "build" not in p.relative_to(root).parts[0]}
     for path in sorted(root.rglob("*")):
         if path.suffix not in (".h", ".cpp") or path.relative_to(root).parts[0].startswith("build"):
             continue
         relative = pathlib.PurePosixPath(path.relative_to(root).as_posix())
-        layer = layer_of(relative)
+        layer = layer_of(relative, table)
         if layer is None:
             continue
         for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
@@ -60,20 +81,20 @@ def breaches(root: pathlib.Path):
             quote, name = m.groups()
             where = f"{relative}:{number}"
             if quote == "<":
-                for engine, pattern in ENGINE_HEADERS.items():
-                    if pattern.match(name) and layer != f"adapters/{engine}":
+                for engine, pattern in engine_headers.items():
+                    if pattern and pattern.match(name) and layer != f"adapters/{engine}":
                         yield f"{where}: <{name}> is {engine}'s; only adapters/{engine} may include it"
                 continue
-            target = layer_of(pathlib.PurePosixPath(name))
+            target = layer_of(pathlib.PurePosixPath(name), table)
             if target is None:
                 if "/" not in name and any(h.endswith("/" + name) for h in headers):
                     yield f'{where}: "{name}" names no folder; write it with its layer, e.g. "{next(h for h in headers if h.endswith("/" + name))}"'
                 continue
             if name not in headers:
                 yield f'{where}: "{name}" is not a header of this tree'
-            elif target != layer and target not in ALLOWED[layer]:
-                allowed = ", ".join(sorted(ALLOWED[layer])) or "nothing below it"
-                yield f'{where}: {layer} includes "{name}" ({target}); {layer} may include {allowed}'
+            elif target != layer and target not in table[layer]:
+                may = ", ".join(sorted(table[layer])) or "nothing below it"
+                yield f'{where}: {layer} includes "{name}" ({target}); {layer} may include {may}'
 
 
 def longest_files(root: pathlib.Path, limit=400):

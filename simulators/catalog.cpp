@@ -21,6 +21,18 @@ const Entry kSimulators[] = {
     {"reference", make_reference_simulator},
 #include "engines.inc"
 };
+// Each simulator's descriptor.json as read at configure time (simulators/descriptor.cmake), the
+// reference first, in the order of kSimulators. A function's static, not a namespace-scope array: its
+// strings are made at run time, and a test's cases (built during static initialisation from
+// simulator_names()) may ask for the catalog before this file's statics exist.
+const std::vector<SimulatorDescriptor>& descriptors() {
+#define IMPACTBENCH_ENGINE_DESCRIPTORS
+  static const std::vector<SimulatorDescriptor> all = {
+#include "engines.inc"
+  };
+#undef IMPACTBENCH_ENGINE_DESCRIPTORS
+  return all;
+}
 }  // namespace
 
 const SimulatorCatalog& simulator_catalog() {
@@ -33,6 +45,7 @@ const SimulatorCatalog& simulator_catalog() {
       return nullptr;
     };
     c.chain_reference_options = chain_reference_options;
+    c.descriptors = descriptors();
     return c;
   }();
   return catalog;

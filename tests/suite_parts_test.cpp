@@ -21,14 +21,6 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::Mirror;
-}
-  RunResult run(const Scenario& s, const RunSettings& settings) override {
-    RunSettings chain = settings;
-    chain.options = chain_reference_options(4);
-    return make_reference_simulator()->run(s, chain);
-  }
-  std::optional<int> chain_links(const Scenario&, const RunSettings&) const override { return 4; }
-};
 
 std::unique_ptr<Simulator> test_factory(const std::string& name) {
   if (name == "mirror") return std::make_unique<Mirror>();

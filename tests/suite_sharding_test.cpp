@@ -240,6 +240,8 @@ TEST_F(SuiteSharding, ShardsMergedGiveTheWholeSuite) {
   const CommandOutput merge = command("merge " + quoted(*root_ / "merged") + shard_list());
   ASSERT_EQ(merge.exit_code, 0) << merge.text;
   expect_same_results(whole(), *root_ / "merged");
+  // the merged folder names the engines that made it, as each shard's does (harness/engines_file.h)
+  EXPECT_TRUE(fs::exists(*root_ / "merged" / "engines.json"));
   EXPECT_NE(merge.text.find("report: " + (*root_ / "merged" / "report" / "index.html").string()), std::string::npos)
       << merge.text;
   const std::string summary = read_text(*root_ / "merged" / "report" / "summary.md");

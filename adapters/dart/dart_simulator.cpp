@@ -143,8 +143,8 @@ class DartStepper final : public FixedStepEngine {
       const std::string frame = "frame" + std::to_string(f + 1);
       const LinkChain& chain = rig_.frames[f].chain;
       d.emplace_back(frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI));
-      d.emplace_back(frame + "_hinge_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
-      d.emplace_back(frame + "_hinge_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
+      d.emplace_back(frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
+      d.emplace_back(frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
     }
     d.emplace_back("contact_force_from_tip_states", contact_.force_from_tip_states ? 1 : 0);
     d.emplace_back("collision_detector_analytic", contact_.collision == Collision::analytic ? 1 : 0);

@@ -162,8 +162,8 @@ class OdeStepper final : public FixedStepEngine {
       const std::string frame = "frame" + std::to_string(f + 1);
       const LinkChain& chain = rig_.frames[f].chain;
       d.emplace_back(frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI));
-      d.emplace_back(frame + "_hinge_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
-      d.emplace_back(frame + "_hinge_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
+      d.emplace_back(frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
+      d.emplace_back(frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
       if (model_.springs == SpringPath::implicit_stops) {
         d.emplace_back(frame + "_hinge_stop_erp", ode_rig_.hinge_stop_erp(f));
         d.emplace_back(frame + "_hinge_stop_cfm_rad_per_n_m_s", ode_rig_.hinge_stop_cfm(f));

@@ -238,8 +238,8 @@ std::vector<std::pair<std::string, double>> SimbodyStepper::diagnostics() const 
     const std::string frame = "frame" + std::to_string(f + 1);
     const LinkChain& chain = rig_.frames[f].chain;
     d.emplace_back(frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI));
-    d.emplace_back(frame + "_hinge_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
-    d.emplace_back(frame + "_hinge_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
+    d.emplace_back(frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
+    d.emplace_back(frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
   }
   d.emplace_back("contact_injected", setup_.kind == ContactKind::injected ? 1 : 0);
   if (!setup_.note.empty()) d.emplace_back("hertz_exponent_not_representable_injected", 1);

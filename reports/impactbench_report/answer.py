@@ -9,11 +9,10 @@ error against the experiment) are computed from such numbers by the formulas the
 
 import math
 
-from . import analysis, data, settings
+from . import analysis, data, engines, settings
 from .tables import percent
 
 SCHEMA_VERSION = 1
-ENGINE_NAMES = {"mujoco": "MuJoCo", "ode": "ODE", "bullet": "Bullet", "dart": "DART", "simbody": "Simbody"}
 
 RUN_COLUMNS = ["time_step_s", "verdict", "reason", "same_run_as", "chain_links", "duration_s", "window_start_s",
                "window_end_s", "frame1_sensor_peak_acceleration_g", "frame2_sensor_peak_acceleration_g",
@@ -231,7 +230,7 @@ def error_text(largest):
 
 
 def standing_line(s):
-    name = ENGINE_NAMES.get(s["engine"], s["engine"])
+    name = engines.display_name(s["engine"])
     parts = []
     for kind, label in (("tuned", "tuned"), ("out_of_box", "native contact")):
         k = s[kind]

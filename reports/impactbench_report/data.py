@@ -8,6 +8,8 @@ import os
 import tomllib
 from dataclasses import dataclass, field
 
+from . import engines
+
 G = 9.80665  # standard gravity [m/s^2]
 
 # runs.csv columns that are text; every other column is a number (empty: not applicable).
@@ -133,6 +135,7 @@ def read_runs(folder):
     """The rows of runs.csv, sorted by job id: the report does not depend on the order in which jobs
     finished (parallel workers, a suite interrupted and resumed)."""
     path = os.path.join(folder, "runs.csv")
+    engines.use(folder)  # the names, colours and settings keys of the engines that made these runs
     suite = Suite(folder)
     seen = {}  # job id -> line
     with open(path, newline="") as f:

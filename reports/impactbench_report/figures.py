@@ -16,7 +16,7 @@ plt.rcParams["svg.fonttype"] = "none"
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from . import analysis  # noqa: E402
+from . import analysis, engines  # noqa: E402
 from .tables import step_text  # noqa: E402
 
 VERDICT_COLOURS = {"ok": "#2ca02c", "inaccurate": "#ff7f0e", "unstable": "#d62728", "failed": "#7f7f7f"}
@@ -27,12 +27,8 @@ REPOSITORY = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__f
 
 
 # A configuration's colour from its engine and contact path, the same in every figure whichever configurations
-# a figure holds; none is a verdict's colour (green, orange, red, grey).
-ENGINE_COLOURS = {("bullet", "matched"): "#1f77b4", ("bullet", "native"): "#17becf", ("bullet", "injected"): "#0b3d91",
-                  ("mujoco", "matched"): "#9467bd", ("mujoco", "native"): "#e377c2", ("mujoco", "injected"): "#5b2a86",
-                  ("ode", "matched"): "#8c564b", ("ode", "native"): "#bcbd22", ("ode", "injected"): "#4e2a1e",
-                  ("dart", "matched"): "#6b6ecf", ("dart", "native"): "#9c9ede", ("dart", "injected"): "#393b79",
-                  ("simbody", "matched"): "#8c6d31", ("simbody", "native"): "#e7cb94", ("simbody", "injected"): "#843c39"}
+# a figure holds: the engine's descriptor (engines.json of the folder, adapters/<engine>/descriptor.json),
+# whose colours are none of a verdict's (green, orange, red, grey); a spare one for an engine without.
 SPARE_COLOURS = ["#637939", "#7b4173", "#3182bd", "#31a354", "#756bb1", "#b5cf6b", "#de9ed6", "#525252"]
 
 
@@ -47,8 +43,9 @@ def colour_of(config, configs):
     (other options) in `configs` takes a spare colour by its place in the list."""
     key = colour_key(config)
     earlier = [c for c in configs[:configs.index(config)]] if config in configs else []
-    if key in ENGINE_COLOURS and not any(colour_key(c) == key for c in earlier):
-        return ENGINE_COLOURS[key]
+    own = engines.colour(*key)
+    if own and not any(colour_key(c) == key for c in earlier):
+        return own
     return SPARE_COLOURS[configs.index(config) % len(SPARE_COLOURS)] if config in configs else "black"
 
 

@@ -4,7 +4,8 @@ ran where. Every number printed here is in summary.json, which names the runs.cs
 
 import html
 
-from .answer import ENGINE_NAMES, error_text, warning_lines
+from . import engines
+from .answer import error_text, warning_lines
 from .tables import step_text
 
 ANSWER_HEADER = ["case, law", "best out of the box: engine, step [s]", "largest error vs beam",
@@ -47,7 +48,7 @@ def answer_rows(document):
                 row += [case["best_" + kind]["why"], "–", "–", "–"]
                 continue
             cost = run["runs_csv"].get("cpu_time_per_simulated_s")
-            name = ENGINE_NAMES.get(run["engine"], run["engine"])
+            name = engines.display_name(run["engine"])
             if kind == "tuned":
                 name += " " + run["contact_path"]
             cell = error_text(run["largest_error_vs_beam"]) + verdict_mark(run)
@@ -157,4 +158,4 @@ def markdown(document, facts):
     return "\n".join(lines)
 
 
-__all__ = ["html_page_top", "html_settings_and_provenance", "markdown", "warnings_html", "warnings_markdown", "ENGINE_NAMES"]
+__all__ = ["html_page_top", "html_settings_and_provenance", "markdown", "warnings_html", "warnings_markdown"]

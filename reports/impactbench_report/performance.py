@@ -14,10 +14,11 @@ import json
 import math
 import os
 
-from . import tables
+from . import engines, tables
 
-MACHINE_KEYS = ["cpu_model", "cpu_cores", "memory_gib", "os", "compiler", "libmujoco-dev", "libode-dev",
-                "libbullet-dev", "libdart-dev", "libsimbody-dev", "libbenchmark-dev", "python3-scipy", "impactbench_commit"]
+# bench/machine.sh's keys: the machine, then the package versions (the engines' from their descriptors).
+MACHINE_KEYS = ["cpu_model", "cpu_cores", "memory_gib", "os", "compiler", *engines.repository_packages(),
+                "libbenchmark-dev", "python3-scipy", "impactbench_commit"]
 
 
 def read_json(folder, name):

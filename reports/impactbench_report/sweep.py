@@ -8,7 +8,7 @@ import json
 import math
 import os
 
-from . import data
+from . import data, engines
 
 EXPERIMENT_RATIOS = (0.95, 1.00, 1.17)  # the published operating points (rig.md section 7)
 STARTS = ("up", "down", "rest")
@@ -88,6 +88,7 @@ def is_sweep(folder):
 
 def read(folder):
     """The sweep in folder; data.ResultsError naming the file, line and column for what cannot be read."""
+    engines.use(folder)  # the names and colours of the engines that made the sweep (engines.json)
     path = os.path.join(folder, "sweep.csv")
     if not os.path.isfile(path):
         raise data.ResultsError(f"{path}: no such file (a sweep's folder holds one once a ratio has ended)")

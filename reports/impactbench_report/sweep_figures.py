@@ -5,7 +5,7 @@ three operating points marked."""
 
 import math
 
-from . import figures, sweep
+from . import engines, figures, sweep
 from .figures import plt
 from matplotlib.lines import Line2D
 
@@ -18,7 +18,7 @@ def engine_colour(config):
     if engine == "reference":
         return "black"
     contact = next((o.split("=", 1)[1] for o in options.split(";") if o.startswith("contact=")), "matched")
-    return figures.ENGINE_COLOURS.get((engine, contact), figures.SPARE_COLOURS[hash(options) % len(figures.SPARE_COLOURS)])
+    return engines.colour(engine, contact) or figures.SPARE_COLOURS[hash(options) % len(figures.SPARE_COLOURS)]
 
 
 def mark_experiment(ax, label=True):

@@ -61,6 +61,16 @@ class Report(unittest.TestCase):
     def tearDownClass(cls):
         shutil.rmtree(cls.folder)
 
+    def test_the_folder_names_the_engines_that_made_it(self):
+        """engines.json (harness/engines_file.h): every simulator of the build with its version, the
+        reference first, each engine of runs.csv among them."""
+        with open(os.path.join(self.suite, "engines.json")) as f:
+            simulators = json.load(f)["simulators"]
+        names = [d["name"] for d in simulators]
+        self.assertEqual(names[0], "reference")
+        self.assertLessEqual({row["engine"] for row in self.rows}, set(names))
+        self.assertTrue(all(d["version"] for d in simulators))
+
     def test_every_figure_is_an_svg(self):
         figures = os.listdir(os.path.join(self.report, "figures"))
         kinds = {name.split("_")[0] for name in figures}

@@ -6,8 +6,9 @@
 #   scripts/slurm/submit-sweep.sh NAME SHARDS SCENARIO [SWEEP_OPTIONS...] [-- SBATCH_OPTIONS...]
 #
 # e.g. scripts/slurm/submit-sweep.sh fine 12 scenarios/paper/resonance.toml --ratios 0.85:1.20:0.005
-#      --start both --engines reference,mujoco,ode,bullet,dart,simbody --laws hertz,viscoelastic
-# (2 starts x 6 simulators x 2 laws = 24 chains over 12 tasks). Options after -- go to both sbatch calls.
+#      --start both --engines "$(build/cli/impactbench engines --names)" --laws hertz,viscoelastic
+# (every simulator of the build; with the reference and five engines: 2 starts x 6 x 2 laws = 24 chains
+# over 12 tasks). Options after -- go to both sbatch calls.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 usage="usage: scripts/slurm/submit-sweep.sh NAME SHARDS SCENARIO [SWEEP_OPTIONS...] [-- SBATCH_OPTIONS...]"

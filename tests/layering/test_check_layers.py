@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """scripts/check_layers.py catches what it is for: a tree with one wrong-way include, a project header named
 without its folder, or an engine's header outside its adapter fails with the file, the line and the rule; the
-same tree without them passes."""
+same tree without them passes; a new engine's folder is checked with or without its descriptor.json."""
 import pathlib
 import subprocess
 import sys
@@ -30,6 +30,9 @@ GOOD = {
     "reference/reference_solver.h": '#include "physics/beam_modes.h"\n',
     "adapters/common/rig.h": '#include "physics/beam_modes.h"\n',
     "adapters/ode/ode_rig.h": '#include <ode/ode.h>\n#include "adapters/common/rig.h"\n',
+    # the engines' library headers come from their descriptors, as in the real tree
+    "adapters/ode/descriptor.json": '{"name": "ode", "library_headers": "^ode/"}\n',
+    "adapters/mujoco/descriptor.json": '{"name": "mujoco", "library_headers": "^mujoco/"}\n',
     "simulators/catalog.h": '#include "reference/reference_solver.h"\n#include "adapters/ode/ode_rig.h"\n',
     "harness/metrics.h": '#include "model/scenario.h"\n#include "physics/beam_modes.h"\n',
     "cli/main.cpp": '#include "simulators/catalog.h"\n#include "harness/metrics.h"\n',
@@ -56,6 +59,18 @@ def main():
     expect_breach({"adapters/bullet/world.cpp": '#include "adapters/ode/ode_rig.h"\n'}, ["adapters/bullet/world.cpp:1"])
     expect_breach({"harness/run_job.cpp": '#include "scenario.h"\n'}, ['"scenario.h" names no folder', "model/scenario.h"])
     expect_breach({"harness/run_job.cpp": "#include <mujoco/mujoco.h>\n"}, ["only adapters/mujoco may include it"])
+    # a new engine is its folder: without a descriptor yet its layers are checked (no KeyError) ...
+    code, out = check({**GOOD, "adapters/toy/toy_simulator.cpp": '#include "adapters/common/rig.h"\n',
+                       "simulators/catalog.cpp": '#include "adapters/toy/toy_simulator.h"\n',
+                       "adapters/toy/toy_simulator.h": "#pragma once\n"})
+    assert code == 0, out
+    expect_breach({"adapters/toy/toy_simulator.cpp": '#include "harness/metrics.h"\n'}, ["adapters/toy/toy_simulator.cpp:1"])
+    # ... and with one, its library's headers belong to its folder alone
+    toy = {"adapters/toy/descriptor.json": '{"name": "toy", "library_headers": "^toylib/"}\n',
+           "adapters/toy/toy_simulator.cpp": "#include <toylib/world.h>\n"}
+    code, out = check({**GOOD, **toy})
+    assert code == 0, out
+    expect_breach({**toy, "adapters/ode/ode_contact.cpp": "#include <toylib/world.h>\n"}, ["only adapters/toy may include it"])
     print("check_layers: every breach caught, the clean tree passed")
 
 

@@ -1,0 +1,34 @@
+// What the layers above need to know of a simulator besides its runs: its name for people, its colours,
+// where it comes from and what its diagnostics keys mean. The data lives in one file per simulator
+// (adapters/<engine>/descriptor.json, reference/descriptor.json), read by simulators/CMakeLists.txt at
+// configure time, so that the report and the scripts read the same file and nothing else names an engine
+// (docs/adding-an-engine.md).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ib {
+
+// One key a simulator writes into a run's diagnostics (RunResult::diagnostics, runs.jsonl), documented.
+struct DiagnosticsKey {
+  std::string key;      // as written, e.g. "frame1_joint_stiffness_n_m_per_rad"
+  std::string label;    // the setting it shows in the report, e.g. "integrator"
+  std::string meaning;  // one sentence
+  std::string unit;     // SI unit, "" for a count, a ratio or a flag
+  // For flags and codes: value -> text ({"1", "RK4"}, {"0", "Euler (MuJoCo's default)"}); empty: a number
+  std::vector<std::pair<std::string, std::string>> values;
+};
+
+struct SimulatorDescriptor {
+  std::string name;          // the catalog name, e.g. "mujoco"
+  std::string display_name;  // e.g. "MuJoCo"
+  std::string summary;       // one line: what the engine is and how the rig is built in it
+  std::vector<std::string> packages;  // the Debian package(s) it is built from
+  // contact path (matched, injected, native) -> "#rrggbb": the same in every figure of the report
+  std::vector<std::pair<std::string, std::string>> colours;
+  std::vector<DiagnosticsKey> diagnostics;
+};
+
+}  // namespace ib
