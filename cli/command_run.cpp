@@ -1,7 +1,6 @@
 // `run`: one scenario with one simulator and law, compared with the reference run here first.
 #include "cli/commands.h"
 
-#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,6 +20,7 @@
 #include "harness/reporters.h"
 #include "harness/run_files.h"
 #include "harness/run_job.h"
+#include "harness/worker_process.h"
 #include "model/scenario_toml.h"
 #include "simulators/catalog.h"
 
@@ -98,10 +98,9 @@ int run_and_print(const ib::Scenario& scenario, ib::JobSpec job, const ib::Measu
 // nullopt when it was stopped at the limit (so that `run` ends like a suite's job, never hangs).
 std::optional<int> within_time_limit(double time_limit_s, const std::function<int()>& work) {
   std::fflush(nullptr);
-  const pid_t pid = fork();
+  const pid_t pid = ib::fork_worker();  // as a suite's job: default signal actions, death with the parent
   if (pid < 0) throw std::runtime_error(std::string("cannot start the run's process: ") + std::strerror(errno));
   if (pid == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
     int code = kExitBadInput;
     try {
       code = work();

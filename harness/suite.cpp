@@ -136,7 +136,7 @@ namespace ib {
 SuiteOutcome run_suite(const SuiteSettings& settings) { return run_suites({settings}); }
 
 SuiteOutcome run_suites(const std::vector<SuiteSettings>& parts) {
-  const suite_internal::InterruptionHandler handler;  // outlives the runner, which stops its workers when it ends
+  const InterruptionHandler handler;  // outlives the runner, which stops its workers when it ends
   return with_engines_file(parts.front().out, parts.front().simulators, suite_internal::SuiteRunner(parts).run());
 }
 

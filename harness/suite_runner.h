@@ -2,7 +2,8 @@
 // class whose stages live in their own files:
 //   suite.cpp               run_suite and the orchestration (references first, then engines or searches)
 //   suite_plan.cpp          the job matrix, shards and the plan's description
-//   worker_pool.cpp         job processes: fork, time limits, signals, collecting their records
+//   worker_pool.cpp         the pool of job processes: time limits, collecting their records (a process
+//                           itself: worker_process.h, shared with the sweep)
 //   step_search_driver.cpp  the step searches' probes, scheduled as their brackets ask
 // Nothing outside the harness includes this (suite.h is the interface).
 #pragma once
@@ -26,6 +27,7 @@
 #include "harness/run_job.h"
 #include "harness/step_search.h"
 #include "harness/suite.h"
+#include "harness/worker_process.h"
 
 namespace ib::suite_internal {
 
@@ -52,46 +54,6 @@ struct PlannedJob {
 RunRecord unrunnable(const std::string& id, const std::string& scenario, const std::string& file,
                      const std::string& engine, const std::string& law, const std::string& reason);
 
-// Why a job's process ended without a record, for its failed row; its log's last line, cut at 300 characters.
-std::string describe_exit(int status, double time_limit_s, bool timed_out, const std::string& log_tail);
-std::string last_line(const std::string& path);
-
-// A job's process ended by a signal from outside (a scheduler stopping the task, a person, the OOM killer:
-// SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGKILL), not by its time limit: its run decided nothing about the
-// simulator, so it is not recorded and --resume runs it again. Slurm and systemd send SIGTERM to every
-// process of a task in no particular order: a worker can get it before the suite does. A crash (SIGSEGV,
-// SIGABRT, SIGFPE, ...) is a finding.
-bool stopped_from_outside(int status, bool timed_out);
-
-// ---- Interruption: SIGINT and SIGTERM stop the suite between results, never in the middle of one.
-// The handler only notes the signal; the runner stops its workers, records nothing half-done and
-// returns. A terminal's Ctrl-C reaches the workers too (same process group): they die at once, and
-// what they had not finished is not recorded, so that --resume runs it again.
-extern volatile std::sig_atomic_t interrupt_signal;
-
-// Installs the handler for the runner's lifetime and restores the previous one after.
-class InterruptionHandler {
- public:
-  InterruptionHandler();
-  ~InterruptionHandler();
-  InterruptionHandler(const InterruptionHandler&) = delete;
-  InterruptionHandler& operator=(const InterruptionHandler&) = delete;
-
- private:
-  struct sigaction previous_int_ {}, previous_term_ {};
-};
-
-bool interrupted();
-
-// Starts a job's process (fork's return value): in it, the default signal actions and death with the
-// parent; a SIGINT or SIGTERM sent to it at any moment, even during the fork, ends it (worker_pool.cpp).
-pid_t fork_worker();
-
-// ---- Write errors inside a job's process: the message goes to the parent through a pipe and the
-// process exits with this code; the parent stops the suite with that message (OutputError).
-constexpr int kWorkerOutputError = 75;
-[[noreturn]] void send_and_exit(int pipe_fd, const std::string& message);
-std::string receive(int pipe_fd);
 
 // A job scored from another's run, with the references of its own law (loaded before the fork).
 struct ScoredFrom {

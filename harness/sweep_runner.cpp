@@ -18,8 +18,8 @@
 #include "harness/jsonl_table.h"
 #include "harness/number_text.h"
 #include "harness/run_files.h"
-#include "harness/suite_runner.h"
 #include "harness/sweep_internal.h"
+#include "harness/worker_process.h"
 #include "model/scenario_toml.h"
 #include "physics/modal_model.h"
 
@@ -154,7 +154,7 @@ void SweepRunner::run_chain_in_child(const SweepChain& chain) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     std::fflush(stderr);
-    _exit(suite_internal::kWorkerOutputError);
+    _exit(kWorkerOutputError);
   }
   std::fflush(nullptr);
   _exit(0);
@@ -163,7 +163,7 @@ void SweepRunner::run_chain_in_child(const SweepChain& chain) {
 void SweepRunner::start(const SweepChain& chain) {
   std::filesystem::create_directories(s_.out + "/runs/" + chain.id);
   std::fflush(nullptr);
-  const pid_t pid = suite_internal::fork_worker();
+  const pid_t pid = fork_worker();
   if (pid < 0) throw std::runtime_error("cannot start a worker process (fork failed)");
   if (pid == 0) {
     const int log = open(log_of(chain).c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
@@ -187,20 +187,20 @@ void SweepRunner::collect(pid_t pid, int status) {
   const Running run = running_.at(pid);
   running_.erase(pid);
   const SweepChain& chain = *run.chain;
-  if (WIFEXITED(status) && WEXITSTATUS(status) == suite_internal::kWorkerOutputError)
-    throw OutputError(suite_internal::last_line(log_of(chain)));
+  if (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerOutputError)
+    throw OutputError(last_line(log_of(chain)));
   std::size_t first_missing = chain.rows.size();
   for (std::size_t k = 0; k < chain.rows.size() && first_missing == chain.rows.size(); ++k)
     if (!row_done(folder_of(chain.rows[k]))) first_missing = k;
   if (first_missing == chain.rows.size()) return;
-  if (suite_internal::interrupted() || suite_internal::stopped_from_outside(status, run.timed_out)) {
-    if (!suite_internal::interrupted()) ++outcome_.chains_stopped, outcome_.stopped_by = WTERMSIG(status);
+  if (interrupted() || stopped_from_outside(status, run.timed_out)) {
+    if (!interrupted()) ++outcome_.chains_stopped, outcome_.stopped_by = WTERMSIG(status);
     std::fprintf(stderr, "sweep: %s stopped by signal %d before r = %s; --resume runs it again\n", chain.id.c_str(),
                  WIFSIGNALED(status) ? WTERMSIG(status) : 0, ratio_text(chain.rows[first_missing].ratio).c_str());
     return;
   }
-  const std::string why = suite_internal::describe_exit(status, s_.time_limit_s, run.timed_out,
-                                                        suite_internal::last_line(log_of(chain)));
+  const std::string why = describe_exit(status, s_.time_limit_s, run.timed_out,
+                                                        last_line(log_of(chain)));
   record_rest_not_run(chain, first_missing, why,
                       "the chain's process ended at r = " + ratio_text(chain.rows[first_missing].ratio) + " (see that row)",
                       run.timed_out);
@@ -248,9 +248,9 @@ SweepOutcome SweepRunner::run() {
                scenario_.name.c_str(), s_.ratios.size(), mine_.size(),
                s_.shard ? (" (shard " + to_string(*s_.shard) + ")").c_str() : "", outcome_.rows_total - outcome_.rows_skipped,
                outcome_.rows_skipped);
-  const suite_internal::InterruptionHandler handler;
+  const InterruptionHandler handler;
   std::size_t next = 0;
-  while ((next < pending.size() || !running_.empty()) && !suite_internal::interrupted()) {
+  while ((next < pending.size() || !running_.empty()) && !interrupted()) {
     while (next < pending.size() && static_cast<int>(running_.size()) < s_.jobs) start(*pending[next++]);
     int status = 0;
     const pid_t pid = waitpid(-1, &status, WNOHANG);
@@ -269,8 +269,8 @@ SweepOutcome SweepRunner::run() {
     }
     refresh_tables();
   }
-  if (suite_internal::interrupted()) {
-    outcome_.interrupted_by = suite_internal::interrupt_signal;
+  if (interrupted()) {
+    outcome_.interrupted_by = interrupt_signal;
     for (auto& [pid, run] : running_) kill(pid, SIGKILL);
     while (!running_.empty()) {  // a row that ended before the stop is kept (row.json is written last)
       int status = 0;
