@@ -26,7 +26,7 @@
 #include "simulators/catalog.h"
 #include "adapters/common/rig.h"
 #include "rig_case.h"
-#include "harness/run_job.h"
+#include "harness/jobs/run_job.h"
 #include "model/simulator.h"
 
 #if IMPACTBENCH_WITH_MUJOCO

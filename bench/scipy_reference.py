@@ -6,7 +6,7 @@ comparison with the reference (bench/reference_vs_scipy.py).
     /usr/bin/python3 bench/scipy_reference.py model.json --out DIR [--method DOP853] [--rtol R] [--atol A]
     impactbench score DIR --scenario SCENARIO
 
-Writes DIR/series.csv and DIR/events.csv in the harness's format (harness/run_files.h), so that
+Writes DIR/series.csv and DIR/events.csv in the harness's format (harness/records/run_files.h), so that
 `impactbench score` measures them exactly as every simulator's run, and DIR/scipy_run.json with the cost.
 
 How it integrates (the choices a user would make; the README's "The reference against SciPy"):

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cli/option_rules.h"
-#include "harness/run_job.h"
+#include "harness/jobs/run_job.h"
 #include "physics/contact_laws.h"
 
 namespace cli {

@@ -1,13 +1,13 @@
 // `engines [--json]`: every simulator of this build with its descriptor (model/simulator_descriptor.h):
 // what it is, its library version, the Debian packages it comes from, its colours in the report and the
 // diagnostics keys it writes into runs.jsonl, each with its meaning and unit. --json prints the text a
-// suite writes to DIR/engines.json (harness/engines_file.h); --names the names alone, comma-separated.
+// suite writes to DIR/engines.json (harness/records/engines_file.h); --names the names alone, comma-separated.
 #include "cli/commands.h"
 
 #include <cstdio>
 #include <memory>
 
-#include "harness/engines_file.h"
+#include "harness/records/engines_file.h"
 #include "simulators/catalog.h"
 
 namespace cli {

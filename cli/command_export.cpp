@@ -5,7 +5,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "harness/run_files.h"
+#include "harness/records/run_files.h"
 #include "model/scenario_toml.h"
 #include "simulators/catalog.h"
 

@@ -4,14 +4,14 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "harness/engines_file.h"
-#include "harness/merge.h"
-#include "harness/run_files.h"
+#include "harness/records/engines_file.h"
+#include "harness/study/merge.h"
+#include "harness/records/run_files.h"
 #include "simulators/catalog.h"
 
 namespace cli {
 
-// The shards' folders joined into one suite folder (harness/merge.h), then its report, made as `report` makes it.
+// The shards' folders joined into one suite folder (harness/study/merge.h), then its report, made as `report` makes it.
 int command_merge(const std::string& out, const std::vector<std::string>& shards, bool no_report) {
   const ib::MergeOutcome outcome = ib::merge_suites(ib::MergeSettings{shards, out});
   // The engines that made the results (engines.json): a shard's, which every shard of one suite writes

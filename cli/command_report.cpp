@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "harness/reporters.h"
-#include "harness/run_files.h"
+#include "harness/records/reporters.h"
+#include "harness/records/run_files.h"
 
 namespace cli {
 

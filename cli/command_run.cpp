@@ -15,12 +15,12 @@
 #include <optional>
 #include <thread>
 
-#include "harness/number_text.h"
-#include "harness/plausibility.h"
-#include "harness/reporters.h"
-#include "harness/run_files.h"
-#include "harness/run_job.h"
-#include "harness/worker_process.h"
+#include "harness/records/number_text.h"
+#include "harness/scoring/plausibility.h"
+#include "harness/records/reporters.h"
+#include "harness/records/run_files.h"
+#include "harness/jobs/run_job.h"
+#include "harness/jobs/worker_process.h"
 #include "model/scenario_toml.h"
 #include "simulators/catalog.h"
 

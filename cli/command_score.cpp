@@ -5,8 +5,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "harness/metrics.h"
-#include "harness/run_job.h"
+#include "harness/scoring/metrics.h"
+#include "harness/jobs/run_job.h"
 #include "model/scenario_toml.h"
 
 namespace cli {

@@ -7,7 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/study_file.h"
-#include "harness/number_text.h"
+#include "harness/records/number_text.h"
 #include "simulators/catalog.h"
 
 namespace cli {

@@ -1,4 +1,4 @@
-// `suite`: the matrix of scenarios, laws, engines and steps (harness/suite.h), or its step search.
+// `suite`: the matrix of scenarios, laws, engines and steps (harness/suite/suite.h), or its step search.
 #include "cli/commands.h"
 
 #include <unistd.h>
@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "harness/plausibility.h"
-#include "harness/run_files.h"
-#include "harness/suite.h"
+#include "harness/scoring/plausibility.h"
+#include "harness/records/run_files.h"
+#include "harness/suite/suite.h"
 #include "model/simulator_options.h"
 #include "simulators/catalog.h"
 

@@ -1,10 +1,10 @@
-// `sweep`: the motor speed over a range of ratios to f_1, from rest or continued up and down (harness/sweep.h).
+// `sweep`: the motor speed over a range of ratios to f_1, from rest or continued up and down (harness/sweep/sweep.h).
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
 #include "cli/commands.h"
-#include "harness/sweep.h"
+#include "harness/sweep/sweep.h"
 #include "model/simulator_options.h"
 #include "simulators/catalog.h"
 

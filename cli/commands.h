@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "cli/arguments.h"
-#include "harness/suite.h"
-#include "harness/sweep.h"
+#include "harness/suite/suite.h"
+#include "harness/sweep/sweep.h"
 
 namespace cli {
 
@@ -69,7 +69,7 @@ int command_score(const std::string& folder, const std::string& scenario_path, c
 // the saved results alone.
 int command_report(const std::string& suite_folder, const std::string& out);
 
-// The shards' folders joined into one suite folder (harness/merge.h), then its report, made as `report` makes it.
+// The shards' folders joined into one suite folder (harness/study/merge.h), then its report, made as `report` makes it.
 int command_merge(const std::string& out, const std::vector<std::string>& shards, bool no_report);
 
 int command_list(const std::string& folder);
@@ -78,7 +78,7 @@ int command_list(const std::string& folder);
 // names: the names alone, comma-separated (what --engines takes).
 int command_engines(bool json, bool names);
 
-// `sweep` (harness/sweep.h): its options are registered by add_sweep_command, which sets `command`.
+// `sweep` (harness/sweep/sweep.h): its options are registered by add_sweep_command, which sets `command`.
 void add_sweep_command(CLI::App& app, SweepOptions& options, MeasurementOptions& measurement, CLI::App*& command);
 int command_sweep(const SweepOptions& options, const MeasurementOptions& measurement_options);
 ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOptions& measurement_options);

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "harness/run_files.h"
+#include "harness/records/run_files.h"
 #include "model/scenario_toml.h"
 
 int main(int argc, char** argv) {

@@ -8,7 +8,7 @@
 #include <type_traits>
 
 #include "cli/arguments.h"
-#include "harness/plausibility.h"
+#include "harness/scoring/plausibility.h"
 
 namespace cli {
 
@@ -17,13 +17,13 @@ namespace {
 using ib::Plausible;
 
 // One row per option, each range decided once (the why beside it). The harness checks the same quantities
-// again where it sizes a run (harness/plausibility.h: steps, samples, a step at most a tenth of the run);
+// again where it sizes a run (harness/scoring/plausibility.h: steps, samples, a step at most a tenth of the run);
 // where its bounds are wider (a rate of 1 Hz), this table is the one a user meets.
 const OptionRule kOptionRules[] = {
     // Contacts last 0.3 to 1 ms (docs/step-search.md): a 1e-2 s step is ten contacts long and a fourteenth of
     // the rig's first period; below 1e-9 s a run of 10 s takes the harness's limit of 1e10 steps.
     {"--dt", Plausible::kMinTimeStep_s, Plausible::kMaxTimeStep_s, true, false, "s", "the time step of fixed-step engines"},
-    // The series is what every metric reads (harness/metrics.h). At 256 Hz (sweep's floor so far) its Nyquist
+    // The series is what every metric reads (harness/scoring/metrics.h). At 256 Hz (sweep's floor so far) its Nyquist
     // frequency, 128 Hz, is above the published rig's first two bending modes (6.95 and 73.2 Hz with the tip
     // mass, `impactbench modes`); below 146 Hz the second mode aliases. Its use in a run is bounded from
     // below by --sensor-rate too (option_rules.h), 2048 Hz by default.

@@ -53,7 +53,7 @@ CLI::Option* add_shared_list_option(CLI::App* command, Shared option, std::strin
 // value <= limit, else "NAME VALUE: allowed: at most LIMIT_TEXT" (e.g. a window at most the run).
 void require_at_most(Shared option, double value, double limit, const std::string& limit_text);
 
-// The series at --rate is what the sensor reading reads (harness/metrics.h): between samples the velocity
+// The series at --rate is what the sensor reading reads (harness/scoring/metrics.h): between samples the velocity
 // is interpolated linearly, so a series coarser than the sensor turns it into a sensor at --rate and its
 // peak is underestimated. Where a run is measured (run, suite, sweep): --rate >= --sensor-rate.
 void require_series_resolves_sensor(double rate_hz, double sensor_rate_hz);

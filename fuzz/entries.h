@@ -16,10 +16,10 @@
 #include <string>
 #include <string_view>
 
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "physics/modal_model.h"
-#include "harness/reporters.h"
-#include "harness/run_files.h"
+#include "harness/records/reporters.h"
+#include "harness/records/run_files.h"
 #include "model/scenario_toml.h"
 #include "model/trajectory.h"
 

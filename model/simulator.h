@@ -17,7 +17,7 @@
 namespace ib {
 
 // When a run is unstable: the one record that both the simulators' divergence guard (which stops a run
-// early) and the verdict (harness/verdict.h) read.
+// early) and the verdict (harness/scoring/verdict.h) read.
 struct StabilityBounds {
   double displacement_bound_fraction_of_length = 0.1;  // |u| beyond this x frame length: unstable [-]
   double penetration_bound_gaps = 10;                  // delta beyond this x gap, and beyond the floor below [-]

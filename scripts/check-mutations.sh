@@ -20,7 +20,7 @@ cd "$(dirname "$0")/.."
 MUTATIONS=(
   # the energy-growth instability rule ten times looser (the bound is read here alone: model/simulator.h's
   # StabilityBounds value would rebuild the whole tree for the same verdicts)
-  energy-bound-x10 harness/verdict.cpp
+  energy-bound-x10 harness/scoring/verdict.cpp
   'if (e > initial * (1 + settings.stability.energy_growth_tolerance) + 1e-12) {'
   'if (e > initial * (1 + 10 * settings.stability.energy_growth_tolerance) + 1e-12) {'
   '^VerdictThresholds\.EnergyGrowthWithoutInputIsOneThousandth$'
@@ -29,7 +29,7 @@ MUTATIONS=(
   'return (1 + newton->restitution) * effective_mass_kg_ * rate / h;'
   'return (1 + 0.9 * newton->restitution) * effective_mass_kg_ * rate / h;'
   'NewtonRestitution\..*/[a-z]+_injected'
-  sensor-peak-tolerance-x2 harness/verdict.h
+  sensor-peak-tolerance-x2 harness/scoring/verdict.h
   'double sensor_peak_relative = 0.10;'
   'double sensor_peak_relative = 0.20;'
   '^VerdictThresholds\.AccuracyTolerancesAreTenPercentAndATenthOfAnImpactPerCycle$'

@@ -2,6 +2,7 @@
 """The layering rule, checked on every #include of the sources (run by the test command).
 
     model <- physics <- reference, adapters <- simulators <- harness <- cli
+    harness: scoring <- records <- jobs <- suite, sweep <- study
 
 A folder's files may include their own folder and the folders this table allows, nothing else; the
 harness is above the simulators in the chain of commands but links only the model and the physics: it
@@ -22,9 +23,15 @@ BASE = {
     "physics": {"model"},
     "reference": {"model", "physics"},
     "adapters/common": {"model", "physics"},
-    "harness": {"model", "physics"},
-    "cli": {"model", "physics", "reference", "harness", "simulators"},  # the reference for `modes` (its mode options)
+    "cli": {"model", "physics", "reference", "simulators", "harness"},  # the reference for `modes` (its mode options)
 }
+# The harness's folders, lowest first: each may include the model, the physics and the folders before it.
+HARNESS = ["scoring", "records", "jobs", "suite", "sweep", "study"]
+for i, folder in enumerate(HARNESS):
+    BASE[f"harness/{folder}"] = {"model", "physics", *(f"harness/{below}" for below in HARNESS[:i])}
+    # a suite and a sweep are siblings: neither includes the other
+BASE["harness/sweep"].discard("harness/suite")
+BASE["cli"] |= {f"harness/{folder}" for folder in HARNESS}
 
 
 def engines(root: pathlib.Path):
@@ -58,8 +65,8 @@ INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 def layer_of(relative: pathlib.PurePosixPath, table):
     parts = relative.parts
-    if parts[0] == "adapters" and len(parts) > 2:
-        return f"adapters/{parts[1]}"
+    if parts[0] in ("adapters", "harness") and len(parts) > 2:
+        return f"{parts[0]}/{parts[1]}"
     return parts[0] if parts[0] in table and len(parts) > 1 else None
 
 

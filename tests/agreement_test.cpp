@@ -42,7 +42,7 @@
 #include "reference_fixtures.h"
 #include "simulators/catalog.h"
 #include "reference/reference_simulator.h"
-#include "harness/run_job.h"
+#include "harness/jobs/run_job.h"
 #include "model/simulator.h"
 
 namespace ib {

@@ -1,6 +1,6 @@
-// The free decay's logarithmic decrement (harness/amplitude_decay.h) against its closed form, and the
+// The free decay's logarithmic decrement (harness/scoring/amplitude_decay.h) against its closed form, and the
 // cases it must refuse: too few cycles, higher modes riding on the first.
-#include "harness/amplitude_decay.h"
+#include "harness/scoring/amplitude_decay.h"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "adapters/bullet/bullet_simulator.h"
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "physics/modal_model.h"
 #include "reference_fixtures.h"
 #include "reference/reference_simulator.h"

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "adapters/dart/dart_simulator.h"
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "reference_fixtures.h"
 
 namespace ib {

@@ -13,7 +13,7 @@
 #include "adapters/common/rig.h"
 #include "adapters/dart/dart_simulator.h"
 #include "engine_measurements.h"
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "reference/reference_simulator.h"
 #include "reference_fixtures.h"
 

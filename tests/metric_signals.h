@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <functional>
 
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 
 namespace ib::test {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "metric_signals.h"
 
 namespace ib {

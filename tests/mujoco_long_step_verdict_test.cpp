@@ -14,7 +14,7 @@
 #include "simulators/catalog.h"
 #include "reference/reference_simulator.h"
 #include "adapters/common/rig.h"
-#include "harness/run_job.h"
+#include "harness/jobs/run_job.h"
 
 namespace ib {
 namespace {

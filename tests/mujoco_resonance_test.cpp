@@ -12,11 +12,11 @@
 #include <cmath>
 #include <string>
 
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "adapters/mujoco/mujoco_simulator.h"
 #include "reference_fixtures.h"
 #include "reference/reference_simulator.h"
-#include "harness/run_job.h"
+#include "harness/jobs/run_job.h"
 
 namespace ib {
 namespace {

@@ -15,7 +15,7 @@
 #include <ostream>
 #include <string>
 
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "adapters/mujoco/mujoco_contact_mapping.h"
 #include "adapters/mujoco/mujoco_simulator.h"
 #include "reference_fixtures.h"

@@ -1,6 +1,6 @@
 // The native contact path is each engine's own contact as a user leaves it: the scenario's contact law
 // and its parameters play no part. The suite relies on it, running the native path once and scoring that
-// run against every law's references (harness/suite.cpp), so each engine is checked here: the same
+// run against every law's references (harness/suite/suite.cpp), so each engine is checked here: the same
 // native run, bit for bit, whatever law the settings name, over impacts.
 #include <gtest/gtest.h>
 

@@ -15,7 +15,7 @@
 #include <ostream>
 #include <string>
 
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "physics/modal_model.h"
 #include "reference_fixtures.h"
 #include "simulators/catalog.h"

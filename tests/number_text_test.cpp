@@ -1,5 +1,5 @@
-// How the result files write numbers and text cells (harness/number_text.h): one rule for every writer.
-#include "harness/number_text.h"
+// How the result files write numbers and text cells (harness/records/number_text.h): one rule for every writer.
+#include "harness/records/number_text.h"
 
 #include <gtest/gtest.h>
 

@@ -16,9 +16,9 @@
 #include "adapters/ode/ode_simulator.h"
 #include "reference_fixtures.h"
 #include "adapters/common/rig.h"
-#include "harness/suite.h"
+#include "harness/suite/suite.h"
 #include "suite_test_support.h"
-#include "harness/verdict.h"
+#include "harness/scoring/verdict.h"
 
 namespace ib {
 namespace {

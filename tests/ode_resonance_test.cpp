@@ -15,13 +15,13 @@
 #include <cmath>
 #include <cstdio>
 
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "physics/modal_model.h"
 #include "adapters/ode/ode_simulator.h"
 #include "reference_fixtures.h"
 #include "reference/reference_simulator.h"
 #include "adapters/common/rig.h"
-#include "harness/run_job.h"
+#include "harness/jobs/run_job.h"
 
 namespace ib {
 namespace {

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <optional>
 
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "adapters/ode/ode_simulator.h"
 #include "reference_fixtures.h"
 #include "reference/reference_simulator.h"

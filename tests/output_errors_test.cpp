@@ -15,12 +15,12 @@
 
 #include "reference/reference_simulator.h"
 #include "simulators/catalog.h"
-#include "harness/reporters.h"
+#include "harness/records/reporters.h"
 #include "suite_test_support.h"
-#include "harness/run_files.h"
-#include "harness/run_record.h"
+#include "harness/records/run_files.h"
+#include "harness/records/run_record.h"
 #include "command_test_support.h"
-#include "harness/suite.h"
+#include "harness/suite/suite.h"
 
 namespace ib {
 namespace {

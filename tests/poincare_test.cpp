@@ -1,5 +1,5 @@
 // Stroboscopic samples against a closed form, and the regime read from them.
-#include "harness/poincare.h"
+#include "harness/scoring/poincare.h"
 
 #include <gtest/gtest.h>
 

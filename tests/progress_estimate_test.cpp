@@ -1,4 +1,4 @@
-// The suite's remaining-time estimate (harness/progress.h) on synthetic job lists run by a simulated
+// The suite's remaining-time estimate (harness/jobs/progress.h) on synthetic job lists run by a simulated
 // pool of workers: once a fifth of the jobs are done, the estimate is within 30 % of the time the rest
 // actually takes, although the references come first and cost a hundredth of an engine run.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/progress.h"
+#include "harness/jobs/progress.h"
 
 namespace ib {
 namespace {
@@ -66,7 +66,7 @@ struct Check {
   double by_jobs_done_s = 0;  // the estimate this one replaced: elapsed / jobs done x jobs left
 };
 
-// Runs the jobs on `workers` simulated workers in the suite's order (harness/progress.h), the references
+// Runs the jobs on `workers` simulated workers in the suite's order (harness/jobs/progress.h), the references
 // first; returns the estimate at every job's end from a fifth of the jobs on, with the true remaining time.
 std::vector<Check> run_pool(const std::vector<SyntheticJob>& jobs, int workers) {
   RemainingTime estimate;

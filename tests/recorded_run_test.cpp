@@ -1,13 +1,13 @@
-// A run's record read back as a struct (harness/recorded_run.h): what a job's process wrote into runs.jsonl
+// A run's record read back as a struct (harness/records/recorded_run.h): what a job's process wrote into runs.jsonl
 // is what the suite and the step search read, field by field, with the verdict as an enum and "timed out"
 // as a field of its own (not a prefix of the reason); a line a kill cut short reads as not readable.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "harness/recorded_run.h"
-#include "harness/reporters.h"
-#include "harness/run_record.h"
+#include "harness/records/recorded_run.h"
+#include "harness/records/reporters.h"
+#include "harness/records/run_record.h"
 
 namespace ib {
 namespace {

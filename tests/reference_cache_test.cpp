@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "harness/suite.h"
+#include "harness/suite/suite.h"
 #include "simulators/catalog.h"
 #include "suite_test_support.h"
 

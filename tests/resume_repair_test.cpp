@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/reporters.h"
-#include "harness/run_record.h"
+#include "harness/records/reporters.h"
+#include "harness/records/run_record.h"
 
 namespace ib {
 namespace {

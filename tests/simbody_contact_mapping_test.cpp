@@ -15,7 +15,7 @@
 #include "adapters/simbody/simbody_chain.h"
 #include "adapters/simbody/simbody_contact.h"
 #include "adapters/simbody/simbody_simulator.h"
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "reference_fixtures.h"
 
 namespace ib {

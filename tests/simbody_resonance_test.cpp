@@ -11,8 +11,8 @@
 
 #include "adapters/common/rig.h"
 #include "adapters/simbody/simbody_simulator.h"
-#include "harness/metrics.h"
-#include "harness/run_job.h"
+#include "harness/scoring/metrics.h"
+#include "harness/jobs/run_job.h"
 #include "reference/reference_simulator.h"
 #include "reference_fixtures.h"
 

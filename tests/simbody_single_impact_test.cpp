@@ -10,7 +10,7 @@
 
 #include "adapters/common/rig.h"
 #include "adapters/simbody/simbody_simulator.h"
-#include "harness/metrics.h"
+#include "harness/scoring/metrics.h"
 #include "reference/reference_simulator.h"
 #include "reference_fixtures.h"
 

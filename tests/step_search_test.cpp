@@ -3,7 +3,7 @@
 // bracket, outcomes that are not monotone in the step are noted, a probe at the time limit decides
 // nothing; through the suite runner with a simulator that is unstable and inaccurate above known
 // steps, it writes one row per group, and --resume re-runs no probe and duplicates no row.
-#include "harness/step_search.h"
+#include "harness/suite/step_search.h"
 #include "simulators/catalog.h"
 
 #include <gtest/gtest.h>
@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "reference/reference_simulator.h"
-#include "harness/suite.h"
+#include "harness/suite/suite.h"
 #include "suite_test_support.h"
 
 namespace ib {

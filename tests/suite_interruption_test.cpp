@@ -33,7 +33,7 @@
 #include <thread>
 #include <vector>
 
-#include "harness/run_record.h"
+#include "harness/records/run_record.h"
 
 namespace {
 

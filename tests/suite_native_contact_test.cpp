@@ -3,7 +3,7 @@
 // against every law's references: a row per law, the others naming the run they were scored from,
 // sharing its files. A resumed suite that lost such a row runs the native run again and records only
 // what was missing.
-#include "harness/suite.h"
+#include "harness/suite/suite.h"
 #include "simulators/catalog.h"
 #include "suite_test_support.h"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/suite.h"
+#include "harness/suite/suite.h"
 #include "mirror_simulator.h"
 #include "simulators/catalog.h"
 #include "suite_test_support.h"

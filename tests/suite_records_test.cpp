@@ -7,9 +7,9 @@
 //   - a malformed scenario is recorded once, and its row goes when the file is fixed;
 //   - two scenario files with one name are refused; two unreadable files with one stem get two job ids;
 //   - a resumed suite's outcome covers every result in the folder.
-#include "harness/folder_lock.h"
-#include "harness/reporters.h"
-#include "harness/suite.h"
+#include "harness/records/folder_lock.h"
+#include "harness/records/reporters.h"
+#include "harness/suite/suite.h"
 #include "simulators/catalog.h"
 #include "suite_test_support.h"
 

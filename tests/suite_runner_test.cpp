@@ -1,7 +1,7 @@
 // The suite runner with engines that misbehave on purpose: a job that aborts or hangs is recorded
 // with its reason and the suite finishes; --resume repeats no finished job; a malformed scenario in a
 // folder fails that scenario alone; the reference of each scenario and law runs once.
-#include "harness/suite.h"
+#include "harness/suite/suite.h"
 #include "simulators/catalog.h"
 #include "suite_test_support.h"
 
@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "mirror_simulator.h"
-#include "harness/reporters.h"
+#include "harness/records/reporters.h"
 
 namespace ib {
 namespace {

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "command_test_support.h"
-#include "harness/run_record.h"
+#include "harness/records/run_record.h"
 #include "suite_test_support.h"
 
 namespace {
@@ -240,7 +240,7 @@ TEST_F(SuiteSharding, ShardsMergedGiveTheWholeSuite) {
   const CommandOutput merge = command("merge " + quoted(*root_ / "merged") + shard_list());
   ASSERT_EQ(merge.exit_code, 0) << merge.text;
   expect_same_results(whole(), *root_ / "merged");
-  // the merged folder names the engines that made it, as each shard's does (harness/engines_file.h)
+  // the merged folder names the engines that made it, as each shard's does (harness/records/engines_file.h)
   EXPECT_TRUE(fs::exists(*root_ / "merged" / "engines.json"));
   EXPECT_NE(merge.text.find("report: " + (*root_ / "merged" / "report" / "index.html").string()), std::string::npos)
       << merge.text;

@@ -1,6 +1,6 @@
 // The frequency sweep: its ratios and plan, the reference continued exactly from a saved state, and a
 // sweep's results the same whether it ran whole, was resumed or ran in shards that were merged.
-#include "harness/sweep.h"
+#include "harness/sweep/sweep.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <set>
 #include <sstream>
 
-#include "harness/merge.h"
-#include "harness/reporters.h"
+#include "harness/study/merge.h"
+#include "harness/records/reporters.h"
 #include "reference_fixtures.h"
 #include "simulators/catalog.h"
 

@@ -12,7 +12,7 @@
 
 #include "reference/reference_simulator.h"
 #include "simulators/catalog.h"
-#include "harness/run_job.h"
+#include "harness/jobs/run_job.h"
 #include "model/scenario_toml.h"
 #include "suite_test_support.h"
 

@@ -1,6 +1,6 @@
 // Stability and accuracy verdicts on constructed trajectories: each kind of instability is named
 // with a reason a person can check.
-#include "harness/verdict.h"
+#include "harness/scoring/verdict.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Every verdict threshold pinned to its stated value (docs/verdicts: the defaults of VerdictSettings),
 // just inside and just outside: a threshold made looser or tighter by any factor fails here. The values
 // are the documented ones, written out, not read from the code that judges.
-#include "harness/verdict.h"
+#include "harness/scoring/verdict.h"
 
 #include <gtest/gtest.h>
 

@@ -21,7 +21,7 @@ std::string version_text();
 // made it. ODE's handlers take no user pointer, so the collector is found through a thread-local
 // pointer; collectors nest. ODE's errors and internal assertions (dError, dDebug) are written to
 // stderr with their number and then ODE aborts the process, as it always does: the suite's job
-// isolation turns that into a "failed" verdict that quotes the message (harness/suite.h).
+// isolation turns that into a "failed" verdict that quotes the message (harness/suite/suite.h).
 class MessageLog {
  public:
   MessageLog();

@@ -33,7 +33,7 @@ SCORED = [
      "log_decrement_relative_error"),
 ]
 
-# The harness's verdict tolerances (harness/verdict.h), used only for a results folder that predates
+# The harness's verdict tolerances (harness/scoring/verdict.h), used only for a results folder that predates
 # commands.jsonl (which states the tolerances its verdicts used).
 DEFAULT_TOLERANCES = {"sensor_peak_relative_error": 0.10, "contact_duration_relative_error": 0.10,
                       "impacts_per_cycle_difference": 0.10, "log_decrement_relative_error": 0.10}

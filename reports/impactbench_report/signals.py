@@ -12,7 +12,7 @@ MORLET_W = 6.0  # cycles of the Morlet wavelet: the usual balance of time and fr
 
 def cycle_peaks(times, displacements):
     """One peak per whole cycle: the largest displacement between two upward zero crossings, so that higher
-    modes riding on the first do not count (the same cycles as harness/amplitude_decay.cpp). Returns
+    modes riding on the first do not count (the same cycles as harness/scoring/amplitude_decay.cpp). Returns
     (peak times, peaks) as arrays."""
     t, u = np.asarray(times, float), np.asarray(displacements, float)
     up = np.flatnonzero((u[:-1] <= 0) & (u[1:] > 0)) + 1

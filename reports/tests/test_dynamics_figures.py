@@ -160,7 +160,7 @@ class Figures(unittest.TestCase):
             "time_s": t, "frame1_displacement_m": u1, "frame1_velocity_m_s": v1, "frame1_acceleration_m_s2": a1,
             "frame2_displacement_m": u2, "frame2_velocity_m_s": v2, "frame2_acceleration_m_s2": a2,
             "contact_force_n": zero})
-        # the accelerometer's reading as the harness writes it (harness/metrics.h): the velocity change over
+        # the accelerometer's reading as the harness writes it (harness/scoring/metrics.h): the velocity change over
         # each 1/2048 s window divided by the window, at the window centres
         stride = round(SERIES_RATE_HZ / 2048)
         window = stride / SERIES_RATE_HZ

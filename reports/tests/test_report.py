@@ -62,7 +62,7 @@ class Report(unittest.TestCase):
         shutil.rmtree(cls.folder)
 
     def test_the_folder_names_the_engines_that_made_it(self):
-        """engines.json (harness/engines_file.h): every simulator of the build with its version, the
+        """engines.json (harness/records/engines_file.h): every simulator of the build with its version, the
         reference first, each engine of runs.csv among them."""
         with open(os.path.join(self.suite, "engines.json")) as f:
             simulators = json.load(f)["simulators"]

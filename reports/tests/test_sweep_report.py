@@ -16,7 +16,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from impactbench_report import sweep  # noqa: E402
 
 MAKE_REPORT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "make_report.py")
-# sweep.csv's header as harness/sweep_row.cpp writes it (the quantities runs.csv has under runs.csv's names)
+# sweep.csv's header as harness/sweep/sweep_row.cpp writes it (the quantities runs.csv has under runs.csv's names)
 COLUMNS = ("id,scenario,engine,engine_version,law,options,contact_path,law_simulated,time_step_s,start,ratio,"
            "motor_frequency_hz,duration_s,window_s,verdict,reason,timed_out,impacts,impacts_per_cycle,regime,period_n,"
            "impacts_per_period,frame1_sensor_peak_acceleration_g,frame2_sensor_peak_acceleration_g,"

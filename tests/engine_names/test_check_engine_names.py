@@ -18,7 +18,7 @@ GOOD = {
     "adapters/ode/ode_rig.cpp": '#include <ode/ode.h>\nconst char* name = "ode";\n',
     "adapters/toy/toy_simulator.cpp": 'const char* name = "toy";\n',
     "adapters/CMakeLists.txt": "set(impactbench_all_engines ode toy)\n",
-    "harness/suite.cpp": "// an engine such as ODE or Toy may stop early\nint jobs = 2;\n",
+    "harness/suite/suite.cpp": "// an engine such as ODE or Toy may stop early\nint jobs = 2;\n",
     "scripts/run.sh": "# every engine, e.g. toy\nengines=$(impactbench engines --names)\n",
     "tests/toy_single_impact_test.cpp": 'auto s = make_simulator("toy");\n',
     "harness/episode.cpp": "int decode = 1;  // a word that holds an engine's name is no name\n",
@@ -46,7 +46,7 @@ def main():
     # the real TO_REWRITE files are absent from the fake tree: only their absence is allowed, not silence
     code, out = check(GOOD)
     assert code == 0, out
-    expect_finding({"harness/suite.cpp": 'for (auto e : {"ode", "toy"}) run(e);\n'}, ["harness/suite.cpp:1", "'ode'"])
+    expect_finding({"harness/suite/suite.cpp": 'for (auto e : {"ode", "toy"}) run(e);\n'}, ["harness/suite/suite.cpp:1", "'ode'"])
     expect_finding({"reports/figures.py": 'COLOURS = {"TOY": "#123456"}\n'}, ["reports/figures.py:1", "'TOY'"])
     expect_finding({"scripts/run.sh": "for e in reference ode; do echo $e; done\n"}, ["scripts/run.sh:1"])
     # an engine's tests name their own engine only

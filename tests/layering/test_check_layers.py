@@ -34,8 +34,9 @@ GOOD = {
     "adapters/ode/descriptor.json": '{"name": "ode", "library_headers": "^ode/"}\n',
     "adapters/mujoco/descriptor.json": '{"name": "mujoco", "library_headers": "^mujoco/"}\n',
     "simulators/catalog.h": '#include "reference/reference_solver.h"\n#include "adapters/ode/ode_rig.h"\n',
-    "harness/metrics.h": '#include "model/scenario.h"\n#include "physics/beam_modes.h"\n',
-    "cli/main.cpp": '#include "simulators/catalog.h"\n#include "harness/metrics.h"\n',
+    "harness/scoring/metrics.h": '#include "model/scenario.h"\n#include "physics/beam_modes.h"\n',
+    "harness/suite/suite.h": '#include "harness/scoring/metrics.h"\n',
+    "cli/main.cpp": '#include "simulators/catalog.h"\n#include "harness/suite/suite.h"\n',
     "tests/anything_test.cpp": '#include "adapters/ode/ode_rig.h"\n',
 }
 
@@ -51,20 +52,24 @@ def main():
     code, out = check(GOOD)
     assert code == 0, out
     # the harness is above the simulators but must not include them, nor the reference
-    expect_breach({"harness/suite.cpp": '#include "model/scenario.h"\n#include "reference/reference_solver.h"\n'},
-                  ["harness/suite.cpp:2", "reference/reference_solver.h", "harness may include model, physics"])
-    expect_breach({"physics/link_chain.cpp": '#include "harness/metrics.h"\n'}, ["physics/link_chain.cpp:1"])
+    expect_breach({"harness/suite/suite.cpp": '#include "model/scenario.h"\n#include "reference/reference_solver.h"\n'},
+                  ["harness/suite/suite.cpp:2", "reference/reference_solver.h", "harness/suite may include harness/jobs"])
+    # the harness's own folders: a lower one never includes a higher one, and a sweep never a suite
+    expect_breach({"harness/scoring/metrics.cpp": '#include "harness/suite/suite.h"\n'},
+                  ["harness/scoring/metrics.cpp:1", "harness/scoring includes", "harness/suite"])
+    expect_breach({"harness/sweep/sweep_plan.cpp": '#include "harness/suite/suite.h"\n'}, ["harness/sweep/sweep_plan.cpp:1"])
+    expect_breach({"physics/link_chain.cpp": '#include "harness/scoring/metrics.h"\n'}, ["physics/link_chain.cpp:1"])
     expect_breach({"reference/free_flight.cpp": '#include "adapters/common/rig.h"\n'}, ["reference/free_flight.cpp:1"])
     expect_breach({"adapters/ode/ode_contact.cpp": '#include "simulators/catalog.h"\n'}, ["adapters/ode/ode_contact.cpp:1"])
     expect_breach({"adapters/bullet/world.cpp": '#include "adapters/ode/ode_rig.h"\n'}, ["adapters/bullet/world.cpp:1"])
-    expect_breach({"harness/run_job.cpp": '#include "scenario.h"\n'}, ['"scenario.h" names no folder', "model/scenario.h"])
-    expect_breach({"harness/run_job.cpp": "#include <mujoco/mujoco.h>\n"}, ["only adapters/mujoco may include it"])
+    expect_breach({"harness/jobs/run_job.cpp": '#include "scenario.h"\n'}, ['"scenario.h" names no folder', "model/scenario.h"])
+    expect_breach({"harness/jobs/run_job.cpp": "#include <mujoco/mujoco.h>\n"}, ["only adapters/mujoco may include it"])
     # a new engine is its folder: without a descriptor yet its layers are checked (no KeyError) ...
     code, out = check({**GOOD, "adapters/toy/toy_simulator.cpp": '#include "adapters/common/rig.h"\n',
                        "simulators/catalog.cpp": '#include "adapters/toy/toy_simulator.h"\n',
                        "adapters/toy/toy_simulator.h": "#pragma once\n"})
     assert code == 0, out
-    expect_breach({"adapters/toy/toy_simulator.cpp": '#include "harness/metrics.h"\n'}, ["adapters/toy/toy_simulator.cpp:1"])
+    expect_breach({"adapters/toy/toy_simulator.cpp": '#include "harness/scoring/metrics.h"\n'}, ["adapters/toy/toy_simulator.cpp:1"])
     # ... and with one, its library's headers belong to its folder alone
     toy = {"adapters/toy/descriptor.json": '{"name": "toy", "library_headers": "^toylib/"}\n',
            "adapters/toy/toy_simulator.cpp": "#include <toylib/world.h>\n"}

@@ -1,0 +1,47 @@
+#include "harness/records/engines_file.h"
+
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/records/run_files.h"
+
+namespace ib {
+
+namespace {
+
+nlohmann::ordered_json pairs_object(const std::vector<std::pair<std::string, std::string>>& pairs) {
+  nlohmann::ordered_json object = nlohmann::ordered_json::object();
+  for (const auto& [name, value] : pairs) object[name] = value;
+  return object;
+}
+
+nlohmann::ordered_json descriptor_json(const SimulatorDescriptor& d, const std::string& version) {
+  nlohmann::ordered_json keys = nlohmann::ordered_json::array();
+  for (const DiagnosticsKey& k : d.diagnostics) {
+    nlohmann::ordered_json key = {{"key", k.key}, {"label", k.label}, {"meaning", k.meaning}, {"unit", k.unit}};
+    if (!k.values.empty()) key["values"] = pairs_object(k.values);
+    keys.push_back(std::move(key));
+  }
+  return {{"name", d.name},          {"display_name", d.display_name}, {"summary", d.summary},
+          {"version", version},      {"packages", d.packages},         {"colours", pairs_object(d.colours)},
+          {"diagnostics", keys}};
+}
+
+}  // namespace
+
+std::string engines_json(const SimulatorCatalog& catalog) {
+  nlohmann::ordered_json simulators = nlohmann::ordered_json::array();
+  for (const std::string& name : catalog.names) {
+    // the version is the library's own answer at run time, not the descriptor file's (which has none)
+    const std::unique_ptr<Simulator> simulator = catalog.make ? catalog.make(name) : nullptr;
+    simulators.push_back(descriptor_json(descriptor_of(catalog, name), simulator ? simulator->version() : ""));
+  }
+  return nlohmann::ordered_json{{"simulators", simulators}}.dump(2) + "\n";
+}
+
+void write_engines_file(const std::string& dir, const SimulatorCatalog& catalog) {
+  replace_text_file(dir + "/engines.json", engines_json(catalog));
+}
+
+}  // namespace ib

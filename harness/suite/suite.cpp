@@ -1,0 +1,143 @@
+#include "harness/suite/suite.h"
+#include "harness/suite/suite_runner.h"
+
+#include <unistd.h>
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "harness/records/engines_file.h"
+#include "harness/records/recorded_run.h"
+#include "harness/records/reporters.h"
+#include "harness/records/run_files.h"
+
+namespace ib::suite_internal {
+
+namespace fs = std::filesystem;
+
+// A job that cannot run at all (a malformed scenario, a law the scenario has no parameters for): it
+// is recorded as failed with the reason, and the suite goes on.
+RunRecord unrunnable(const std::string& id, const std::string& scenario, const std::string& file,
+                     const std::string& engine, const std::string& law, const std::string& reason) {
+  RunRecord r;
+  r.job_id = id;
+  r.scenario = scenario;
+  r.scenario_file = file;
+  r.engine = engine;
+  r.law = law;
+  r.verdict = Verdict::failed;
+  r.reason = reason;
+  return r;
+}
+
+// The step search judges "within tolerance" with the verdicts' own tolerances: one record.
+SuiteSettings with_one_tolerance_record(SuiteSettings settings) {
+  if (settings.step_search) settings.step_search->tolerance = settings.measurement.verdicts.accuracy;
+  return settings;
+}
+
+std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSettings>& parts) {
+  if (parts.empty()) throw std::logic_error("a suite with no part");
+  if (parts.size() > 1)
+    for (const SuiteSettings& part : parts)
+      if (part.step_search) throw std::logic_error("a step search runs as a suite of its own, not as a part of several");
+  std::vector<SuiteSettings> checked;
+  for (const SuiteSettings& part : parts) checked.push_back(with_one_tolerance_record(part));
+  return checked;
+}
+
+SuiteOutcome SuiteRunner::run() {
+  std::error_code error;
+  fs::create_directories(settings_.out, error);
+  if (error) throw OutputError(output_error_text(settings_.out, "create the output folder", error.value()));
+  if (access(settings_.out.c_str(), W_OK) != 0)
+    throw OutputError(output_error_text(settings_.out, "write into the output folder", errno));
+  lock_ = std::make_unique<FolderLock>(settings_.out, "suite");
+  check_same_shard();
+  if (settings_.resume || settings_.extend) {
+    std::vector<std::string> repairs;
+    recorded_ = repair_and_list_runs(settings_.out, &repairs);
+    for (const std::string& repair : repairs) std::fprintf(stderr, "suite: repaired %s\n", repair.c_str());
+  }
+  else if (fs::exists(settings_.out + "/runs.jsonl"))
+    throw std::runtime_error(settings_.out + " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
+  plan();
+  std::string suite;  // a shard's suite: its whole plan and its settings, equal in every shard of one suite
+  if (settings_.shard) {
+    std::vector<std::string> whole = planned_job_ids();
+    for (std::string& key : planned_step_keys()) whole.push_back(std::move(key));
+    for (std::size_t part = 0; part < parts_.size(); ++part) {
+      nlohmann::ordered_json settings = settings_record(part);
+      settings.erase("scenario_files");  // the shards' machines may name the files differently
+      whole.push_back(settings.dump());
+    }
+    suite = plan_digest(whole);
+    keep_only_this_shard();
+  }
+  for (std::size_t part = 0; part < parts_.size(); ++part) check_and_record_settings(part);
+  if (settings_.shard) record_plan(suite);
+  for (const PlannedJob& job : jobs_)
+    if (!job.same_run_as.empty()) scored_from_.emplace(job.same_run_as, &job);
+  int unrecorded_unrunnable = 0;
+  for (const RunRecord& r : unrunnable_) unrecorded_unrunnable += recorded_.count(r.job_id) ? 0 : 1;
+  int to_run = unrecorded_unrunnable;
+  for (const auto& job : jobs_) to_run += recorded_.count(job.id) ? 0 : 1;
+  outcome_.jobs_skipped = static_cast<int>(jobs_.size() + unrunnable_.size()) - to_run;
+  progress_ = std::make_unique<Progress>(to_run);
+  for (const auto& job : jobs_)
+    if (!recorded_.count(job.id)) progress_->estimate().plan(job.id, work_of(job));
+  if (settings_.step_search) expect_whole_searches();
+  describe_plan(to_run);
+  outcome_.jobs_total = static_cast<int>(jobs_.size() + unrunnable_.size());
+  for (const RunRecord& r : unrunnable_)
+    if (!recorded_.count(r.job_id)) finish(r);  // recorded once: a --resume does not add it again
+  // References first (beam, then chain): engine jobs are compared with them.
+  for (JobKind phase : {JobKind::beam_reference, JobKind::chain_reference, JobKind::engine}) {
+    if (phase == JobKind::engine && settings_.step_search) {
+      run_step_searches();
+      continue;
+    }
+    std::vector<const PlannedJob*> pending;
+    for (const PlannedJob& job : jobs_)
+      if (job.kind == phase && job.same_run_as.empty() && (!recorded_.count(job.id) || !unrecorded_scored_from(job).empty()))
+        pending.push_back(&job);
+    const auto waiting = [this](const PlannedJob* job) { return reference_stopped(*job); };
+    outcome_.jobs_stopped += static_cast<int>(std::count_if(pending.begin(), pending.end(), waiting));
+    pending.erase(std::remove_if(pending.begin(), pending.end(), waiting), pending.end());
+    while (!pending.empty()) {
+      while (!interrupted() && static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) reap(true);
+      if (interrupted()) break;
+      std::vector<JobWork> work;
+      for (const PlannedJob* job : pending) work.push_back(work_of(*job));
+      const auto next = pending.begin() + next_to_start(progress_->estimate(), work);
+      start(**next);
+      pending.erase(next);
+    }
+    while (!interrupted() && !running_.empty()) reap(true);
+    if (interrupted()) break;
+  }
+  if (interrupted()) {
+    stop_workers(/*collect_finished=*/true);
+    outcome_.interrupted_by = interrupt_signal;
+  }
+  for (const auto& [id, line] : recorded_run_lines(settings_.out)) {
+    const Verdict verdict = read_recorded_run(line).verdict;
+    ++outcome_.recorded;
+    outcome_.not_ok_recorded += verdict == Verdict::unstable || verdict == Verdict::failed ? 1 : 0;
+  }
+  return outcome_;
+}
+
+}  // namespace ib::suite_internal
+
+namespace ib {
+
+SuiteOutcome run_suite(const SuiteSettings& settings) { return run_suites({settings}); }
+
+SuiteOutcome run_suites(const std::vector<SuiteSettings>& parts) {
+  const InterruptionHandler handler;  // outlives the runner, which stops its workers when it ends
+  return with_engines_file(parts.front().out, parts.front().simulators, suite_internal::SuiteRunner(parts).run());
+}
+
+}  // namespace ib

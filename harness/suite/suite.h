@@ -1,0 +1,77 @@
+// The suite runner: the matrix scenarios x laws x engines x time steps, each job in its own process so
+// that a crash, an abort or a hang inside an engine's library costs that job alone. Results are
+// appended as each job ends (DIR/runs.csv, DIR/runs.jsonl, DIR/runs/<job id>/), so nothing finished is
+// lost; --resume skips the jobs already recorded. The reference run of each scenario and law is
+// computed once and reused for every engine's errors.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/jobs/run_job.h"
+#include "harness/jobs/shard_plan.h"
+#include "model/simulator.h"
+#include "harness/suite/step_search.h"
+
+namespace ib {
+
+struct SuiteSettings {
+  std::vector<std::string> inputs;                 // scenario files or folders (searched recursively)
+  std::vector<std::string> engines = {"reference"};
+  std::vector<ContactLaw> laws = {ContactLaw::hertz, ContactLaw::viscoelastic, ContactLaw::newton};
+  std::vector<double> time_steps_s;                // fixed-step engines; empty: each engine's default
+  std::vector<std::string> contact_paths;          // engines' option "contact" (matched, injected, native); empty: default
+  std::map<std::string, std::string> reference_options;  // options of every reference run
+  std::map<std::string, std::map<std::string, std::string>> engine_options;  // per engine
+  double output_rate_hz = 4096;
+  double max_duration_s = 0;                       // > 0: runs longer scenarios for this long only (window kept)
+  int jobs = 1;                                    // worker processes
+  double time_limit_s = 600;                       // per job; then it is stopped and recorded
+  std::string out;                                 // output folder
+  bool resume = false;
+  bool extend = false;   // --extend: add a suite with other settings to a folder that holds one (DIR/suite.jsonl)
+  Measurement measurement;
+  SimulatorCatalog simulators;                     // what runs the jobs (simulators/catalog.h: this binary's)
+  // Set: instead of fixed time steps, each (scenario, law, engine, options) group searches its largest
+  // stable and accurate steps by bisection (step_search.h) and appends a row to DIR/steps.csv and
+  // DIR/steps.jsonl when its search ends. time_steps_s is then ignored for the engines.
+  std::optional<StepSearchSettings> step_search;
+  bool keep_probe_series = false;                  // the probes' series.csv.gz (default: summary and events only)
+  // Set: reference runs are shared with other output folders through this one (harness/jobs/reference_cache.h):
+  // a reference whose key is there is copied, not solved; one solved here is stored there.
+  std::string reference_cache;
+  // Set: runs only this shard of the suite (shard_plan.h) and records its plan in DIR/shard.jsonl.
+  // --resume then continues the same shard: a folder holding another shard, or a whole suite, is refused.
+  std::optional<Shard> shard;
+  std::string resume_command;  // the command that continues this suite, kept in a shard's plan for merge's messages
+};
+
+struct SuiteOutcome {
+  int jobs_run = 0;         // in this invocation
+  int jobs_skipped = 0;     // already recorded (--resume)
+  int not_ok = 0;           // unstable or failed among those run
+  int not_ok_recorded = 0;  // unstable or failed among every result in the folder: a resumed suite's exit code covers them all
+  int recorded = 0;         // every result in the folder
+  int step_searches = 0;    // groups whose step search ended (a row in steps.csv) in this invocation
+  int jobs_total = 0;       // the whole matrix, recorded or not
+  int interrupted_by = 0;   // the signal (SIGINT, SIGTERM) that stopped the suite early; 0: it ran to the end
+  int jobs_stopped = 0;     // jobs whose process a signal from outside stopped (not recorded: --resume runs them)
+  int stopped_by = 0;       // that signal (the last one seen)
+  int references_from_cache = 0;  // recorded from --reference-cache, not solved
+};
+
+// Runs the suite (or its shard); progress goes to stderr (a bar on a terminal, lines otherwise). SIGINT or SIGTERM
+// stops the worker processes, keeps every finished result and returns with interrupted_by set (a
+// later --resume runs the rest). Throws OutputError (run_files.h) when a result cannot be written:
+// the output folder, a run's folder or files, runs.csv or runs.jsonl; the workers are stopped first.
+// Throws std::invalid_argument for a --resume in a folder that holds another shard or a whole suite.
+SuiteOutcome run_suite(const SuiteSettings& settings);
+
+// Several suites into one folder as one plan on one pool of workers (a study's [[suite]] parts): no part
+// waits for another to end, the costliest ready job starts first. The folder, workers, time limit, resume,
+// extend, shard and simulators are the first part's; each part records its own settings line (suite.jsonl,
+// as --extend would), and a job that two parts plan runs once. A step search runs alone (one part).
+SuiteOutcome run_suites(const std::vector<SuiteSettings>& parts);
+
+}  // namespace ib

@@ -1,0 +1,218 @@
+// The suite runner, internal to the harness: its state (the plan, the workers, the searches) in one
+// class whose stages live in their own files:
+//   suite.cpp               run_suite and the orchestration (references first, then engines or searches)
+//   suite_plan.cpp          the job matrix, shards and the plan's description
+//   worker_pool.cpp         the pool of job processes: time limits, collecting their records (a process
+//                           itself: worker_process.h, shared with the sweep)
+//   step_search_driver.cpp  the step searches' probes, scheduled as their brackets ask
+// Nothing outside the harness includes this (suite.h is the interface).
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <csignal>
+#include <deque>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "harness/records/folder_lock.h"
+#include "harness/jobs/progress.h"
+#include "harness/jobs/run_job.h"
+#include "harness/suite/step_search.h"
+#include "harness/suite/suite.h"
+#include "harness/jobs/worker_process.h"
+
+namespace ib::suite_internal {
+
+using Clock = std::chrono::steady_clock;
+
+enum class JobKind { beam_reference, chain_reference, engine };
+
+struct PlannedJob {
+  std::string id;
+  JobKind kind = JobKind::engine;
+  std::size_t scenario = 0;     // index into the loaded scenarios
+  JobSpec spec;
+  std::string beam_reference;   // job ids of the references this job is compared with ("" if none)
+  std::string chain_reference;
+  int chain_links = 0;
+  bool step_probe = false;      // a probe of a step search (its series is kept only on request)
+  // The job whose run this one scores against its own law's references (native contact ignores the
+  // law): it is recorded by that job's process, never run itself. "" for a job that runs.
+  std::string same_run_as;
+};
+
+// A job that cannot run at all (a malformed scenario, a law the scenario has no parameters for): it
+// is recorded as failed with the reason, and the suite goes on.
+RunRecord unrunnable(const std::string& id, const std::string& scenario, const std::string& file,
+                     const std::string& engine, const std::string& law, const std::string& reason);
+
+
+// A job scored from another's run, with the references of its own law (loaded before the fork).
+struct ScoredFrom {
+  const PlannedJob* job;
+  const ReferenceData* beam;
+  const ReferenceData* chain;
+};
+
+// The step search judges "within tolerance" with the verdicts' own tolerances: one record.
+SuiteSettings with_one_tolerance_record(SuiteSettings settings);
+std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSettings>& parts);
+
+// The suite's parts (run_suites): one plan, one pool of workers. What every part shares (the folder, the
+// workers, the time limit, resume, shards) is the first part's; what decides a job's run (its scenario as
+// cut, its measurement) is its own part's.
+class SuiteRunner {
+ public:
+  explicit SuiteRunner(const std::vector<SuiteSettings>& parts) : parts_(with_one_tolerance_record(parts)) {}
+  // On an exception (a result that cannot be written), no worker outlives the runner.
+  ~SuiteRunner() { stop_workers(/*collect_finished=*/false); }
+  SuiteRunner(const SuiteRunner&) = delete;
+  SuiteRunner& operator=(const SuiteRunner&) = delete;
+
+  SuiteOutcome run();
+
+ private:
+  struct Running {
+    const PlannedJob* job;
+    Clock::time_point started;
+    bool timed_out = false;
+    int message_pipe = -1;  // read end: a write error's message from the job's process
+  };
+
+  // Stops every worker. With collect_finished, a job that ended cleanly before the stop is recorded
+  // first (nothing finished is lost); the others are killed and not recorded (--resume reruns them).
+  void stop_workers(bool collect_finished);
+
+  std::string folder_of(const PlannedJob& job) const { return settings_.out + "/runs/" + job.id; }
+
+  // A shard's folder holds that shard alone: another shard's plan (or a whole suite) in the same folder
+  // would leave it holding neither.
+  void check_same_shard() const;
+
+  // What the suite records, in planned order: its job ids, and the keys of its step searches' rows.
+  std::vector<std::string> planned_job_ids() const;
+  std::vector<std::string> planned_step_keys() const;
+
+  // --shard K/N: keeps every N-th unit of work in planned order (the unrunnable jobs, then the engine
+  // jobs or step-search groups; the references when there is nothing else) and the references those
+  // units are compared with.
+  void keep_only_this_shard();
+
+  // The shard's plan, for `impactbench merge` to tell a finished shard from one that stopped early.
+  // suite: the digest of the whole suite's plan.
+  void record_plan(const std::string& suite) const;
+
+  // The row a step-search group writes to steps.csv (its probes' job ids are the group's id with /dt=...).
+  StepGroup step_group(const PlannedJob& job) const;
+
+  void plan();
+
+  // DIR/suite.jsonl (suite_settings.cpp): what decides this suite's results, and its job ids.
+  nlohmann::ordered_json settings_record(std::size_t part) const;
+  // Refuses (std::invalid_argument) a --resume whose settings equal none of the folder's suites, naming
+  // the keys that differ, unless --extend; with --extend, a shared job recorded under other settings.
+  // Then records this suite's line unless it is there. A part after the first extends the folder, and
+  // refuses a job it shares with an earlier part under other result-deciding settings.
+  void check_and_record_settings(std::size_t part);
+
+  // The part a job belongs to: that of its scenario, as loaded and cut for that part.
+  const SuiteSettings& part_of(const PlannedJob& job) const { return parts_[scenario_part_[job.scenario]]; }
+  void plan_part(std::size_t part, std::set<std::string>& planned);
+
+  PlannedJob make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,
+                      const std::map<std::string, std::string>& options) const;
+
+  // Before a step search starts (its references run first), its probes to come: about a bisection of
+  // the whole grid, each costing what a probe at the grid's steps costs on average. The search itself
+  // replaces this as it goes (run_step_searches).
+  void expect_whole_searches();
+
+  // A job's work for the remaining-time estimate: its steps (an engine at a given step), else its
+  // simulated seconds; jobs of one engine and options cost about the same per unit.
+  JobWork work_of(const PlannedJob& job) const;
+
+  // What the suite runs, in one line each, before it starts.
+  void describe_plan(int to_run) const;
+
+  void add(const PlannedJob& job, std::set<std::string>& planned);
+
+  // The reference a job is compared with, read from its folder once and kept; null if it did not finish.
+  const ReferenceData* reference(const std::string& id, const PlannedJob& job);  // read as job's part measures
+
+  void start(const PlannedJob& job);
+  // A reference job whose run the reference cache may hold or keep (SuiteSettings::reference_cache).
+  bool cacheable(const PlannedJob& job) const {
+    return job.kind != JobKind::engine && !settings_.reference_cache.empty() && unrecorded_scored_from(job).empty();
+  }
+
+  // A job compared with a reference that a signal from outside stopped: it waits for --resume too (run
+  // now, it would be recorded without its comparison).
+  bool reference_stopped(const PlannedJob& job) const {
+    return stopped_.count(job.beam_reference) > 0 || stopped_.count(job.chain_reference) > 0;
+  }
+
+  // What a job's folder keeps of its series: a reference always its window (engine runs are compared
+  // with it, also on --resume), a step-search probe none unless asked (its summary and events say
+  // whether the step is stable and accurate), any other run what --series says.
+  Measurement measurement_of(const PlannedJob& job) const;
+
+  // The job's process: its output goes to log.txt; its record to row.csv and row.jsonl for the parent.
+  [[noreturn]] void run_in_child(const PlannedJob& job, const std::string& folder, const Scenario& scenario,
+                                 const ReferenceData* beam, const ReferenceData* chain,
+                                 const std::vector<ScoredFrom>& scored, int message_pipe);
+
+  // Waits for a job to end (or stops one past its time limit) and records it; returns the job and the
+  // runs.jsonl line recorded for it (none when nothing ended).
+  std::optional<std::pair<const PlannedJob*, std::string>> reap(bool block);
+
+  // Records a job that ended; returns its runs.jsonl line ("" when an interruption or a signal from
+  // outside stopped it: nothing is recorded and --resume reruns it).
+  std::string collect(const PlannedJob& job, int status, bool timed_out, int message_pipe);
+
+  // The jobs scored from this job's run that are not recorded yet.
+  std::vector<const PlannedJob*> unrecorded_scored_from(const PlannedJob& job) const;
+
+  // Appends the record a job's process left in its folder (row.csv, row.jsonl), shows it and returns its
+  // runs.jsonl line. The work done, for the cost per step: the steps an engine run took (a job scored
+  // from another's run did none of its own, and its time is that run's).
+  std::string append_row_of(const PlannedJob& job);
+
+  static void remove_row_files(const std::string& folder);
+
+  void finish(const RunRecord& record);
+
+  void count_and_show(const std::string& id, Verdict verdict, double units_done = -1, double compute_s = -1);
+
+  // --find-steps: each group's search picks its next probe when its previous one has ended; groups
+  // share the worker processes. Probes already in runs.jsonl (--resume) are read, not run again.
+  void run_step_searches();
+
+  const std::vector<SuiteSettings> parts_;  // copies: the tolerance record is set in them (with_one_tolerance_record)
+  const SuiteSettings& settings_ = parts_.front();  // what the parts share
+  std::vector<Scenario> scenarios_;
+  std::vector<std::size_t> scenario_part_;               // the part each scenario was loaded (and cut) for
+  std::vector<std::vector<std::string>> part_jobs_;       // each part's job ids, also those an earlier part planned
+  std::vector<std::vector<std::string>> part_files_;      // each part's scenario files, readable or not
+  std::vector<PlannedJob> jobs_;
+  std::vector<PlannedJob> step_groups_;  // --find-steps: one job (dt = 0) per group, not run itself
+  std::deque<PlannedJob> probe_jobs_;    // the searches' probes (a deque keeps their addresses)
+  std::vector<RunRecord> unrunnable_;
+  std::set<std::string> recorded_;
+  std::set<std::string> stopped_;  // jobs stopped from outside: neither they nor the jobs compared with them are recorded
+  std::multimap<std::string, const PlannedJob*> scored_from_;  // a run's job id -> the jobs scored from its run
+  std::map<std::string, std::unique_ptr<ReferenceData>> references_;
+  std::map<pid_t, Running> running_;
+  std::unique_ptr<Progress> progress_;
+  std::unique_ptr<FolderLock> lock_;  // the output folder's, held while the suite writes into it
+  SuiteOutcome outcome_;
+};
+
+}  // namespace ib::suite_internal

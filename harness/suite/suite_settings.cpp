@@ -1,0 +1,233 @@
+// What a suite's folder remembers of the suites run into it (suite_runner.h): DIR/suite.jsonl, one line
+// per suite command (a study runs several into one folder), its settings and the job ids it planned.
+// --resume continues a suite whose settings equal one of them; --extend adds a suite with other settings,
+// provided no job it shares with the folder was recorded under other result-deciding settings. So a
+// resumed suite never mixes runs of another duration, rate, window or scenario file.
+#include "harness/suite/suite_runner.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/records/jsonl_table.h"
+#include "harness/records/reporters.h"
+#include "harness/records/run_files.h"
+
+namespace ib::suite_internal {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+constexpr const char* kSettingsFile = "/suite.jsonl";
+
+// The keys of a settings record that choose which jobs a suite has (they are in the job ids), how a result
+// is judged rather than measured (the accuracy tolerances: a step search under other tolerances reuses the
+// probes it shares), or which files a run keeps (the series: a reference keeps its window whatever it says,
+// and a study's 1e-4 s runs keep none), as opposed to how every job is run and measured (the
+// result-deciding ones).
+const std::set<std::string> kMatrixKeys = {"scenario_files", "engines",     "laws",               "time_steps_s",
+                                           "contact_paths",  "engine_options", "step_search", "verdict_tolerances",
+                                           "series"};
+
+std::string file_digest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return in ? plan_digest({text.str()}) : "unreadable";
+}
+
+struct SuitePart {
+  Json settings;
+  std::set<std::string> jobs;
+  std::string command;
+};
+
+// DIR/suite.jsonl's lines. A line cut short by a kill (the last, without its line break) is skipped;
+// any other line that is not a suite's record makes the folder unreadable: say where.
+std::vector<SuitePart> read_parts(const std::string& folder) {
+  std::vector<SuitePart> parts;
+  std::ifstream in(folder + kSettingsFile, std::ios::binary);
+  if (!in) return parts;
+  std::stringstream whole;
+  whole << in.rdbuf();
+  const std::string text = whole.str();
+  std::size_t at = 0;
+  for (int line_number = 1; at < text.size(); ++line_number) {
+    const std::size_t end = text.find('\n', at);
+    if (end == std::string::npos) break;  // cut short while being written: the command writes it again
+    const std::string line = text.substr(at, end - at);
+    at = end + 1;
+    const Json j = Json::parse(line, nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object() || !j.contains("settings") || !j["settings"].is_object() || !j.contains("jobs") ||
+        !j["jobs"].is_array())
+      throw std::invalid_argument(folder + kSettingsFile + " line " + std::to_string(line_number) +
+                                  ": not a suite's settings record (expected {\"settings\": {...}, \"jobs\": [...]}); "
+                                  "the folder is damaged: restore the file or choose another --out");
+    SuitePart part;
+    part.settings = j["settings"];
+    for (const auto& id : j["jobs"])
+      if (id.is_string()) part.jobs.insert(id.get<std::string>());
+    part.command = j.value("command", "");
+    parts.push_back(std::move(part));
+  }
+  return parts;
+}
+
+}  // namespace
+
+nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
+  const SuiteSettings& settings = parts_[part];
+  Json s;
+  Json files = Json::object();
+  for (std::size_t i = 0; i < scenarios_.size(); ++i)
+    if (scenario_part_[i] == part) files[scenarios_[i].source_path] = file_digest(scenarios_[i].source_path);
+  // a file that cannot be read is "unreadable" whatever it holds: a --resume after fixing it runs it
+  for (const std::string& file : part_files_[part])
+    if (!files.contains(file)) files[file] = "unreadable";
+  s["scenario_files"] = files;
+  s["engines"] = settings.engines;
+  std::vector<std::string> laws;
+  for (ContactLaw law : settings.laws) laws.push_back(to_string(law));
+  s["laws"] = laws;
+  s["time_steps_s"] = settings.time_steps_s;
+  s["contact_paths"] = settings.contact_paths;
+  s["engine_options"] = settings.engine_options;
+  s["reference_options"] = settings.reference_options;
+  s["output_rate_hz"] = settings.output_rate_hz;
+  s["max_duration_s"] = settings.max_duration_s;
+  const Measurement& m = settings.measurement;
+  s["window_s"] = m.window_s ? Json(*m.window_s) : Json(nullptr);
+  s["sensor_rate_hz"] = m.sensor_rate_hz;
+  s["merge_window_s"] = m.merge_window_s;
+  s["timed_repeats"] = m.timed_repeats;
+  s["series"] = m.series == SeriesOutput::all ? "all" : m.series == SeriesOutput::none ? "none" : "window";
+  s["verdict_tolerances"] = {m.verdicts.accuracy.sensor_peak_relative, m.verdicts.accuracy.contact_duration_relative,
+                             m.verdicts.accuracy.impacts_per_cycle_difference, m.verdicts.accuracy.log_decrement_relative};
+  s["stability_bounds"] = {m.verdicts.stability.displacement_bound_fraction_of_length,
+                           m.verdicts.stability.penetration_bound_gaps, m.verdicts.stability.penetration_bound_floor_m,
+                           m.verdicts.stability.energy_growth_tolerance};
+  if (settings.step_search)
+    s["step_search"] = {settings.step_search->min_step_s, settings.step_search->max_step_s,
+                        settings.step_search->points_per_octave};
+  else
+    s["step_search"] = nullptr;
+  return s;
+}
+
+namespace {
+
+// The same suite but for scenario files that could not be read then and can now (fixed since).
+bool same_but_fixed(const Json& then, const Json& now) {
+  if (!differing_keys(then, now, {"scenario_files"}).empty()) return false;
+  const Json& a = then["scenario_files"];
+  const Json& b = now["scenario_files"];
+  if (a.size() != b.size()) return false;
+  for (const auto& [file, digest] : a.items())
+    if (!b.contains(file) || (b[file] != digest && digest != "unreadable")) return false;
+  return true;
+}
+
+std::string line_of(const Json& settings, const std::vector<std::string>& jobs, const std::string& command) {
+  Json line;
+  line["settings"] = settings;
+  line["jobs"] = jobs;
+  line["command"] = command;
+  return line.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace
+
+void SuiteRunner::check_and_record_settings(std::size_t this_part) {
+  const Json current = settings_record(this_part);
+  std::vector<SuitePart> parts = read_parts(settings_.out);
+  // this part's jobs in planned order (a shard's: those it kept), also those an earlier part plans
+  const std::set<std::string> mine(part_jobs_[this_part].begin(), part_jobs_[this_part].end());
+  std::vector<std::string> planned;
+  for (const std::string& id : planned_job_ids())
+    if (mine.count(id)) planned.push_back(id);
+  // A job an earlier part of this run planned runs once, under that part's settings: they must decide its
+  // result as this part's would.
+  for (std::size_t earlier = 0; earlier < this_part; ++earlier) {
+    const std::set<std::string> theirs(part_jobs_[earlier].begin(), part_jobs_[earlier].end());
+    for (const std::string& id : planned) {
+      if (!theirs.count(id)) continue;
+      const std::string keys = differing_keys(settings_record(earlier), current, kMatrixKeys);
+      if (!keys.empty())
+        throw std::invalid_argument("job " + id + " is planned by two parts with other settings (" + keys +
+                                    " differ): give them other scenarios, laws or steps, or the same settings");
+      break;
+    }
+  }
+  for (const SuitePart& part : parts)
+    if (part.settings == current) return;  // the same suite: --resume continues it
+  for (SuitePart& part : parts) {
+    if (!same_but_fixed(part.settings, current)) continue;
+    // A scenario file fixed since: the rows saying it could not be read go (unless another suite of the
+    // folder plans them), and this suite's line replaces the old one.
+    std::set<std::string> stale, kept(planned.begin(), planned.end());
+    for (const SuitePart& other : parts)
+      if (&other != &part) kept.insert(other.jobs.begin(), other.jobs.end());
+    for (const std::string& id : part.jobs)
+      if (!kept.count(id) && recorded_.count(id)) stale.insert(id);
+    if (!stale.empty()) {
+      drop_runs(settings_.out, stale);
+      for (const std::string& id : stale) {
+        recorded_.erase(id);
+        std::fprintf(stderr, "suite: %s dropped: its scenario file can be read now\n", id.c_str());
+      }
+    }
+    part.settings = current;
+    part.jobs = std::set<std::string>(planned.begin(), planned.end());
+    part.command = settings_.resume_command;
+    std::string text;
+    for (const SuitePart& p : parts) text += line_of(p.settings, std::vector<std::string>(p.jobs.begin(), p.jobs.end()), p.command);
+    replace_text_file(settings_.out + kSettingsFile, text);
+    return;
+  }
+  if (!parts.empty() && !settings_.extend && this_part == 0) {
+    // name the keys that differ from the suite closest to this one
+    std::string keys, command;
+    for (const SuitePart& part : parts) {
+      const std::string k = differing_keys(part.settings, current);
+      if (keys.empty() || std::count(k.begin(), k.end(), ',') < std::count(keys.begin(), keys.end(), ','))
+        keys = k, command = part.command;
+    }
+    throw std::invalid_argument(settings_.out + " holds a suite with other settings (" + keys + " differ" +
+                                (command.empty() ? "" : " from: " + command) + ", see " + settings_.out + kSettingsFile +
+                                "): --resume continues the same suite only; add --extend to add this suite to the folder, "
+                                "or choose another --out");
+  }
+  // --extend: a job this suite shares with the folder must have been recorded under the same
+  // result-deciding settings and from the same scenario file, or the folder would mix them.
+  std::map<std::string, std::size_t> scenario_of;
+  for (const PlannedJob& job : jobs_) scenario_of[job.id] = job.scenario;
+  for (const std::string& id : planned) {
+    if (!recorded_.count(id)) continue;
+    for (const SuitePart& part : parts) {
+      if (!part.jobs.count(id)) continue;
+      std::string keys = differing_keys(part.settings, current, kMatrixKeys);
+      const auto s = scenario_of.find(id);
+      if (s != scenario_of.end()) {
+        const std::string& file = scenarios_[s->second].source_path;
+        const Json& then = part.settings["scenario_files"];
+        if (then.contains(file) && then[file] != current["scenario_files"][file])
+          keys += (keys.empty() ? "" : ", ") + ("the scenario file " + file + " (changed since)");
+      }
+      if (!keys.empty())
+        throw std::invalid_argument(settings_.out + ": job " + id + " was recorded with other settings (" + keys +
+                                    (part.command.empty() ? "" : ", by: " + part.command) +
+                                    "); --extend adds jobs, it does not mix settings: choose another --out");
+      break;
+    }
+  }
+  append_text_file(settings_.out + kSettingsFile, line_of(current, planned, settings_.resume_command));
+}
+
+}  // namespace ib::suite_internal

@@ -1,0 +1,317 @@
+// The worker pool (suite_runner.h): each job in its own process, so that a crash, an abort or a hang
+// inside an engine's library costs that job alone; time limits, signals, and the records collected.
+#include "harness/suite/suite_runner.h"
+
+#include <fcntl.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+#include "harness/records/number_text.h"
+#include "harness/jobs/progress.h"
+#include "harness/records/recorded_run.h"
+#include "harness/jobs/reference_cache.h"
+#include "harness/records/reporters.h"
+#include "harness/records/run_files.h"
+#include "model/scenario_toml.h"
+
+namespace ib::suite_internal {
+
+namespace fs = std::filesystem;
+
+// Stops every worker. With collect_finished, a job that ended cleanly before the stop is recorded
+// first (nothing finished is lost); the others are killed and not recorded (--resume reruns them).
+void SuiteRunner::stop_workers(bool collect_finished) {
+  if (collect_finished) {
+    for (int status = 0;;) {
+      const pid_t pid = waitpid(-1, &status, WNOHANG);
+      if (pid <= 0) break;
+      auto it = running_.find(pid);
+      if (it == running_.end()) continue;
+      const Running r = it->second;
+      running_.erase(it);
+      collect(*r.job, status, r.timed_out, r.message_pipe);
+    }
+  }
+  for (const auto& [pid, r] : running_) kill(pid, SIGKILL);
+  for (const auto& [pid, r] : running_) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (r.message_pipe >= 0) close(r.message_pipe);
+  }
+  running_.clear();
+}
+
+// The reference a job is compared with, read from its folder once and kept; null if it did not finish.
+const ReferenceData* SuiteRunner::reference(const std::string& id, const PlannedJob& job) {
+  if (id.empty()) return nullptr;
+  auto found = references_.find(id);
+  if (found == references_.end()) {
+    std::unique_ptr<ReferenceData> data;
+    try {
+      data = std::make_unique<ReferenceData>(load_reference(settings_.out + "/runs/" + id, scenarios_[job.scenario],
+                                                             part_of(job).measurement));
+    } catch (const std::exception&) {
+      data = nullptr;  // the reference failed: the job is recorded without errors against it
+    }
+    found = references_.emplace(id, std::move(data)).first;
+  }
+  return found->second.get();
+}
+
+void SuiteRunner::start(const PlannedJob& job) {
+  const std::string folder = folder_of(job);
+  std::error_code error;
+  fs::remove_all(folder, error);  // a previous, unfinished attempt
+  fs::create_directories(folder, error);
+  if (error) throw OutputError(output_error_text(folder, "create the run folder", error.value()));
+  const Scenario& scenario = scenarios_[job.scenario];
+  if (cacheable(job) &&
+      restore_cached_reference(settings_.reference_cache, reference_cache_key(scenario, job.spec, measurement_of(job)), folder)) {
+    progress_->estimate().start(job.id, progress_->now_s());
+    append_row_of(job);  // as if its process had just ended
+    ++outcome_.references_from_cache;
+    return;
+  }
+  // Load the references in this process, so that the job's process inherits them.
+  const ReferenceData* beam = reference(job.beam_reference, job);
+  const ReferenceData* chain = reference(job.chain_reference, job);
+  std::vector<ScoredFrom> scored;
+  for (const PlannedJob* other : unrecorded_scored_from(job)) {
+    const std::string other_folder = folder_of(*other);
+    fs::remove_all(other_folder, error);
+    fs::create_directories(other_folder, error);
+    if (error) throw OutputError(output_error_text(other_folder, "create the run folder", error.value()));
+    scored.push_back({other, reference(other->beam_reference, *other), reference(other->chain_reference, *other)});
+  }
+  std::fflush(nullptr);
+  int message_pipe[2] = {-1, -1};
+  if (pipe2(message_pipe, O_CLOEXEC) != 0)
+    throw std::runtime_error(std::string("cannot start a job's process: pipe: ") + std::strerror(errno));
+  const pid_t pid = fork_worker();
+  if (pid < 0) throw std::runtime_error(std::string("cannot start a job's process: ") + std::strerror(errno));
+  if (pid == 0) {
+    close(message_pipe[0]);
+    run_in_child(job, folder, scenario, beam, chain, scored, message_pipe[1]);  // never returns
+  }
+  close(message_pipe[1]);
+  running_.emplace(pid, Running{&job, Clock::now(), false, message_pipe[0]});
+  progress_->estimate().start(job.id, progress_->now_s());
+}
+
+// What a job's folder keeps of its series: a reference always its window (engine runs are compared
+// with it, also on --resume), a step-search probe none unless asked (its summary and events say
+// whether the step is stable and accurate), any other run what --series says.
+Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
+  Measurement m = part_of(job).measurement;
+  if (job.kind != JobKind::engine && m.series == SeriesOutput::none) m.series = SeriesOutput::window;
+  if (job.step_probe && !part_of(job).keep_probe_series) m.series = SeriesOutput::none;
+  return m;
+}
+
+// Why a job cannot be compared with the references it was planned with ("" when it can).
+static std::string missing_reference(const PlannedJob& job, const ReferenceData* beam, const ReferenceData* chain) {
+  std::string missing;
+  if (job.kind != JobKind::engine) return missing;
+  if (!job.beam_reference.empty() && !beam) missing = "its reference " + job.beam_reference + " did not finish (see its row)";
+  if (!job.chain_reference.empty() && !chain)
+    missing += (missing.empty() ? "its reference " : "; its reference ") + job.chain_reference + " did not finish (see its row)";
+  return missing;
+}
+
+// The job's process: its output goes to log.txt; its record to row.csv and row.jsonl for the parent.
+[[noreturn]] void SuiteRunner::run_in_child(const PlannedJob& job, const std::string& folder, const Scenario& scenario,
+                               const ReferenceData* beam, const ReferenceData* chain,
+                               const std::vector<ScoredFrom>& scored, int message_pipe) {
+  const int log = open((folder + "/log.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (log >= 0) {
+    dup2(log, STDOUT_FILENO);
+    dup2(log, STDERR_FILENO);
+    close(log);
+  }
+  RunRecord record;
+  ReferenceData run_data;  // the run's metrics and trajectory, for the jobs scored from it
+  bool ran = false;
+  try {
+    JobSpec spec = job.spec;
+    spec.missing_reference = missing_reference(job, beam, chain);
+    record = run_job(scenario, spec, measurement_of(job), beam, chain, folder, scored.empty() ? nullptr : &run_data,
+                     settings_.simulators.make);
+    ran = true;
+  } catch (const OutputError& e) {
+    send_and_exit(message_pipe, e.what());
+  } catch (const std::exception& e) {
+    record = unrunnable(job.id, scenario.name, scenario.source_path, job.spec.engine, to_string(job.spec.settings.law),
+                        e.what());
+    record.time_step_s = job.spec.settings.time_step_s;
+    record.options = options_text(job.spec.settings.options);
+    record.warnings = job.spec.warnings;
+  }
+  record.job_id = job.id;
+  record.chain_links = job.chain_links;
+  try {
+    write_text_file(folder + "/row.csv", csv_row(record));
+    write_text_file(folder + "/row.jsonl", json_line(record));
+    for (const ScoredFrom& other : scored) {
+      const PlannedJob& o = *other.job;
+      RunRecord r = record;
+      if (ran) {
+        r = score_for_law(scenario, record, run_data, o.id, o.spec.settings.law, measurement_of(o), other.beam,
+                          other.chain, folder, folder_of(o), missing_reference(o, other.beam, other.chain));
+      } else {  // the run failed: so does every job scored from it, for the same reason
+        r.job_id = o.id;
+        r.law = to_string(o.spec.settings.law);
+        r.same_run_as = job.id;
+      }
+      r.chain_links = o.chain_links;
+      write_text_file(folder_of(o) + "/row.csv", csv_row(r));
+      write_text_file(folder_of(o) + "/row.jsonl", json_line(r));
+    }
+  } catch (const std::exception& e) {
+    send_and_exit(message_pipe, e.what());
+  }
+  std::fflush(nullptr);
+  _exit(0);
+}
+
+// Waits for a job to end (or stops one past its time limit) and records it; returns the job and the
+// runs.jsonl line recorded for it (none when nothing ended).
+std::optional<std::pair<const PlannedJob*, std::string>> SuiteRunner::reap(bool block) {
+  while (true) {
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid > 0) {
+      auto it = running_.find(pid);
+      if (it == running_.end()) continue;
+      const Running r = it->second;
+      running_.erase(it);
+      return std::pair{r.job, collect(*r.job, status, r.timed_out, r.message_pipe)};
+    }
+    const auto now = Clock::now();
+    for (auto& [child, r] : running_) {
+      if (!r.timed_out && std::chrono::duration<double>(now - r.started).count() > settings_.time_limit_s) {
+        r.timed_out = true;
+        kill(child, SIGKILL);
+      }
+    }
+    if (!block || running_.empty() || interrupted()) return std::nullopt;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+// Records a job that ended; returns its runs.jsonl line ("" when an interruption or a signal from
+// outside stopped it: nothing is recorded and --resume reruns it).
+std::string SuiteRunner::collect(const PlannedJob& job, int status, bool timed_out, int message_pipe) {
+  const std::string folder = folder_of(job);
+  const std::string output_error = message_pipe >= 0 ? receive(message_pipe) : "";
+  if (message_pipe >= 0) close(message_pipe);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerOutputError)
+    throw OutputError(output_error.empty() ? output_error_text(folder, "write the run's files", 0) : output_error);
+  const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
+  if (clean) {
+    if (cacheable(job) && read_recorded_run(read_text_file(folder + "/row.jsonl")).verdict == Verdict::ok)
+      store_cached_reference(settings_.reference_cache,
+                             reference_cache_key(scenarios_[job.scenario], job.spec, measurement_of(job)), folder);
+    const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
+    std::string json;
+    if (!recorded_.count(job.id)) {
+      json = append_row_of(job);
+    } else {  // recorded before: run again only for the jobs scored from it
+      json = read_text_file(folder + "/row.jsonl");
+      remove_row_files(folder);
+    }
+    for (const PlannedJob* other : scored) append_row_of(*other);
+    return json;
+  }
+  if (interrupted()) return "";  // stopped by the interruption, not by its own fault: --resume reruns it
+  if (stopped_from_outside(status, timed_out)) {  // the same, when the worker got the signal first
+    ++outcome_.jobs_stopped;
+    outcome_.stopped_by = WTERMSIG(status);
+    stopped_.insert(job.id);
+    std::fprintf(stderr, "suite: %s stopped by signal %d (%s) from outside, not recorded: --resume runs it again\n",
+                 job.id.c_str(), WTERMSIG(status), strsignal(WTERMSIG(status)));
+    return "";
+  }
+  const Scenario& s = scenarios_[job.scenario];
+  RunRecord record = unrunnable(job.id, s.name, s.source_path, job.spec.engine, to_string(job.spec.settings.law),
+                                describe_exit(status, settings_.time_limit_s, timed_out, last_line(folder + "/log.txt")));
+  record.time_step_s = job.spec.settings.time_step_s;
+  record.options = options_text(job.spec.settings.options);
+  record.warnings = job.spec.warnings;
+  record.chain_links = job.chain_links;
+  record.duration_s = s.duration_s;
+  record.timed_out = timed_out;
+  const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
+  if (!recorded_.count(job.id)) finish(record);
+  for (const PlannedJob* other : scored) {  // scored from a run that did not end: failed alike
+    RunRecord r = record;
+    r.job_id = other->id;
+    r.law = to_string(other->spec.settings.law);
+    r.same_run_as = job.id;
+    r.chain_links = other->chain_links;
+    finish(r);
+  }
+  return json_line(record);
+}
+
+// The jobs scored from this job's run that are not recorded yet.
+std::vector<const PlannedJob*> SuiteRunner::unrecorded_scored_from(const PlannedJob& job) const {
+  std::vector<const PlannedJob*> jobs;
+  const auto [first, last] = scored_from_.equal_range(job.id);
+  for (auto it = first; it != last; ++it)
+    if (!recorded_.count(it->second->id)) jobs.push_back(it->second);
+  return jobs;
+}
+
+// Appends the record a job's process left in its folder (row.csv, row.jsonl), shows it and returns its
+// runs.jsonl line. The work done, for the cost per step: the steps an engine run took (a job scored
+// from another's run did none of its own, and its time is that run's).
+std::string SuiteRunner::append_row_of(const PlannedJob& job) {
+  const std::string folder = folder_of(job);
+  const std::string json = read_text_file(folder + "/row.jsonl"), csv = read_text_file(folder + "/row.csv");
+  append_rows(settings_.out, csv, json);
+  recorded_.insert(job.id);
+  // what the progress estimate reads back: the steps taken (fewer than planned when it stopped
+  // unstable) and the simulator's own time
+  const RecordedRun recorded = read_recorded_run(json);
+  const bool own_run = job.same_run_as.empty();
+  const double steps = own_run && job.spec.settings.time_step_s > 0 && recorded.steps > 0 ? recorded.steps : -1;
+  const double wall_time_s = std::isnan(recorded.wall_time_s) ? -1 : recorded.wall_time_s;
+  count_and_show(job.id, recorded.verdict, own_run ? steps : 0, own_run ? wall_time_s : -1);
+  remove_row_files(folder);
+  return json;
+}
+
+void SuiteRunner::remove_row_files(const std::string& folder) {
+  std::error_code error;
+  fs::remove(folder + "/row.jsonl", error);
+  fs::remove(folder + "/row.csv", error);
+}
+
+void SuiteRunner::finish(const RunRecord& record) {
+  append_run(settings_.out, record);
+  count_and_show(record.job_id, record.verdict);
+}
+
+void SuiteRunner::count_and_show(const std::string& id, Verdict verdict, double units_done, double compute_s) {
+  ++outcome_.jobs_run;
+  if (verdict == Verdict::unstable || verdict == Verdict::failed) ++outcome_.not_ok;
+  progress_->estimate().finish(id, progress_->now_s(), units_done, compute_s);
+  progress_->job_done(id, verdict, std::max(1, settings_.jobs));
+}
+
+}  // namespace ib::suite_internal

@@ -1,0 +1,92 @@
+// A frequency sweep (docs/sweeps.md): the motor speed ratio r = f_motor / f_1 stepped over a range, each
+// simulator's steady response measured at every ratio, started from rest at each ratio or continued from
+// the previous ratio's final state, sweeping up and down (an impacting oscillator's branches coexist).
+//
+// The unit of work is a chain: one configuration (engine, law, contact path, step, options) and start,
+// its ratios in order (a start from rest: one ratio). A chain runs in its own process (a crash costs that
+// chain alone) and writes each ratio's results as the ratio ends, in DIR/runs/<row id>/ (summary.json,
+// events.csv, row.json, poincare.csv, state.txt); DIR/sweep.jsonl, sweep.csv and poincare.csv are made from
+// those folders in planned order whenever a ratio ends, so they hold one row per ratio and are the same
+// however the sweep was interrupted, resumed or divided into shards (--shard K/N: every N-th chain).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/jobs/run_job.h"
+#include "harness/jobs/shard_plan.h"
+#include "model/simulator.h"
+
+namespace ib {
+
+enum class SweepStart { rest, up, down };
+const char* to_string(SweepStart start);
+
+// FROM:TO:STEP as --ratios takes it: FROM, FROM + STEP, ... up to TO (within STEP / 1000), rounded to
+// 1e-9; throws std::invalid_argument naming --ratios, the value and what is allowed.
+std::vector<double> parse_ratios(const std::string& text);
+
+struct SweepSettings {
+  std::string scenario_path;                       // a scenario with a motor
+  std::vector<double> ratios;                      // ascending
+  std::vector<SweepStart> starts = {SweepStart::rest};
+  std::vector<std::string> engines = {"reference"};
+  std::vector<ContactLaw> laws = {ContactLaw::hertz};
+  std::vector<std::string> contact_paths;          // engines' option "contact"; empty: each engine's default
+  std::vector<double> time_steps_s;                // fixed-step engines; empty: each engine's default
+  std::map<std::string, std::string> reference_options;
+  std::map<std::string, std::map<std::string, std::string>> engine_options;
+  // Each ratio's run length [s], rounded to whole motor periods: a continuation's ratios after its first
+  // (default 60 s: docs/sweeps.md); a start from rest, and a continuation's first ratio (from rest), run the scenario's
+  // own duration unless rest_duration_s is set.
+  double continuation_duration_s = 60;
+  std::optional<double> rest_duration_s;
+  double window_s = 10;                            // the last window_s of each run is scored [s] (whole periods)
+  double output_rate_hz = 4096;
+  int jobs = 1;                                    // worker processes
+  double time_limit_s = 600;                       // per ratio
+  std::string out;
+  bool resume = false;
+  std::optional<Shard> shard;
+  std::string resume_command;
+  Measurement measurement;                         // sensor rate, merge window, verdicts, series kept
+  SimulatorCatalog simulators;
+};
+
+struct SweepOutcome {
+  int rows_run = 0, rows_skipped = 0, rows_total = 0;
+  int not_ok = 0;            // rows whose verdict is not ok among all recorded
+  int interrupted_by = 0;    // SIGINT or SIGTERM that stopped the sweep; 0: it ran to its end
+  int chains_stopped = 0;    // chains whose process a signal from outside stopped (--resume runs the rest)
+  int stopped_by = 0;        // that signal (the last one seen)
+};
+
+// Runs the sweep (or its shard); progress on stderr. Throws std::invalid_argument for bad input (a
+// scenario without a motor, a --resume of a folder holding another sweep or shard) before running
+// anything, OutputError (run_files.h) when a result cannot be written.
+SweepOutcome run_sweep(const SweepSettings& settings);
+
+// ---- The plan, shared by the runner, the merge and the tests.
+struct SweepRow {
+  std::string id;            // "<configuration id>/<start>/r=<ratio>": its folder below runs/
+  std::string chain;         // "<configuration id>/<start>" (rest: with /r=<ratio>)
+  JobSpec job;               // scenario file, engine, law, step, options
+  SweepStart start = SweepStart::rest;
+  double ratio = 0;
+  bool first_of_chain = true;
+};
+struct SweepChain {
+  std::string id;
+  std::vector<SweepRow> rows;  // in the order they run (down: descending ratios)
+};
+// The chains in planned order: configuration (engine, law, path, step), then start, then ratio.
+std::vector<SweepChain> plan_sweep(const SweepSettings& settings, const std::string& scenario_name);
+std::string ratio_text(double ratio);  // "0.95", as row ids and tables print a ratio
+
+// The tables (sweep.jsonl, sweep.csv, poincare.csv) made again from the row folders of `rows`, in their order;
+// rows without a folder's row.json are left out. Returns the number of rows written.
+int write_sweep_tables(const std::string& folder, const std::vector<std::string>& row_ids);
+
+}  // namespace ib

@@ -1,0 +1,117 @@
+// The sweep's plan: its ratios, its chains and rows in planned order.
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "harness/sweep/sweep.h"
+#include "model/simulator_options.h"
+
+namespace ib {
+
+const char* to_string(SweepStart start) {
+  switch (start) {
+    case SweepStart::rest: return "rest";
+    case SweepStart::up: return "up";
+    case SweepStart::down: return "down";
+  }
+  return "?";
+}
+
+namespace {
+
+double parse_ratio_part(const std::string& part, const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const double value = std::strtod(part.c_str(), &end);
+  if (part.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value))
+    throw std::invalid_argument("--ratios " + text + ": '" + part + "' is not a number; allowed: FROM:TO:STEP, e.g. 0.85:1.20:0.01");
+  return value;
+}
+
+}  // namespace
+
+std::vector<double> parse_ratios(const std::string& text) {
+  const auto first = text.find(':'), second = first == std::string::npos ? first : text.find(':', first + 1);
+  if (second == std::string::npos || text.find(':', second + 1) != std::string::npos)
+    throw std::invalid_argument("--ratios " + text + ": allowed: FROM:TO:STEP, e.g. 0.85:1.20:0.01");
+  const double from = parse_ratio_part(text.substr(0, first), text);
+  const double to = parse_ratio_part(text.substr(first + 1, second - first - 1), text);
+  const double step = parse_ratio_part(text.substr(second + 1), text);
+  // the motor speed over f_1: a physical rig is driven from well below to a few times its resonance
+  constexpr double kLowest = 0.05, kHighest = 20;
+  if (!(from >= kLowest && to <= kHighest && from <= to))
+    throw std::invalid_argument("--ratios " + text + ": allowed: 0.05 <= FROM <= TO <= 20");
+  if (!(step > 0) && from != to) throw std::invalid_argument("--ratios " + text + ": allowed: STEP > 0");
+  const double count = from == to ? 1 : std::floor((to - from) / step + 1e-3) + 1;
+  if (count > 10000) throw std::invalid_argument("--ratios " + text + ": " + std::to_string(static_cast<long long>(count)) +
+                                                 " ratios; allowed: at most 10000");
+  std::vector<double> ratios;
+  for (int k = 0; k < static_cast<int>(count); ++k) ratios.push_back(std::round((from + k * step) * 1e9) / 1e9);
+  return ratios;
+}
+
+std::string ratio_text(double ratio) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", ratio);
+  return text;
+}
+
+std::vector<SweepChain> plan_sweep(const SweepSettings& s, const std::string& scenario_name) {
+  std::vector<SweepChain> chains;
+  const std::vector<std::string> no_path = {""};
+  const std::vector<double> default_step = {0};
+  for (const std::string& engine : s.engines) {
+    const bool reference = engine == "reference";
+    for (ContactLaw law : s.laws) {
+      for (const std::string& path : reference || s.contact_paths.empty() ? no_path : s.contact_paths) {
+        for (double dt : reference || s.time_steps_s.empty() ? default_step : s.time_steps_s) {
+          JobSpec job;
+          job.scenario_path = s.scenario_path;
+          job.engine = engine;
+          job.settings.law = law;
+          job.settings.output_rate_hz = s.output_rate_hz;
+          job.settings.time_step_s = dt;
+          if (reference) {
+            job.settings.options = s.reference_options;
+          } else {
+            const auto options = s.engine_options.find(engine);
+            if (options != s.engine_options.end()) job.settings.options = options->second;
+            if (!path.empty()) job.settings.options["contact"] = path;
+          }
+          const std::string configuration = job_id(scenario_name, job);
+          for (SweepStart start : s.starts) {
+            auto row_of = [&](double ratio, bool first) {
+              SweepRow row;
+              row.job = job;
+              row.start = start;
+              row.ratio = ratio;
+              row.first_of_chain = first;
+              row.id = configuration + "/" + to_string(start) + "/r=" + ratio_text(ratio);
+              return row;
+            };
+            if (start == SweepStart::rest) {
+              for (double ratio : s.ratios) {
+                SweepRow row = row_of(ratio, true);
+                row.chain = row.id;
+                chains.push_back({row.id, {row}});
+              }
+              continue;
+            }
+            SweepChain chain{configuration + "/" + to_string(start), {}};
+            for (std::size_t k = 0; k < s.ratios.size(); ++k) {
+              const double ratio = start == SweepStart::up ? s.ratios[k] : s.ratios[s.ratios.size() - 1 - k];
+              chain.rows.push_back(row_of(ratio, k == 0));
+              chain.rows.back().chain = chain.id;
+            }
+            chains.push_back(std::move(chain));
+          }
+        }
+      }
+    }
+  }
+  return chains;
+}
+
+}  // namespace ib
