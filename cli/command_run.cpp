@@ -20,7 +20,7 @@
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
 #include "harness/jobs/run_job.h"
-#include "harness/jobs/worker_process.h"
+#include "harness/jobs/process_pool.h"
 #include "model/scenario_toml.h"
 #include "simulators/catalog.h"
 
@@ -97,10 +97,8 @@ int run_and_print(const ib::Scenario& scenario, ib::JobSpec job, const ib::Measu
 // Runs `work` in a child process and waits at most time_limit_s for it: the exit code it returned, or
 // nullopt when it was stopped at the limit (so that `run` ends like a suite's job, never hangs).
 std::optional<int> within_time_limit(double time_limit_s, const std::function<int()>& work) {
-  std::fflush(nullptr);
-  const pid_t pid = ib::fork_worker();  // as a suite's job: default signal actions, death with the parent
-  if (pid < 0) throw std::runtime_error(std::string("cannot start the run's process: ") + std::strerror(errno));
-  if (pid == 0) {
+  ib::ProcessPool pool;  // the suite's own: default signal actions in the run's process, death with the parent
+  pool.start({"run", time_limit_s, /*log_path=*/"", false}, [&](int) {
     int code = kExitBadInput;
     try {
       code = work();
@@ -112,22 +110,13 @@ std::optional<int> within_time_limit(double time_limit_s, const std::function<in
     }
     std::fflush(nullptr);
     _exit(code);
-  }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(time_limit_s);
-  for (int status = 0;;) {
-    const pid_t ended = waitpid(pid, &status, WNOHANG);
-    if (ended == pid) {
-      if (WIFEXITED(status)) return WEXITSTATUS(status);
-      throw std::runtime_error("the run's process died of signal " + std::to_string(WTERMSIG(status)) + " (" +
-                               strsignal(WTERMSIG(status)) + ")");
-    }
-    if (std::chrono::steady_clock::now() > deadline) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      return std::nullopt;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  });
+  std::optional<ib::ProcessEnd> end;
+  while (!(end = pool.wait_end())) {}
+  if (end->timed_out) return std::nullopt;
+  if (WIFEXITED(end->status)) return WEXITSTATUS(end->status);
+  throw std::runtime_error("the run's process died of signal " + std::to_string(WTERMSIG(end->status)) + " (" +
+                           strsignal(WTERMSIG(end->status)) + ")");
 }
 
 }  // namespace

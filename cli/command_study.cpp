@@ -1,12 +1,16 @@
 // `study FILE --out DIR`: a study file's parts (study_file.h) into one folder, then its report. The suites
 // and step searches go into DIR (each after the first adds its own settings record: --extend), the sweeps
-// into DIR/sweeps/NAME; --jobs, --shard and --resume apply to every part.
+// into DIR/sweeps/NAME, all as one plan on one pool of workers; --jobs, --shard and --resume apply to every part.
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 
 #include "cli/commands.h"
 #include "cli/study_file.h"
+#include "harness/jobs/unit_source.h"
+#include "harness/jobs/worker_process.h"
+#include "harness/records/engines_file.h"
 #include "harness/records/number_text.h"
 #include "simulators/catalog.h"
 
@@ -102,21 +106,22 @@ int command_study(const StudyOptions& o) {
     status = std::max(status, code);
     return code == kExitBadInput || code >= kExitOutputError;  // stop: bad input, a write error, an interruption
   };
-  // The [[suite]] parts as one plan (no part waits for another), then each step search.
-  std::vector<ib::SuiteSettings> together;
-  for (std::size_t i = 0; i < suites.size(); ++i) {
+  // One plan on one pool of workers: the suites and searches into one folder (a job two parts plan runs
+  // once), each sweep into its own; no part waits for another, the costliest ready unit starts first.
+  for (std::size_t i = 0; i < suites.size(); ++i)
     record_command(o.out, suites[i].measurement.verdicts, o.file + ": " + suite_names[i]);
-    if (!suites[i].step_search) together.push_back(suites[i]);
-  }
-  if (!together.empty() && worst(suite_exit_code(together.front(), ib::run_suites(together)))) return status;
-  for (std::size_t i = 0; i < suites.size(); ++i) {
-    if (!suites[i].step_search) continue;
-    ib::SuiteSettings search = suites[i];
-    search.extend = search.extend || !together.empty();
-    if (worst(suite_exit_code(search, ib::run_suite(search)))) return status;
-  }
-  for (const ib::SweepSettings& sweep : sweeps)
-    if (worst(sweep_exit_code(sweep, ib::run_sweep(sweep)))) return status;
+  const ib::InterruptionHandler handler;  // outlives the pool, which stops its workers when it ends
+  std::unique_ptr<ib::SuiteSource> suite_source = suites.empty() ? nullptr : ib::prepare_suites(suites);
+  std::vector<std::unique_ptr<ib::SweepSource>> sweep_sources;
+  for (const ib::SweepSettings& sweep : sweeps) sweep_sources.push_back(ib::prepare_sweep(sweep));
+  std::vector<ib::UnitSource*> sources;
+  if (suite_source) sources.push_back(suite_source.get());
+  for (const auto& sweep : sweep_sources) sources.push_back(sweep.get());
+  ib::run_units(sources, o.jobs);
+  if (suite_source) worst(suite_exit_code(suites.front(), ib::with_engines_file(out, suites.front().simulators, suite_source->finish())));
+  for (std::size_t i = 0; i < sweeps.size(); ++i)
+    worst(sweep_exit_code(sweeps[i], ib::with_engines_file(sweeps[i].out, sweeps[i].simulators, sweep_sources[i]->finish())));
+  if (status == kExitBadInput || status >= kExitOutputError) return status;
   if (!o.no_report && o.shard.empty()) {
     const int report = command_report(o.out, "");
     if (report != kExitOk) return report;

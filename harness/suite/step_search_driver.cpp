@@ -1,9 +1,10 @@
-// The step searches' driver (suite_runner.h): each group's bisection (step_search.h) picks its next probe
-// when its previous one has ended; the groups share the worker processes.
+// The step searches' driver (suite_runner.h): each group's bisection (step_search.h) starts when its reference
+// has ended and picks its next probe when its previous one has ended; the probes share the one runner's
+// processes with every other job. Probes already in runs.jsonl (--resume) are read, not run again.
 #include "harness/suite/suite_runner.h"
 
 #include <algorithm>
-#include <filesystem>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -11,102 +12,95 @@
 
 namespace ib::suite_internal {
 
-namespace fs = std::filesystem;
-
-// --find-steps: each group's search picks its next probe when its previous one has ended; groups
-// share the worker processes. Probes already in runs.jsonl (--resume) are read, not run again.
-void SuiteRunner::run_step_searches() {
-  const StepSearchSettings& search_settings = *settings_.step_search;
-  const std::set<std::string> rows_done =
-      settings_.resume ? repair_and_list_step_rows(settings_.out) : std::set<std::string>{};
-  std::map<std::string, std::string> recorded = recorded_run_lines(settings_.out);  // references and probes
-  struct Group {
-    const PlannedJob* job;  // the group's job with dt = 0: its id is the group's id
-    StepGroup info;
-    std::unique_ptr<StepSearch> search;
-    bool with_chain = false, running = false, finished = false;
-    int probe_index = -1;
-  };
-  std::vector<Group> groups;
+void SuiteRunner::begin_step_searches() {
+  if (step_groups_.empty()) return;
+  if (settings_.resume) step_rows_done_ = repair_and_list_step_rows(settings_.out);
+  recorded_lines_ = recorded_run_lines(settings_.out);
   for (const PlannedJob& job : step_groups_) {
-    Group g;
+    SearchGroup g;
     g.job = &job;
+    g.settings = &*part_of(job).step_search;
     g.with_chain = !job.chain_reference.empty();
     g.info = step_group(job);
-    if (rows_done.count(step_row_key(g.info, search_settings))) {
+    if (step_rows_done_.count(step_row_key(g.info, *g.settings))) {
       progress_->estimate().expect(g.info.group_id, {}, 0);  // recorded before (--resume): nothing to come
       continue;
     }
-    if (reference_stopped(job)) {  // its reference was stopped from outside: the search waits for --resume
-      ++outcome_.jobs_stopped;
+    searches_.push_back(std::move(g));
+  }
+}
+
+// The first group, in planned order, whose next probe can start: its reference has ended and its previous probe
+// too. A group whose search needs no more probes writes its row to steps.csv here.
+SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
+  for (SearchGroup& g : searches_) {
+    if (g.finished || g.running) continue;
+    if (g.next_probe) return &g;
+    if (!references_ended(*g.job)) continue;
+    if (!g.search) {
+      if (reference_stopped(*g.job)) {  // its reference was stopped from outside: the search waits for --resume
+        ++outcome_.jobs_stopped;
+        progress_->estimate().expect(g.info.group_id, {}, 0);
+        g.finished = true;
+        continue;
+      }
+      const std::string& reference_id = g.with_chain ? g.job->chain_reference : g.job->beam_reference;
+      const auto found = recorded_lines_.find(reference_id);
+      const ReferenceFacts facts = found != recorded_lines_.end() ? reference_from_json(found->second) : ReferenceFacts{};
+      g.search = std::make_unique<StepSearch>(*g.settings, facts, g.info.accuracy_reference);
+    }
+    std::optional<int> next;
+    PlannedJob probe;
+    while ((next = g.search->next_probe())) {
+      probe = make_job(g.job->scenario, JobKind::engine, g.job->spec.engine, g.job->spec.settings.law,
+                       g.search->grid()[*next], g.job->spec.settings.options);
+      probe.beam_reference = g.job->beam_reference;
+      probe.chain_reference = g.job->chain_reference;
+      probe.chain_links = g.job->chain_links;
+      probe.spec.warnings = g.job->spec.warnings;
+      probe.step_probe = true;
+      const auto found = recorded_lines_.find(probe.id);
+      if (found == recorded_lines_.end()) break;
+      g.search->add(*next, probe_from_json(found->second, g.with_chain));  // run before (--resume)
+      ++outcome_.jobs_skipped;
+    }
+    if (!next) {
+      append_step_row(settings_.out, StepRow{g.info, *g.settings, g.search.get()});
+      g.finished = true;
+      ++outcome_.step_searches;
+      ++finished_searches_;
+      finished_search_probes_ += g.search->probes();
       progress_->estimate().expect(g.info.group_id, {}, 0);
       continue;
     }
-    const std::string& reference_id = g.with_chain ? job.chain_reference : job.beam_reference;
-    const ReferenceFacts facts = recorded.count(reference_id) ? reference_from_json(recorded[reference_id]) : ReferenceFacts{};
-    g.search = std::make_unique<StepSearch>(search_settings, facts, g.info.accuracy_reference);
-    groups.push_back(std::move(g));
+    // The probes still to come, for the remaining time: a bisection's worth at least; as many as the searches
+    // that ended needed, where they needed more; each costing on average what a probe at the bracket's
+    // unprobed steps costs (their steps differ from this probe's: what share of this step's runs ended early
+    // says nothing of them).
+    const int measured_left = finished_searches_ > 0
+                                  ? (finished_search_probes_ + finished_searches_ - 1) / finished_searches_ - g.search->probes()
+                                  : 0;
+    const int probes_left = std::max(g.search->probes_left_estimate(), measured_left);
+    JobWork later = work_of(probe);
+    later.units = scenarios_[probe.scenario].duration_s * g.search->mean_unprobed_steps_per_second();
+    later.stop_key = "expected probes";
+    progress_->estimate().expect(g.info.group_id, later, probes_left - 1);  // this one is planned when it starts
+    g.probe_index = *next;
+    g.next_probe = probe;
+    return &g;
   }
-  std::map<std::string, std::size_t> group_of_probe;
-  int finished_groups = 0, finished_probes = 0;  // the searches done here: how many probes a search takes
-  while (!interrupted()) {  // an interruption leaves the rest to --resume (run() stops the workers)
-    for (std::size_t i = 0; i < groups.size(); ++i) {
-      Group& g = groups[i];
-      if (g.finished || g.running) continue;
-      std::optional<int> next;
-      PlannedJob probe;
-      while ((next = g.search->next_probe())) {
-        probe = make_job(g.job->scenario, JobKind::engine, g.job->spec.engine, g.job->spec.settings.law,
-                         g.search->grid()[*next], g.job->spec.settings.options);
-        probe.beam_reference = g.job->beam_reference;
-        probe.chain_reference = g.job->chain_reference;
-        probe.chain_links = g.job->chain_links;
-        probe.spec.warnings = g.job->spec.warnings;
-        probe.step_probe = true;
-        if (!recorded.count(probe.id)) break;
-        g.search->add(*next, probe_from_json(recorded[probe.id], g.with_chain));  // run before (--resume)
-        ++outcome_.jobs_skipped;
-      }
-      if (!next) {
-        append_step_row(settings_.out, StepRow{g.info, search_settings, g.search.get()});
-        g.finished = true;
-        ++outcome_.step_searches;
-        ++finished_groups;
-        finished_probes += g.search->probes();
-        progress_->estimate().expect(g.info.group_id, {}, 0);
-        continue;
-      }
-      // The probes still to come, for the remaining time: about a bisection's worth, each costing on
-      // average what a probe at the bracket's unprobed steps costs.
-      // A bisection's worth at least; as many as the searches that ended needed, where they needed more.
-      const int measured_left =
-          finished_groups > 0 ? (finished_probes + finished_groups - 1) / finished_groups - g.search->probes() : 0;
-      const int probes_left = std::max(g.search->probes_left_estimate(), measured_left);
-      JobWork later = work_of(probe);
-      later.units = scenarios_[probe.scenario].duration_s * g.search->mean_unprobed_steps_per_second();
-      // Their steps differ from this probe's: what share of this step's runs ended early says nothing of them.
-      later.stop_key = "expected probes";
-      progress_->estimate().expect(g.info.group_id, later, probes_left);
-      if (interrupted() || static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) continue;  // waits for a worker
-      progress_->estimate().expect(g.info.group_id, later, probes_left - 1);  // this one is planned below
-      probe_jobs_.push_back(probe);
-      group_of_probe[probe.id] = i;
-      g.probe_index = *next;
-      g.running = true;
-      progress_->add_to_total(1);
-      progress_->estimate().plan(probe.id, work_of(probe));
-      start(probe_jobs_.back());
-    }
-    if (running_.empty()) break;  // every group has finished
-    if (const auto ended = reap(true)) {
-      const auto found = group_of_probe.find(ended->first->id);
-      if (found == group_of_probe.end() || ended->second.empty()) continue;
-      Group& g = groups[found->second];
-      recorded[ended->first->id] = ended->second;
-      g.search->add(g.probe_index, probe_from_json(ended->second, g.with_chain));
-      g.running = false;
-    }
+  return nullptr;
+}
+
+void SuiteRunner::probe_ended(const PlannedJob& probe, const std::string& json) {
+  SearchGroup& g = searches_[search_of_probe_.at(probe.id)];
+  g.running = false;
+  if (json.empty()) {  // stopped by an interruption or from outside: the search waits for --resume
+    g.finished = true;
+    return;
   }
+  recorded_lines_[probe.id] = json;
+  g.search->add(g.probe_index, probe_from_json(json, g.with_chain));
 }
 
 }  // namespace ib::suite_internal

@@ -39,15 +39,12 @@ SuiteSettings with_one_tolerance_record(SuiteSettings settings) {
 
 std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSettings>& parts) {
   if (parts.empty()) throw std::logic_error("a suite with no part");
-  if (parts.size() > 1)
-    for (const SuiteSettings& part : parts)
-      if (part.step_search) throw std::logic_error("a step search runs as a suite of its own, not as a part of several");
   std::vector<SuiteSettings> checked;
   for (const SuiteSettings& part : parts) checked.push_back(with_one_tolerance_record(part));
   return checked;
 }
 
-SuiteOutcome SuiteRunner::run() {
+void SuiteRunner::begin() {
   std::error_code error;
   fs::create_directories(settings_.out, error);
   if (error) throw OutputError(output_error_text(settings_.out, "create the output folder", error.value()));
@@ -87,40 +84,87 @@ SuiteOutcome SuiteRunner::run() {
   progress_ = std::make_unique<Progress>(to_run);
   for (const auto& job : jobs_)
     if (!recorded_.count(job.id)) progress_->estimate().plan(job.id, work_of(job));
-  if (settings_.step_search) expect_whole_searches();
+  if (!step_groups_.empty()) expect_whole_searches();
   describe_plan(to_run);
   outcome_.jobs_total = static_cast<int>(jobs_.size() + unrunnable_.size());
   for (const RunRecord& r : unrunnable_)
     if (!recorded_.count(r.job_id)) finish(r);  // recorded once: a --resume does not add it again
-  // References first (beam, then chain): engine jobs are compared with them.
-  for (JobKind phase : {JobKind::beam_reference, JobKind::chain_reference, JobKind::engine}) {
-    if (phase == JobKind::engine && settings_.step_search) {
-      run_step_searches();
+  for (const PlannedJob& job : jobs_) {
+    if (job.same_run_as.empty() && (!recorded_.count(job.id) || !unrecorded_scored_from(job).empty())) {
+      pending_.push_back(&job);
+      unfinished_.insert(job.id);
+    }
+  }
+  begin_step_searches();
+}
+
+// The ready job to start next: of the jobs whose references have ended, a kind not measured yet first, then
+// the costliest (next_to_start). A job compared with a reference that a signal from outside stopped waits for
+// --resume (run now, it would be recorded without its comparison).
+const PlannedJob* SuiteRunner::ready_job() {
+  std::vector<const PlannedJob*> ready;
+  for (auto it = pending_.begin(); it != pending_.end();) {
+    if (reference_stopped(**it)) {
+      ++outcome_.jobs_stopped;
+      unfinished_.erase((*it)->id);
+      it = pending_.erase(it);
       continue;
     }
-    std::vector<const PlannedJob*> pending;
-    for (const PlannedJob& job : jobs_)
-      if (job.kind == phase && job.same_run_as.empty() && (!recorded_.count(job.id) || !unrecorded_scored_from(job).empty()))
-        pending.push_back(&job);
-    const auto waiting = [this](const PlannedJob* job) { return reference_stopped(*job); };
-    outcome_.jobs_stopped += static_cast<int>(std::count_if(pending.begin(), pending.end(), waiting));
-    pending.erase(std::remove_if(pending.begin(), pending.end(), waiting), pending.end());
-    while (!pending.empty()) {
-      while (!interrupted() && static_cast<int>(running_.size()) >= std::max(1, settings_.jobs)) reap(true);
-      if (interrupted()) break;
-      std::vector<JobWork> work;
-      for (const PlannedJob* job : pending) work.push_back(work_of(*job));
-      const auto next = pending.begin() + next_to_start(progress_->estimate(), work);
-      start(**next);
-      pending.erase(next);
-    }
-    while (!interrupted() && !running_.empty()) reap(true);
-    if (interrupted()) break;
+    if (references_ended(**it)) ready.push_back(*it);
+    ++it;
   }
-  if (interrupted()) {
-    stop_workers(/*collect_finished=*/true);
-    outcome_.interrupted_by = interrupt_signal;
+  if (ready.empty()) return nullptr;
+  std::vector<JobWork> work;
+  for (const PlannedJob* job : ready) work.push_back(work_of(*job));
+  return ready[next_to_start(progress_->estimate(), work)];
+}
+
+std::optional<double> SuiteRunner::next_cost() {
+  next_ = ready_job();
+  next_search_ = next_ ? nullptr : ready_search();
+  const PlannedJob* job = next_ ? next_ : next_search_ ? &*next_search_->next_probe : nullptr;
+  if (!job) return std::nullopt;
+  const double cost = progress_->estimate().cost_s(work_of(*job));
+  return cost < 0 ? kUnknownCost : cost;
+}
+
+std::string SuiteRunner::start_next(ProcessPool& pool) {
+  const PlannedJob* job = next_;
+  if (next_) {
+    pending_.erase(std::find(pending_.begin(), pending_.end(), next_));
+  } else {  // a step search's probe
+    SearchGroup& g = *next_search_;
+    probe_jobs_.push_back(*g.next_probe);
+    g.next_probe.reset();
+    g.running = true;
+    job = &probe_jobs_.back();
+    search_of_probe_[job->id] = static_cast<std::size_t>(&g - searches_.data());
+    unfinished_.insert(job->id);
+    progress_->add_to_total(1);
+    progress_->estimate().plan(job->id, work_of(*job));
   }
+  next_ = nullptr;
+  next_search_ = nullptr;
+  const std::string unit = start(*job, pool);
+  if (unit.empty()) {  // recorded from the reference cache
+    unfinished_.erase(job->id);
+    return unit;
+  }
+  running_[unit] = job;
+  return unit;
+}
+
+void SuiteRunner::ended(const ProcessEnd& end) {
+  const PlannedJob& job = *running_.at(end.unit);
+  running_.erase(end.unit);
+  const std::string json = collect(job, end);
+  unfinished_.erase(job.id);
+  if (!json.empty() && !step_groups_.empty()) recorded_lines_[job.id] = json;  // a search's reference or probe
+  if (job.step_probe) probe_ended(job, json);
+}
+
+SuiteOutcome SuiteRunner::finish() {
+  if (interrupted()) outcome_.interrupted_by = interrupt_signal;
   for (const auto& [id, line] : recorded_run_lines(settings_.out)) {
     const Verdict verdict = read_recorded_run(line).verdict;
     ++outcome_.recorded;
@@ -135,9 +179,17 @@ namespace ib {
 
 SuiteOutcome run_suite(const SuiteSettings& settings) { return run_suites({settings}); }
 
+std::unique_ptr<SuiteSource> prepare_suites(const std::vector<SuiteSettings>& parts) {
+  auto runner = std::make_unique<suite_internal::SuiteRunner>(parts);
+  runner->begin();
+  return runner;
+}
+
 SuiteOutcome run_suites(const std::vector<SuiteSettings>& parts) {
-  const InterruptionHandler handler;  // outlives the runner, which stops its workers when it ends
-  return with_engines_file(parts.front().out, parts.front().simulators, suite_internal::SuiteRunner(parts).run());
+  const InterruptionHandler handler;  // outlives the pool, which stops its workers when it ends
+  const std::unique_ptr<SuiteSource> suites = prepare_suites(parts);
+  run_units({suites.get()}, parts.front().jobs);
+  return with_engines_file(parts.front().out, parts.front().simulators, suites->finish());
 }
 
 }  // namespace ib

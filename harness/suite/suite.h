@@ -5,11 +5,13 @@
 // computed once and reused for every engine's errors.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/jobs/run_job.h"
+#include "harness/jobs/unit_source.h"
 #include "harness/jobs/shard_plan.h"
 #include "model/simulator.h"
 #include "harness/suite/step_search.h"
@@ -68,10 +70,31 @@ struct SuiteOutcome {
 // Throws std::invalid_argument for a --resume in a folder that holds another shard or a whole suite.
 SuiteOutcome run_suite(const SuiteSettings& settings);
 
-// Several suites into one folder as one plan on one pool of workers (a study's [[suite]] parts): no part
-// waits for another to end, the costliest ready job starts first. The folder, workers, time limit, resume,
-// extend, shard and simulators are the first part's; each part records its own settings line (suite.jsonl,
-// as --extend would), and a job that two parts plan runs once. A step search runs alone (one part).
+// Several suites into one folder as one plan on one pool of workers (a study's [[suite]] and [[search]]
+// parts): no part waits for another to end, the costliest ready job starts first. The folder, workers, time
+// limit, resume, extend, shard and simulators are the first part's; each part records its own settings line
+// (suite.jsonl, as --extend would), and a job that two parts plan runs once (a search's references among them).
 SuiteOutcome run_suites(const std::vector<SuiteSettings>& parts);
+
+// A suite's plan as plain data, made without running anything: each unit of work with the units it waits for
+// (an engine's run after the references it is compared with, a chain reference after its beam reference),
+// in planned order. Throws std::invalid_argument as run_suites does for input it refuses.
+struct PlannedUnit {
+  enum class Kind { beam_reference, chain_reference, engine, step_search, unrunnable };
+  std::string id;
+  Kind kind = Kind::engine;
+  std::vector<std::string> after;  // the units it waits for
+  std::string same_run_as;         // a job scored from another job's run (native contact): that job's id
+};
+std::vector<PlannedUnit> plan_suites(const std::vector<SuiteSettings>& parts);
+
+// The suites as a source of units for one runner shared with other parts (a study's sweeps): prepare_suites
+// checks and records the settings and plans (throwing as run_suites does), run_units runs the jobs, finish
+// tells the outcome. The caller installs the InterruptionHandler (worker_process.h).
+class SuiteSource : public UnitSource {
+ public:
+  virtual SuiteOutcome finish() = 0;
+};
+std::unique_ptr<SuiteSource> prepare_suites(const std::vector<SuiteSettings>& parts);
 
 }  // namespace ib

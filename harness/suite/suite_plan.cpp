@@ -68,7 +68,7 @@ std::vector<std::string> SuiteRunner::planned_job_ids() const {
 
 std::vector<std::string> SuiteRunner::planned_step_keys() const {
   std::vector<std::string> keys;
-  for (const PlannedJob& group : step_groups_) keys.push_back(step_row_key(step_group(group), *settings_.step_search));
+  for (const PlannedJob& group : step_groups_) keys.push_back(step_row_key(step_group(group), *part_of(group).step_search));
   return keys;
 }
 
@@ -149,6 +149,24 @@ static std::string unreadable_job_id(const std::string& file, bool stem_shared) 
     stem = stem.substr(0, 48) + "-" + plan_digest({error ? file : canonical.string()}).substr(0, 8);
   }
   return stem + "/unreadable";
+}
+
+std::vector<PlannedUnit> SuiteRunner::planned_units() {
+  plan();
+  std::vector<PlannedUnit> units;
+  for (const RunRecord& r : unrunnable_) units.push_back({r.job_id, PlannedUnit::Kind::unrunnable, {}, ""});
+  const auto unit_of = [](const PlannedJob& job, PlannedUnit::Kind kind) {
+    PlannedUnit unit{job.id, kind, {}, job.same_run_as};
+    for (const std::string& id : {job.beam_reference, job.chain_reference})
+      if (!id.empty()) unit.after.push_back(id);
+    return unit;
+  };
+  for (const PlannedJob& job : jobs_)
+    units.push_back(unit_of(job, job.kind == JobKind::beam_reference    ? PlannedUnit::Kind::beam_reference
+                                 : job.kind == JobKind::chain_reference ? PlannedUnit::Kind::chain_reference
+                                                                        : PlannedUnit::Kind::engine));
+  for (const PlannedJob& group : step_groups_) units.push_back(unit_of(group, PlannedUnit::Kind::step_search));
+  return units;
 }
 
 void SuiteRunner::plan() {
@@ -299,12 +317,12 @@ PlannedJob SuiteRunner::make_job(std::size_t scenario, JobKind kind, const std::
 // the whole grid, each costing what a probe at the grid's steps costs on average. The search itself
 // replaces this as it goes (run_step_searches).
 void SuiteRunner::expect_whole_searches() {
-  const std::vector<double> grid = step_grid(*settings_.step_search);
-  double steps_per_second = 0;
-  for (double dt : grid) steps_per_second += 1.0 / dt / static_cast<double>(grid.size());
-  // a bisection, and a last probe for each of the three metrics' brackets beside stability's
-  const int probes = static_cast<int>(std::ceil(std::log2(grid.size() + 1.0))) + 3;
   for (const PlannedJob& group : step_groups_) {
+    const std::vector<double> grid = step_grid(*part_of(group).step_search);
+    double steps_per_second = 0;
+    for (double dt : grid) steps_per_second += 1.0 / dt / static_cast<double>(grid.size());
+    // a bisection, and a last probe for each of the three metrics' brackets beside stability's
+    const int probes = static_cast<int>(std::ceil(std::log2(grid.size() + 1.0))) + 3;
     JobWork work = work_of(group);
     work.in_steps = true;
     work.units = scenarios_[group.scenario].duration_s * steps_per_second;
@@ -360,7 +378,7 @@ void SuiteRunner::describe_plan(int to_run) const {
   std::fprintf(stderr, "suite: %d jobs to run on %d workers into %s%s\n", to_run, std::max(1, settings_.jobs),
                settings_.out.c_str(),
                step_groups_.empty() ? ""
-                                    : (", then " + std::to_string(step_groups_.size()) +
+                                    : (", and " + std::to_string(step_groups_.size()) +
                                        " step searches (their probes planned as they go)").c_str());
   std::fprintf(stderr, "  scenarios: %s\n  laws: %s; runs (or step searches) per simulator: %s; steps: %s\n",
                joined(names).c_str(),
@@ -379,3 +397,11 @@ void SuiteRunner::add(const PlannedJob& job, std::set<std::string>& planned) {
 }
 
 }  // namespace ib::suite_internal
+
+namespace ib {
+
+std::vector<PlannedUnit> plan_suites(const std::vector<SuiteSettings>& parts) {
+  return suite_internal::SuiteRunner(parts).planned_units();
+}
+
+}  // namespace ib

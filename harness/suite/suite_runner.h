@@ -1,10 +1,9 @@
-// The suite runner, internal to the harness: its state (the plan, the workers, the searches) in one
-// class whose stages live in their own files:
-//   suite.cpp               run_suite and the orchestration (references first, then engines or searches)
+// The suite runner, internal to the harness: its state (the plan, the searches, what runs) in one class,
+// a source of units for the one runner (harness/jobs/unit_source.h), whose stages live in their own files:
+//   suite.cpp               run_suites, and what is ready to run next (a job once its references have ended)
 //   suite_plan.cpp          the job matrix, shards and the plan's description
-//   worker_pool.cpp         the pool of job processes: time limits, collecting their records (a process
-//                           itself: worker_process.h, shared with the sweep)
-//   step_search_driver.cpp  the step searches' probes, scheduled as their brackets ask
+//   suite_jobs.cpp          a job started in the pool (harness/jobs/process_pool.h), its process, its record
+//   step_search_driver.cpp  the step searches' probes, ready as their brackets ask
 // Nothing outside the harness includes this (suite.h is the interface).
 #pragma once
 
@@ -27,6 +26,7 @@
 #include "harness/jobs/run_job.h"
 #include "harness/suite/step_search.h"
 #include "harness/suite/suite.h"
+#include "harness/jobs/process_pool.h"
 #include "harness/jobs/worker_process.h"
 
 namespace ib::suite_internal {
@@ -66,30 +66,41 @@ struct ScoredFrom {
 SuiteSettings with_one_tolerance_record(SuiteSettings settings);
 std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSettings>& parts);
 
-// The suite's parts (run_suites): one plan, one pool of workers. What every part shares (the folder, the
-// workers, the time limit, resume, shards) is the first part's; what decides a job's run (its scenario as
-// cut, its measurement) is its own part's.
-class SuiteRunner {
+// The suite's parts (run_suites): one plan, a source of units for the one runner (unit_source.h). What
+// every part shares (the folder, the workers, the time limit, resume, shards) is the first part's; what
+// decides a job's run (its scenario as cut, its measurement, its step search) is its own part's. A job is
+// ready when the references it is compared with have ended (no phase waits for another), a step search's
+// next probe when its previous one has ended.
+class SuiteRunner : public SuiteSource {
  public:
   explicit SuiteRunner(const std::vector<SuiteSettings>& parts) : parts_(with_one_tolerance_record(parts)) {}
-  // On an exception (a result that cannot be written), no worker outlives the runner.
-  ~SuiteRunner() { stop_workers(/*collect_finished=*/false); }
   SuiteRunner(const SuiteRunner&) = delete;
   SuiteRunner& operator=(const SuiteRunner&) = delete;
 
-  SuiteOutcome run();
+  // Checks and records the settings, plans, records what cannot run (suite.cpp).
+  void begin();
+  // The plan alone, as plain data (plan_suites): nothing is written, nothing runs.
+  std::vector<PlannedUnit> planned_units();
+  std::optional<double> next_cost() override;
+  std::string start_next(ProcessPool& pool) override;
+  void ended(const ProcessEnd& end) override;
+  SuiteOutcome finish() override;
 
  private:
-  struct Running {
-    const PlannedJob* job;
-    Clock::time_point started;
-    bool timed_out = false;
-    int message_pipe = -1;  // read end: a write error's message from the job's process
+  // A step search's group (step_search_driver.cpp): its bisection starts when its reference has ended.
+  struct SearchGroup {
+    const PlannedJob* job;  // the group's job with dt = 0: its id is the group's id
+    StepGroup info;
+    const StepSearchSettings* settings = nullptr;
+    std::unique_ptr<StepSearch> search;  // made when its reference has ended
+    bool with_chain = false, running = false, finished = false;
+    int probe_index = -1;
+    std::optional<PlannedJob> next_probe;  // its next probe, once chosen and not yet started
   };
-
-  // Stops every worker. With collect_finished, a job that ended cleanly before the stop is recorded
-  // first (nothing finished is lost); the others are killed and not recorded (--resume reruns them).
-  void stop_workers(bool collect_finished);
+  void begin_step_searches();
+  // The group whose next probe is ready (choosing it, or ending the group's search when it needs none).
+  SearchGroup* ready_search();
+  void probe_ended(const PlannedJob& probe, const std::string& json);
 
   std::string folder_of(const PlannedJob& job) const { return settings_.out + "/runs/" + job.id; }
 
@@ -147,7 +158,21 @@ class SuiteRunner {
   // The reference a job is compared with, read from its folder once and kept; null if it did not finish.
   const ReferenceData* reference(const std::string& id, const PlannedJob& job);  // read as job's part measures
 
-  void start(const PlannedJob& job);
+  // Starts a job's process; "" when none was needed (its reference came from the cache).
+  std::string start(const PlannedJob& job, ProcessPool& pool);
+  // Whether a job's references have ended (recorded, or failed), and those of the jobs scored from its run:
+  // it can run now.
+  bool references_ended(const PlannedJob& job) const {
+    const auto own_ended = [this](const PlannedJob& j) {
+      return !unfinished_.count(j.beam_reference) && !unfinished_.count(j.chain_reference);
+    };
+    if (!own_ended(job)) return false;
+    for (const PlannedJob* other : unrecorded_scored_from(job))
+      if (!own_ended(*other)) return false;
+    return true;
+  }
+  // The ready job to start next (the costliest, a kind not measured first), or null.
+  const PlannedJob* ready_job();
   // A reference job whose run the reference cache may hold or keep (SuiteSettings::reference_cache).
   bool cacheable(const PlannedJob& job) const {
     return job.kind != JobKind::engine && !settings_.reference_cache.empty() && unrecorded_scored_from(job).empty();
@@ -169,13 +194,9 @@ class SuiteRunner {
                                  const ReferenceData* beam, const ReferenceData* chain,
                                  const std::vector<ScoredFrom>& scored, int message_pipe);
 
-  // Waits for a job to end (or stops one past its time limit) and records it; returns the job and the
-  // runs.jsonl line recorded for it (none when nothing ended).
-  std::optional<std::pair<const PlannedJob*, std::string>> reap(bool block);
-
   // Records a job that ended; returns its runs.jsonl line ("" when an interruption or a signal from
   // outside stopped it: nothing is recorded and --resume reruns it).
-  std::string collect(const PlannedJob& job, int status, bool timed_out, int message_pipe);
+  std::string collect(const PlannedJob& job, const ProcessEnd& end);
 
   // The jobs scored from this job's run that are not recorded yet.
   std::vector<const PlannedJob*> unrecorded_scored_from(const PlannedJob& job) const;
@@ -191,9 +212,6 @@ class SuiteRunner {
 
   void count_and_show(const std::string& id, Verdict verdict, double units_done = -1, double compute_s = -1);
 
-  // --find-steps: each group's search picks its next probe when its previous one has ended; groups
-  // share the worker processes. Probes already in runs.jsonl (--resume) are read, not run again.
-  void run_step_searches();
 
   const std::vector<SuiteSettings> parts_;  // copies: the tolerance record is set in them (with_one_tolerance_record)
   const SuiteSettings& settings_ = parts_.front();  // what the parts share
@@ -209,7 +227,16 @@ class SuiteRunner {
   std::set<std::string> stopped_;  // jobs stopped from outside: neither they nor the jobs compared with them are recorded
   std::multimap<std::string, const PlannedJob*> scored_from_;  // a run's job id -> the jobs scored from its run
   std::map<std::string, std::unique_ptr<ReferenceData>> references_;
-  std::map<pid_t, Running> running_;
+  std::vector<const PlannedJob*> pending_;     // jobs to run, not started
+  std::set<std::string> unfinished_;           // jobs pending or running: those compared with them wait
+  std::map<std::string, const PlannedJob*> running_;  // by unit id
+  const PlannedJob* next_ = nullptr;           // what next_cost chose and start_next starts
+  SearchGroup* next_search_ = nullptr;
+  std::vector<SearchGroup> searches_;
+  std::map<std::string, std::size_t> search_of_probe_;
+  std::map<std::string, std::string> recorded_lines_;  // references and probes, for the searches
+  std::set<std::string> step_rows_done_;               // --resume: the searches recorded before
+  int finished_searches_ = 0, finished_search_probes_ = 0;  // how many probes a search takes, measured here
   std::unique_ptr<Progress> progress_;
   std::unique_ptr<FolderLock> lock_;  // the output folder's, held while the suite writes into it
   SuiteOutcome outcome_;

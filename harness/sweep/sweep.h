@@ -11,11 +11,13 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/jobs/run_job.h"
+#include "harness/jobs/unit_source.h"
 #include "harness/jobs/shard_plan.h"
 #include "model/simulator.h"
 
@@ -67,6 +69,15 @@ struct SweepOutcome {
 // scenario without a motor, a --resume of a folder holding another sweep or shard) before running
 // anything, OutputError (run_files.h) when a result cannot be written.
 SweepOutcome run_sweep(const SweepSettings& settings);
+
+// The sweep as a source of units for one runner shared with other parts (a study): prepare_sweep checks the
+// settings and prepares the folder (throwing as run_sweep does), run_units runs its chains, finish writes the
+// tables and tells the outcome. The caller installs the InterruptionHandler (worker_process.h).
+class SweepSource : public UnitSource {
+ public:
+  virtual SweepOutcome finish() = 0;
+};
+std::unique_ptr<SweepSource> prepare_sweep(const SweepSettings& settings);
 
 // ---- The plan, shared by the runner, the merge and the tests.
 struct SweepRow {

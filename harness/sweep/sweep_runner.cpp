@@ -3,15 +3,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <thread>
 
 #include "harness/records/engines_file.h"
 #include "harness/records/folder_lock.h"
@@ -19,6 +19,7 @@
 #include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
 #include "harness/sweep/sweep_internal.h"
+#include "harness/jobs/unit_source.h"
 #include "harness/jobs/worker_process.h"
 #include "model/scenario_toml.h"
 #include "physics/modal_model.h"
@@ -28,7 +29,6 @@ namespace ib {
 namespace {
 
 using namespace sweep_internal;
-using Clock = std::chrono::steady_clock;
 
 // Everything that decides the sweep's results: a --resume or a shard of another sweep is refused.
 nlohmann::ordered_json settings_record(const SweepSettings& s, const Scenario& scenario) {
@@ -55,18 +55,19 @@ nlohmann::ordered_json settings_record(const SweepSettings& s, const Scenario& s
   return j;
 }
 
-class SweepRunner {
+class SweepRunner : public SweepSource {
  public:
-  explicit SweepRunner(const SweepSettings& s) : s_(s) {}
-  ~SweepRunner() { stop_all(); }
-  SweepOutcome run();
+  explicit SweepRunner(SweepSettings s) : s_(std::move(s)) {}
+  void begin();
+  std::optional<double> next_cost() override;
+  std::string start_next(ProcessPool& pool) override;
+  void ended(const ProcessEnd& end) override;
+  void tick(ProcessPool& pool) override;
+  SweepOutcome finish() override;
 
  private:
   struct Running {
-    const SweepChain* chain;
-    Clock::time_point progress;  // when the chain last finished a row (or started)
-    int rows_done = 0;
-    bool timed_out = false;
+    int rows_done = 0;  // when the chain last finished a row (or started): its clock restarts with each row
   };
 
   std::string folder_of(const SweepRow& row) const { return s_.out + "/runs/" + row.id; }
@@ -76,22 +77,26 @@ class SweepRunner {
     for (const SweepRow& row : chain.rows) done += row_done(folder_of(row)) ? 1 : 0;
     return done;
   }
+  // The simulated seconds of a chain's rows not done yet, and what its engine costs per simulated second.
+  double simulated_s_left(const SweepChain& chain) const;
+  static std::string kind_of(const SweepChain& chain) { return chain.rows.front().job.engine + " " + options_text(chain.rows.front().job.settings.options); }
   void prepare_folder();
-  [[noreturn]] void run_chain_in_child(const SweepChain& chain);
-  void start(const SweepChain& chain);
-  void collect(pid_t pid, int status);
+  [[noreturn]] void run_chain_in_child(const SweepChain& chain, int message_pipe);
   // Rows from..end of a chain that will not run: row `from` with first_reason (and timed_out), the rest
   // with "not run: " + rest_reason.
   void record_rest_not_run(const SweepChain& chain, std::size_t from, const std::string& first_reason,
                            const std::string& rest_reason, bool timed_out);
   void refresh_tables();
-  void stop_all();
 
-  const SweepSettings& s_;
+  const SweepSettings s_;
   Scenario scenario_;
   std::vector<SweepChain> all_, mine_;
   std::vector<std::string> my_row_ids_;
-  std::map<pid_t, Running> running_;
+  std::vector<const SweepChain*> pending_;
+  std::map<std::string, const SweepChain*> chain_of_unit_;
+  std::map<std::string, Running> running_;
+  std::set<std::string> started_kinds_;
+  std::map<std::string, std::pair<double, double>> cost_of_kind_;  // seconds, simulated seconds of the chains ended
   int recorded_ = -1;  // rows in the tables when last written
   SweepOutcome outcome_;
   std::unique_ptr<FolderLock> lock_;  // the output folder's, held while the sweep writes into it
@@ -133,7 +138,7 @@ void SweepRunner::prepare_folder() {
   }
 }
 
-void SweepRunner::run_chain_in_child(const SweepChain& chain) {
+void SweepRunner::run_chain_in_child(const SweepChain& chain, int message_pipe) {
   std::optional<SavedState> state;
   try {
     for (std::size_t k = 0; k < chain.rows.size(); ++k) {
@@ -152,25 +157,55 @@ void SweepRunner::run_chain_in_child(const SweepChain& chain) {
       state = run_sweep_row(scenario_, row, s_, state, folder);
     }
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    std::fflush(stderr);
-    _exit(kWorkerOutputError);
+    send_and_exit(message_pipe, e.what());
   }
   std::fflush(nullptr);
   _exit(0);
 }
 
-void SweepRunner::start(const SweepChain& chain) {
-  std::filesystem::create_directories(s_.out + "/runs/" + chain.id);
-  std::fflush(nullptr);
-  const pid_t pid = fork_worker();
-  if (pid < 0) throw std::runtime_error("cannot start a worker process (fork failed)");
-  if (pid == 0) {
-    const int log = open(log_of(chain).c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    if (log >= 0) dup2(log, STDOUT_FILENO), dup2(log, STDERR_FILENO), close(log);
-    run_chain_in_child(chain);
+double SweepRunner::simulated_s_left(const SweepChain& chain) const {
+  double seconds = 0;
+  for (const SweepRow& row : chain.rows)
+    if (!row_done(folder_of(row))) seconds += row_scenario(scenario_, row, s_).scenario.duration_s;
+  return seconds;
+}
+
+// The costliest chain to come: its simulated seconds at what its kind cost per simulated second so far; a kind
+// not started yet is unknown (it goes first, so that its cost is measured), one started but not ended costs
+// what the reference costs on the rig.
+std::optional<double> SweepRunner::next_cost() {
+  if (pending_.empty()) return std::nullopt;
+  double best = -1;
+  for (const SweepChain* chain : pending_) {
+    const std::string kind = kind_of(*chain);
+    double cost = kUnknownCost;
+    if (const auto measured = cost_of_kind_.find(kind); measured != cost_of_kind_.end() && measured->second.second > 0)
+      cost = simulated_s_left(*chain) * measured->second.first / measured->second.second;
+    else if (started_kinds_.count(kind))
+      cost = simulated_s_left(*chain) * 0.01;
+    best = std::max(best, cost);
   }
-  running_[pid] = Running{&chain, Clock::now(), rows_done(chain), false};
+  return best;
+}
+
+std::string SweepRunner::start_next(ProcessPool& pool) {
+  auto next = pending_.begin();
+  for (auto it = pending_.begin(); it != pending_.end(); ++it)
+    if (!started_kinds_.count(kind_of(**it)) && started_kinds_.count(kind_of(**next))) next = it;
+  if (started_kinds_.count(kind_of(**next))) {  // every kind started: the longest chain first
+    for (auto it = pending_.begin(); it != pending_.end(); ++it)
+      if (simulated_s_left(**it) > simulated_s_left(**next)) next = it;
+  }
+  const SweepChain& chain = **next;
+  pending_.erase(next);
+  started_kinds_.insert(kind_of(chain));
+  std::filesystem::create_directories(s_.out + "/runs/" + chain.id);
+  const std::string unit = "sweep " + s_.out + " " + chain.id;
+  pool.start({unit, s_.time_limit_s, log_of(chain), /*append_log=*/true},
+             [this, &chain](int message_pipe) { run_chain_in_child(chain, message_pipe); });
+  chain_of_unit_[unit] = &chain;
+  running_[unit] = Running{rows_done(chain)};
+  return unit;
 }
 
 void SweepRunner::record_rest_not_run(const SweepChain& chain, std::size_t from, const std::string& first_reason,
@@ -183,27 +218,42 @@ void SweepRunner::record_rest_not_run(const SweepChain& chain, std::size_t from,
   }
 }
 
-void SweepRunner::collect(pid_t pid, int status) {
-  const Running run = running_.at(pid);
-  running_.erase(pid);
-  const SweepChain& chain = *run.chain;
+void SweepRunner::ended(const ProcessEnd& end) {
+  const SweepChain& chain = *chain_of_unit_.at(end.unit);
+  chain_of_unit_.erase(end.unit);
+  running_.erase(end.unit);
+  const int status = end.status;
   if (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerOutputError)
-    throw OutputError(last_line(log_of(chain)));
+    throw OutputError(end.output_error.empty() ? last_line(log_of(chain)) : end.output_error);
+  const std::string kind = kind_of(chain);
+  double simulated_s = 0;
+  for (const SweepRow& row : chain.rows)
+    if (row_done(folder_of(row))) simulated_s += row_scenario(scenario_, row, s_).scenario.duration_s;
+  cost_of_kind_[kind].first += end.wall_time_s;
+  cost_of_kind_[kind].second += simulated_s;
   std::size_t first_missing = chain.rows.size();
   for (std::size_t k = 0; k < chain.rows.size() && first_missing == chain.rows.size(); ++k)
     if (!row_done(folder_of(chain.rows[k]))) first_missing = k;
   if (first_missing == chain.rows.size()) return;
-  if (interrupted() || stopped_from_outside(status, run.timed_out)) {
+  if (interrupted() || stopped_from_outside(status, end.timed_out)) {
     if (!interrupted()) ++outcome_.chains_stopped, outcome_.stopped_by = WTERMSIG(status);
     std::fprintf(stderr, "sweep: %s stopped by signal %d before r = %s; --resume runs it again\n", chain.id.c_str(),
                  WIFSIGNALED(status) ? WTERMSIG(status) : 0, ratio_text(chain.rows[first_missing].ratio).c_str());
     return;
   }
-  const std::string why = describe_exit(status, s_.time_limit_s, run.timed_out,
-                                                        last_line(log_of(chain)));
+  const std::string why = describe_exit(status, s_.time_limit_s, end.timed_out, last_line(log_of(chain)));
   record_rest_not_run(chain, first_missing, why,
                       "the chain's process ended at r = " + ratio_text(chain.rows[first_missing].ratio) + " (see that row)",
-                      run.timed_out);
+                      end.timed_out);
+}
+
+// The time limit is per ratio: a chain's clock restarts with each row it finishes.
+void SweepRunner::tick(ProcessPool& pool) {
+  for (auto& [unit, run] : running_) {
+    const int done = rows_done(*chain_of_unit_.at(unit));
+    if (done != run.rows_done) run.rows_done = done, pool.restart_clock(unit);
+  }
+  refresh_tables();
 }
 
 void SweepRunner::refresh_tables() {
@@ -216,13 +266,7 @@ void SweepRunner::refresh_tables() {
   recorded_ = done;
 }
 
-void SweepRunner::stop_all() {
-  for (auto& [pid, run] : running_) kill(pid, SIGKILL);
-  for (auto& [pid, run] : running_) waitpid(pid, nullptr, 0);
-  running_.clear();
-}
-
-SweepOutcome SweepRunner::run() {
+void SweepRunner::begin() {
   scenario_ = load_scenario(s_.scenario_path);
   if (!scenario_.motor)
     throw std::invalid_argument(s_.scenario_path + ": a sweep needs a motor ([motor] in the scenario); this one has none");
@@ -238,47 +282,19 @@ SweepOutcome SweepRunner::run() {
   outcome_.rows_total = static_cast<int>(my_row_ids_.size());
   prepare_folder();
 
-  std::vector<const SweepChain*> pending;
   for (const SweepChain& chain : mine_) {
     const int done = rows_done(chain);
     outcome_.rows_skipped += done;
-    if (done < static_cast<int>(chain.rows.size())) pending.push_back(&chain);
+    if (done < static_cast<int>(chain.rows.size())) pending_.push_back(&chain);
   }
   std::fprintf(stderr, "sweep: %s, %zu ratios x %zu chains%s: %d rows to run (%d recorded already)\n",
                scenario_.name.c_str(), s_.ratios.size(), mine_.size(),
                s_.shard ? (" (shard " + to_string(*s_.shard) + ")").c_str() : "", outcome_.rows_total - outcome_.rows_skipped,
                outcome_.rows_skipped);
-  const InterruptionHandler handler;
-  std::size_t next = 0;
-  while ((next < pending.size() || !running_.empty()) && !interrupted()) {
-    while (next < pending.size() && static_cast<int>(running_.size()) < s_.jobs) start(*pending[next++]);
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, WNOHANG);
-    if (pid > 0 && running_.count(pid)) {
-      collect(pid, status);
-    } else {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    for (auto& [worker, run] : running_) {  // the time limit is per ratio: a chain's clock restarts with each row
-      const int done = rows_done(*run.chain);
-      if (done != run.rows_done) run.rows_done = done, run.progress = Clock::now();
-      if (!run.timed_out && std::chrono::duration<double>(Clock::now() - run.progress).count() > s_.time_limit_s) {
-        run.timed_out = true;
-        kill(worker, SIGKILL);
-      }
-    }
-    refresh_tables();
-  }
-  if (interrupted()) {
-    outcome_.interrupted_by = interrupt_signal;
-    for (auto& [pid, run] : running_) kill(pid, SIGKILL);
-    while (!running_.empty()) {  // a row that ended before the stop is kept (row.json is written last)
-      int status = 0;
-      const pid_t pid = waitpid(-1, &status, 0);
-      if (pid < 0) break;
-      running_.erase(pid);
-    }
-  }
+}
+
+SweepOutcome SweepRunner::finish() {
+  if (interrupted()) outcome_.interrupted_by = interrupt_signal;
   recorded_ = -1;
   refresh_tables();
   int done = 0;
@@ -296,9 +312,17 @@ SweepOutcome SweepRunner::run() {
 
 }  // namespace
 
+std::unique_ptr<SweepSource> prepare_sweep(const SweepSettings& settings) {
+  auto runner = std::make_unique<SweepRunner>(settings);
+  runner->begin();
+  return runner;
+}
+
 SweepOutcome run_sweep(const SweepSettings& settings) {
-  SweepRunner runner(settings);
-  return with_engines_file(settings.out, settings.simulators, runner.run());
+  const InterruptionHandler handler;
+  const std::unique_ptr<SweepSource> sweep = prepare_sweep(settings);
+  run_units({sweep.get()}, settings.jobs);
+  return with_engines_file(settings.out, settings.simulators, sweep->finish());
 }
 
 }  // namespace ib

@@ -1,9 +1,9 @@
-// The worker pool (suite_runner.h): each job in its own process, so that a crash, an abort or a hang
-// inside an engine's library costs that job alone; time limits, signals, and the records collected.
+// A suite's job in the one pool of processes (suite_runner.h): started with the references it is compared
+// with, run in its own process (a crash, an abort or a hang inside an engine's library costs that job alone),
+// and its record collected from its folder when its process ends.
 #include "harness/suite/suite_runner.h"
 
 #include <fcntl.h>
-#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <algorithm>
@@ -20,7 +20,6 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 #include "harness/records/number_text.h"
 #include "harness/jobs/progress.h"
 #include "harness/records/recorded_run.h"
@@ -32,29 +31,6 @@
 namespace ib::suite_internal {
 
 namespace fs = std::filesystem;
-
-// Stops every worker. With collect_finished, a job that ended cleanly before the stop is recorded
-// first (nothing finished is lost); the others are killed and not recorded (--resume reruns them).
-void SuiteRunner::stop_workers(bool collect_finished) {
-  if (collect_finished) {
-    for (int status = 0;;) {
-      const pid_t pid = waitpid(-1, &status, WNOHANG);
-      if (pid <= 0) break;
-      auto it = running_.find(pid);
-      if (it == running_.end()) continue;
-      const Running r = it->second;
-      running_.erase(it);
-      collect(*r.job, status, r.timed_out, r.message_pipe);
-    }
-  }
-  for (const auto& [pid, r] : running_) kill(pid, SIGKILL);
-  for (const auto& [pid, r] : running_) {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    if (r.message_pipe >= 0) close(r.message_pipe);
-  }
-  running_.clear();
-}
 
 // The reference a job is compared with, read from its folder once and kept; null if it did not finish.
 const ReferenceData* SuiteRunner::reference(const std::string& id, const PlannedJob& job) {
@@ -73,7 +49,7 @@ const ReferenceData* SuiteRunner::reference(const std::string& id, const Planned
   return found->second.get();
 }
 
-void SuiteRunner::start(const PlannedJob& job) {
+std::string SuiteRunner::start(const PlannedJob& job, ProcessPool& pool) {
   const std::string folder = folder_of(job);
   std::error_code error;
   fs::remove_all(folder, error);  // a previous, unfinished attempt
@@ -83,9 +59,10 @@ void SuiteRunner::start(const PlannedJob& job) {
   if (cacheable(job) &&
       restore_cached_reference(settings_.reference_cache, reference_cache_key(scenario, job.spec, measurement_of(job)), folder)) {
     progress_->estimate().start(job.id, progress_->now_s());
-    append_row_of(job);  // as if its process had just ended
+    const std::string json = append_row_of(job);  // as if its process had just ended
+    if (!step_groups_.empty()) recorded_lines_[job.id] = json;
     ++outcome_.references_from_cache;
-    return;
+    return "";
   }
   // Load the references in this process, so that the job's process inherits them.
   const ReferenceData* beam = reference(job.beam_reference, job);
@@ -98,19 +75,11 @@ void SuiteRunner::start(const PlannedJob& job) {
     if (error) throw OutputError(output_error_text(other_folder, "create the run folder", error.value()));
     scored.push_back({other, reference(other->beam_reference, *other), reference(other->chain_reference, *other)});
   }
-  std::fflush(nullptr);
-  int message_pipe[2] = {-1, -1};
-  if (pipe2(message_pipe, O_CLOEXEC) != 0)
-    throw std::runtime_error(std::string("cannot start a job's process: pipe: ") + std::strerror(errno));
-  const pid_t pid = fork_worker();
-  if (pid < 0) throw std::runtime_error(std::string("cannot start a job's process: ") + std::strerror(errno));
-  if (pid == 0) {
-    close(message_pipe[0]);
-    run_in_child(job, folder, scenario, beam, chain, scored, message_pipe[1]);  // never returns
-  }
-  close(message_pipe[1]);
-  running_.emplace(pid, Running{&job, Clock::now(), false, message_pipe[0]});
+  const std::string unit = "suite " + settings_.out + " " + job.id;
+  pool.start({unit, settings_.time_limit_s, folder + "/log.txt", /*append_log=*/false},
+             [&](int message_pipe) { run_in_child(job, folder, scenario, beam, chain, scored, message_pipe); });
   progress_->estimate().start(job.id, progress_->now_s());
+  return unit;
 }
 
 // What a job's folder keeps of its series: a reference always its window (engine runs are compared
@@ -137,12 +106,6 @@ static std::string missing_reference(const PlannedJob& job, const ReferenceData*
 [[noreturn]] void SuiteRunner::run_in_child(const PlannedJob& job, const std::string& folder, const Scenario& scenario,
                                const ReferenceData* beam, const ReferenceData* chain,
                                const std::vector<ScoredFrom>& scored, int message_pipe) {
-  const int log = open((folder + "/log.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (log >= 0) {
-    dup2(log, STDOUT_FILENO);
-    dup2(log, STDERR_FILENO);
-    close(log);
-  }
   RunRecord record;
   ReferenceData run_data;  // the run's metrics and trajectory, for the jobs scored from it
   bool ran = false;
@@ -188,37 +151,13 @@ static std::string missing_reference(const PlannedJob& job, const ReferenceData*
   _exit(0);
 }
 
-// Waits for a job to end (or stops one past its time limit) and records it; returns the job and the
-// runs.jsonl line recorded for it (none when nothing ended).
-std::optional<std::pair<const PlannedJob*, std::string>> SuiteRunner::reap(bool block) {
-  while (true) {
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, WNOHANG);
-    if (pid > 0) {
-      auto it = running_.find(pid);
-      if (it == running_.end()) continue;
-      const Running r = it->second;
-      running_.erase(it);
-      return std::pair{r.job, collect(*r.job, status, r.timed_out, r.message_pipe)};
-    }
-    const auto now = Clock::now();
-    for (auto& [child, r] : running_) {
-      if (!r.timed_out && std::chrono::duration<double>(now - r.started).count() > settings_.time_limit_s) {
-        r.timed_out = true;
-        kill(child, SIGKILL);
-      }
-    }
-    if (!block || running_.empty() || interrupted()) return std::nullopt;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-}
-
 // Records a job that ended; returns its runs.jsonl line ("" when an interruption or a signal from
 // outside stopped it: nothing is recorded and --resume reruns it).
-std::string SuiteRunner::collect(const PlannedJob& job, int status, bool timed_out, int message_pipe) {
+std::string SuiteRunner::collect(const PlannedJob& job, const ProcessEnd& end) {
   const std::string folder = folder_of(job);
-  const std::string output_error = message_pipe >= 0 ? receive(message_pipe) : "";
-  if (message_pipe >= 0) close(message_pipe);
+  const int status = end.status;
+  const bool timed_out = end.timed_out;
+  const std::string& output_error = end.output_error;
   if (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerOutputError)
     throw OutputError(output_error.empty() ? output_error_text(folder, "write the run's files", 0) : output_error);
   const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
@@ -304,6 +243,7 @@ void SuiteRunner::remove_row_files(const std::string& folder) {
 
 void SuiteRunner::finish(const RunRecord& record) {
   append_run(settings_.out, record);
+  recorded_.insert(record.job_id);
   count_and_show(record.job_id, record.verdict);
 }
 

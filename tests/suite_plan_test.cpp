@@ -1,0 +1,127 @@
+// A suite's plan is plain data (plan_suites), made without running anything or writing a file: its job matrix,
+// the references each run waits for, the native run that answers for every law, a step search that shares a
+// suite's reference, and what cannot run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "harness/suite/suite.h"
+#include "mirror_simulator.h"
+#include "simulators/catalog.h"
+#include "suite_test_support.h"
+
+namespace ib {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::unique_ptr<Simulator> test_factory(const std::string& name) {
+  if (name == "mirror") return std::make_unique<test::Mirror>();
+  return make_simulator(name);
+}
+
+class SuitePlan : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = test::fresh_test_folder("impactbench_plan_");
+    test::write_short_free_vibration(root_ / "scenarios");
+    settings_.inputs = {(root_ / "scenarios").string()};
+    settings_.engines = {"reference", "mirror"};
+    settings_.laws = {ContactLaw::hertz, ContactLaw::newton};
+    settings_.time_steps_s = {1e-4, 5e-5};
+    settings_.contact_paths = {"matched", "native"};
+    settings_.out = (root_ / "out").string();
+    settings_.simulators = simulator_catalog();
+    settings_.simulators.make = test_factory;
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  static std::map<std::string, PlannedUnit> by_id(const std::vector<PlannedUnit>& units) {
+    std::map<std::string, PlannedUnit> map;
+    for (const PlannedUnit& u : units) EXPECT_TRUE(map.emplace(u.id, u).second) << "planned twice: " << u.id;
+    return map;
+  }
+  static int count(const std::vector<PlannedUnit>& units, PlannedUnit::Kind kind) {
+    return static_cast<int>(std::count_if(units.begin(), units.end(), [kind](const PlannedUnit& u) { return u.kind == kind; }));
+  }
+
+  fs::path root_;
+  SuiteSettings settings_;
+};
+
+TEST_F(SuitePlan, TheMatrixAndWhatEachRunWaitsFor) {
+  const std::vector<PlannedUnit> units = plan_suites({settings_});
+  EXPECT_FALSE(fs::exists(settings_.out)) << "planning writes nothing";
+  // laws x steps x paths engine runs, a beam reference per law, a chain reference (the engine's 4 links) per law
+  EXPECT_EQ(count(units, PlannedUnit::Kind::engine), 2 * 2 * 2);
+  EXPECT_EQ(count(units, PlannedUnit::Kind::beam_reference), 2);
+  EXPECT_EQ(count(units, PlannedUnit::Kind::chain_reference), 2);
+  const auto plan = by_id(units);
+  for (const PlannedUnit& u : units) {
+    for (const std::string& before : u.after) {
+      ASSERT_TRUE(plan.count(before)) << u.id << " waits for " << before << ", which is not planned";
+      EXPECT_NE(plan.at(before).kind, PlannedUnit::Kind::engine) << u.id << " waits for a reference only";
+    }
+    if (u.kind == PlannedUnit::Kind::engine) {
+      ASSERT_EQ(u.after.size(), 2u) << u.id << ": its beam and its chain reference";
+      EXPECT_EQ(plan.at(u.after[0]).kind, PlannedUnit::Kind::beam_reference);
+      EXPECT_EQ(plan.at(u.after[1]).kind, PlannedUnit::Kind::chain_reference);
+      // each run is compared with the references of its own law
+      const std::string law = u.id.find("/hertz/") != std::string::npos ? "/hertz" : "/newton";
+      for (const std::string& before : u.after) EXPECT_NE(before.find(law), std::string::npos) << u.id << " -> " << before;
+    }
+    if (u.kind == PlannedUnit::Kind::chain_reference) {
+      ASSERT_EQ(u.after.size(), 1u) << u.id << " is compared with the beam";
+      EXPECT_EQ(plan.at(u.after[0]).kind, PlannedUnit::Kind::beam_reference);
+    }
+  }
+}
+
+TEST_F(SuitePlan, OneNativeRunAnswersForEveryLaw) {
+  const auto plan = by_id(plan_suites({settings_}));
+  int scored = 0;
+  for (const auto& [id, u] : plan) {
+    if (u.same_run_as.empty()) continue;
+    ++scored;
+    EXPECT_NE(id.find("contact=native"), std::string::npos) << id;
+    EXPECT_NE(id.find("/newton/"), std::string::npos) << id << " is the second law's";
+    ASSERT_TRUE(plan.count(u.same_run_as)) << u.same_run_as;
+    EXPECT_NE(u.same_run_as.find("/hertz/"), std::string::npos) << "the first law's native run: " << u.same_run_as;
+  }
+  EXPECT_EQ(scored, 2) << "the second law's native runs at both steps";
+}
+
+TEST_F(SuitePlan, AStepSearchSharesTheSuitesReferenceAndWaitsForIt) {
+  SuiteSettings search = settings_;
+  search.laws = {ContactLaw::hertz};
+  search.contact_paths = {"matched"};
+  search.time_steps_s.clear();
+  search.step_search = StepSearchSettings{};
+  search.step_search->min_step_s = 1e-4;
+  const std::vector<PlannedUnit> units = plan_suites({settings_, search});
+  const auto plan = by_id(units);  // a shared reference is planned once
+  ASSERT_EQ(count(units, PlannedUnit::Kind::step_search), 1);
+  EXPECT_EQ(count(units, PlannedUnit::Kind::beam_reference), 2);
+  for (const PlannedUnit& u : units)
+    if (u.kind == PlannedUnit::Kind::step_search) {
+      ASSERT_FALSE(u.after.empty());
+      for (const std::string& before : u.after) EXPECT_TRUE(plan.count(before)) << before;
+    }
+}
+
+TEST_F(SuitePlan, WhatCannotRunIsPlannedAsSuch) {
+  std::ofstream(root_ / "scenarios" / "broken.toml") << "[scenario\nname = \n";
+  settings_.laws = {ContactLaw::hertz};
+  const std::vector<PlannedUnit> units = plan_suites({settings_});
+  ASSERT_EQ(count(units, PlannedUnit::Kind::unrunnable), 1);
+  EXPECT_EQ(units.front().id, "broken/unreadable");
+  EXPECT_TRUE(units.front().after.empty());
+}
+
+}  // namespace
+}  // namespace ib
