@@ -119,10 +119,18 @@ def case_figures(suite, scenario, law, chosen, steps, tolerances, folder, stamp)
 _CASES = {}  # what the worker processes draw from, set before they fork (nothing is pickled but the answer)
 
 
-def _draw_case(index):
+def _draw(task):
+    """One task's figures: a case's (task ("case", index)) or a law's stability map and comparison with
+    the experiment (task ("law", law))."""
     c = _CASES
-    scenario, law, chosen = c["cases"][index]
-    return case_figures(c["suite"], scenario, law, chosen, c["steps"], c["tolerances"], c["folder"], c["stamp"])
+    kind, key = task
+    if kind == "case":
+        scenario, law, chosen = c["cases"][key]
+        return case_figures(c["suite"], scenario, law, chosen, c["steps"], c["tolerances"], c["folder"], c["stamp"])
+    paths = [step_figures.stability_map(c["suite"], key, c["folder"], c["stamp"], c["steps"]),
+             zoom_figures.against_experiment(c["suite"], key, c["chosen_by_law"][key], c["experiment"], c["folder"],
+                                             c["stamp"])]
+    return [p for p in paths if p]
 
 
 def case_line(case):
@@ -138,15 +146,25 @@ def case_line(case):
     return "; ".join(parts) + "."
 
 
-def draw_cases(suite, cases, steps, tolerances, folder, stamp):
-    """Every case's figures, the cases spread over the machine's cores (each figure is independent, and
-    saving them is most of the report's time); in one process where fork is not available."""
-    _CASES.update(suite=suite, cases=cases, steps=steps, tolerances=tolerances, folder=folder, stamp=stamp)
-    workers = min(len(cases), os.cpu_count() or 1)
+def draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances, folder, stamp):
+    """Every case's figures and every law's, as (paths per case, paths per law), spread over the machine's
+    cores (each figure is independent, and drawing them is most of the report's time); in one process where
+    fork is not available. The costliest tasks go first (the cases with series: a dozen panels each), so
+    that the two workers end together."""
+    laws = sorted(chosen_by_law)
+    _CASES.update(suite=suite, cases=cases, chosen_by_law=chosen_by_law, experiment=experiment, steps=steps,
+                  tolerances=tolerances, folder=folder, stamp=stamp)
+    with_series = [i for i, (_, _, chosen) in enumerate(cases) if any(suite.has_series(r) for r in chosen.values())]
+    tasks = ([("case", i) for i in with_series] + [("law", law) for law in laws] +
+             [("case", i) for i in range(len(cases)) if i not in with_series])
+    workers = min(len(tasks), os.cpu_count() or 1)
     if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
-        return [_draw_case(i) for i in range(len(cases))]
-    with multiprocessing.get_context("fork").Pool(workers) as pool:
-        return pool.map(_draw_case, range(len(cases)), chunksize=1)
+        drawn = [_draw(task) for task in tasks]
+    else:
+        with multiprocessing.get_context("fork").Pool(workers) as pool:
+            drawn = pool.map(_draw, tasks, chunksize=1)
+    by_task = dict(zip(tasks, drawn))
+    return [by_task[("case", i)] for i in range(len(cases))], [by_task[("law", law)] for law in laws]
 
 
 def main():
@@ -191,7 +209,8 @@ def main():
                 chosen[config] = run
         chosen_by_law.setdefault(law, {})[scenario] = chosen
         cases.append((scenario, law, chosen))
-    paths_by_case = draw_cases(suite, cases, steps, tolerances, figures_folder, stamp)
+    paths_by_case, paths_by_law = draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances,
+                                               figures_folder, stamp)
     for (scenario, law, chosen), paths, case in zip(cases, paths_by_case, document["cases"]):
         header, rows = tables.case_table(suite, scenario, law, experiment)
         line = case_line(case)
@@ -205,10 +224,8 @@ def main():
             markdown_text += "\n\n" + STEPS_NOTE + "\n\n" + tables.markdown(steps_header, steps_rows)
             html_text += f"<p>{STEPS_NOTE}</p>" + tables.html_table(steps_header, steps_rows)
         sections.append((f"{scenario}, {law}", markdown_text, html_text, paths))
-    for law in sorted(chosen_by_law):
-        paths = [step_figures.stability_map(suite, law, figures_folder, stamp, steps),
-                 zoom_figures.against_experiment(suite, law, chosen_by_law[law], experiment, figures_folder, stamp)]
-        sections.append((f"{law}: stability and the experiment", "", "", [p for p in paths if p]))
+    for law, paths in zip(sorted(chosen_by_law), paths_by_law):
+        sections.append((f"{law}: stability and the experiment", "", "", paths))
 
     try:
         measured = performance.section(args.suite)  # SUITE/performance/: bench/ timings, if any were saved

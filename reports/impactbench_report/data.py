@@ -2,11 +2,14 @@
 
 import csv
 import gzip
+import io
 import json
 import math
 import os
 import tomllib
 from dataclasses import dataclass, field
+
+import numpy as np
 
 from . import engines
 
@@ -166,24 +169,42 @@ def read_runs(folder):
 
 
 def read_series(path):
-    """series.csv (plain, or gzipped when the name ends in .gz) as a dict of column name -> list of floats."""
+    """series.csv (plain, or gzipped when the name ends in .gz) as a dict of column name -> numpy array of
+    floats (NaN where a value is empty). numpy parses the usual file at once; a file it refuses (an empty
+    value, a cut or garbled row) is read again row by row, which names the line and the column at fault."""
     opener = gzip.open if path.endswith(".gz") else open
     with opener(path, "rt", newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader, None)
-        if not header:
-            raise ResultsError(f"{path}: empty (no header); the run's series is damaged: run the job again "
-                               "(`impactbench suite ... --resume` after removing its row, or `impactbench run`)")
-        columns = {name: [] for name in header}
-        for row in reader:
-            if len(row) != len(header):
-                raise ResultsError(f"{path}:{reader.line_num}: {len(row)} values, expected {len(header)}")
-            for name, text in zip(header, row):
-                try:
-                    columns[name].append(float(text) if text != "" else math.nan)
-                except ValueError:
-                    raise ResultsError(f"{path}:{reader.line_num}: {name} = '{text}': not a number") from None
-    return columns
+        text = f.read()
+    first_line, _, body = text.partition("\n")
+    header = next(csv.reader([first_line]), None) if first_line.strip() else None
+    if not header:
+        raise ResultsError(f"{path}: empty (no header); the run's series is damaged: run the job again "
+                           "(`impactbench suite ... --resume` after removing its row, or `impactbench run`)")
+    if not body.strip():
+        return {name: np.empty(0) for name in header}
+    try:
+        values = np.loadtxt(io.StringIO(body), delimiter=",", ndmin=2, dtype=float)
+    except ValueError:
+        values = None
+    if values is not None and values.shape[1] == len(header):
+        return dict(zip(header, values.T.copy()))
+    return read_series_rows(path, text)
+
+
+def read_series_rows(path, text):
+    """read_series row by row: what a faulty file's error names (its line, its column) or empty values."""
+    reader = csv.reader(io.StringIO(text, newline=""))
+    header = next(reader)
+    columns = {name: [] for name in header}
+    for row in reader:
+        if len(row) != len(header):
+            raise ResultsError(f"{path}:{reader.line_num}: {len(row)} values, expected {len(header)}")
+        for name, text_value in zip(header, row):
+            try:
+                columns[name].append(float(text_value) if text_value != "" else math.nan)
+            except ValueError:
+                raise ResultsError(f"{path}:{reader.line_num}: {name} = '{text_value}': not a number") from None
+    return {name: np.asarray(values, float) for name, values in columns.items()}
 
 
 def read_experiment(path):

@@ -4,6 +4,8 @@ simulator's error against the experiment's measured peaks. Shared styling: figur
 import math
 import textwrap
 
+import numpy as np
+
 from . import analysis, data
 from .figures import colour_of, legend_axis, plt, proxy, save
 from .tables import step_text
@@ -17,10 +19,11 @@ def impact_of(suite, run):
     (that step's force acts over the interval ending at its sample); the reference's at its first sample
     with a force; a Newton reference has no force, its episode is the event inside the file's span."""
     s = suite.series(run, "impact.csv")
-    if s is None or not s["time_s"]:
+    if s is None or len(s["time_s"]) == 0:
         return "no impact file (impact.csv.gz)"
     times, forces = s["time_s"], s["contact_force_n"]
-    first = next((i for i, f in enumerate(forces) if f != 0 and not math.isnan(f)), None)
+    with_force = np.flatnonzero((forces != 0) & ~np.isnan(forces))
+    first = int(with_force[0]) if len(with_force) else None
     step = run.number("time_step_s")
     events = suite.events(run) or {"onset_time_s": []}
     if first is not None:
@@ -71,11 +74,11 @@ def impact_zoom(suite, scenario, law, chosen, folder, provenance):
             continue
         s, onset, episode = found
         engine = run.number("time_step_s") > 0
-        t = [(x - onset) * 1e3 for x in s["time_s"]]
+        t = (s["time_s"] - onset) * 1e3
         style = dict(color=colour, linewidth=0.9 if engine else 1.4, drawstyle="steps-pre" if engine else "default",
                      rasterized=len(t) > 1000)
         last = max(last, t[-1])
-        top.plot(t, [a / data.G for a in s["frame1_acceleration_m_s2"]], **style)
+        top.plot(t, s["frame1_acceleration_m_s2"] / data.G, **style)
         middle.plot(t, s["frame1_velocity_m_s"], **style)
         if not newton:
             bottom.plot(t, s["contact_force_n"], **style)
