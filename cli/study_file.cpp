@@ -130,6 +130,7 @@ class PartReader {
             else if (spec.type != Type::numbers && item.is_string()) items.push_back(item.as_string()->get());
             else wrong(spec, *node, spec.type == Type::numbers ? "an array of numbers" : "an array of strings");
           }
+          part.key_items[spec.key] = items;
           return joined(items);
         }
         if (spec.type == Type::numbers && node->is_number()) return number_text(node->value<double>().value());
@@ -235,7 +236,7 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
     if (given.count("laws")) s.laws = expand_all("laws", given["laws"], engines);
     if (given.count("paths")) s.paths = expand_all("paths", given["paths"], engines);
     if (given.count("dt_s")) s.time_steps = given["dt_s"];
-    if (given.count("options")) s.options = split(given["options"], ',');
+    if (given.count("options")) s.options = part.key_items["options"];
     if (given.count("duration_s")) s.duration_s = std::stod(given["duration_s"]);
     if (given.count("rest_duration_s")) s.rest_duration_s = std::stod(given["rest_duration_s"]);
     if (given.count("window_s")) s.window_s = std::stod(given["window_s"]);
@@ -245,12 +246,14 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
   }
   require("scenarios", "scenario files or folders");
   SuiteOptions& s = part.suite;
-  for (const std::string& path : split(given["scenarios"], ',')) s.inputs.push_back(scenario_path(file, path));
+  const std::vector<std::string> scenarios =
+      part.key_items.count("scenarios") ? part.key_items["scenarios"] : std::vector<std::string>{given["scenarios"]};
+  for (const std::string& path : scenarios) s.inputs.push_back(scenario_path(file, path));
   if (!engine_list.empty()) s.engines = engine_list;
   if (given.count("laws")) s.laws = expand_all("laws", given["laws"], engines);
   if (given.count("paths")) s.paths = expand_all("paths", given["paths"], engines);
   if (given.count("dt_s")) s.time_steps = given["dt_s"];
-  if (given.count("options")) s.options = split(given["options"], ',');
+  if (given.count("options")) s.options = part.key_items["options"];
   if (given.count("rate_hz")) s.rate_hz = std::stod(given["rate_hz"]);
   if (given.count("time_limit_s")) s.time_limit_s = std::stod(given["time_limit_s"]);
   if (given.count("duration_s")) s.max_duration_s = std::stod(given["duration_s"]);

@@ -23,6 +23,7 @@ struct StudyPart {
   SweepOptions sweep;        // sweep
   MeasurementOptions measurement;
   std::map<std::string, int> key_lines;  // each key given, by its line: messages about a value name it
+  std::map<std::string, std::vector<std::string>> key_items;  // an array key's items, as given (a comma in one stays)
 };
 
 struct Study {

@@ -58,6 +58,21 @@ skip_engines = ["reference"]
   if (names.size() > 1) EXPECT_NE(out.text.find("engines " + names[1]), std::string::npos) << out.text;
 }
 
+TEST(StudyFile, AnArrayItemKeepsItsComma) {
+  // A scenario file whose name holds a comma: one item of the array, not two.
+  const fs::path folder = fs::temp_directory_path() / ("impactbench-study-comma-" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  fs::copy_file(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/free_vibration.toml", folder / "free,vibration.toml",
+                fs::copy_options::overwrite_existing);
+  const fs::path file = study_file("comma", "[[suite]]\nscenarios = [\"" + (folder / "free,vibration.toml").string() +
+                                                "\"]\nengines = [\"reference\"]\n");
+  const auto out = study(file.string() + " --plan");
+  fs::remove(file);
+  fs::remove_all(folder);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_NE(out.text.find("free,vibration.toml; engines reference"), std::string::npos) << out.text;
+}
+
 struct BadStudy {
   const char* name;
   const char* text;
