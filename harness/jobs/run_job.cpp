@@ -97,13 +97,6 @@ double load_average_now() {
   return getloadavg(load, 1) == 1 ? load[0] : std::numeric_limits<double>::quiet_NaN();
 }
 
-// A diagnostic by name, NaN when the simulator does not report it.
-double diagnostic(const RunResult& result, const std::string& name) {
-  for (const auto& [key, value] : result.diagnostics)
-    if (key == name) return value;
-  return std::numeric_limits<double>::quiet_NaN();
-}
-
 // Accuracy is judged against the reference on the engine's own chain when there is one: that
 // isolates the engine's contact handling and time stepping (its errors against the beam, the whole
 // error a user sees, are in the record beside it). Only a stable run (verdict ok) is judged, and
@@ -187,9 +180,9 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   record.logged_wall_time_s = result.cost.wall_time_s;
   record.logged_cpu_time_s = result.cost.cpu_time_s;
   record.diagnostics = result.diagnostics;
-  // The step and chain the simulator used, also when it chose them itself (its defaults).
-  if (record.time_step_s == 0 && std::isfinite(diagnostic(result, "time_step_s")))
-    record.time_step_s = diagnostic(result, "time_step_s");
+  // The step and chain the simulator used, also when it chose them itself (its defaults): the step the
+  // fixed-step loop advanced by (RunResult::time_step_s), the asked one where the run never stepped.
+  if (result.time_step_s > 0) record.time_step_s = result.time_step_s;
   if (const auto links = simulator->chain_links(scenario, settings)) record.chain_links = *links;
   const Judgement stability = judge_stability(scenario, result, measurement.verdicts);
   record.verdict = stability.verdict;
