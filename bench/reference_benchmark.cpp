@@ -15,7 +15,8 @@ void run_case(benchmark::State& state, const std::string& name, ib::ContactLaw l
   const ib::Scenario s = ib::load_scenario(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/" + name + ".toml");
   const ib::ReferenceSettings settings;  // the defaults every run uses
   const ib::ModalModel model = ib::build_modal_model(s, law, settings.modes);
-  const ib::OutputWindow window{s.scoring_start_s(), s.duration_s, 4096};
+  const ib::ScoringWindow scored = ib::scoring_window(s);
+  const ib::OutputWindow window{scored.start_s, scored.end_s, 4096};
   long long impacts = 0;
   for (auto _ : state) {
     const ib::ReferenceSolution r = ib::solve_reference(model, ib::initial_state(s, model), s.duration_s, window, settings);

@@ -32,12 +32,12 @@ int command_score(const std::string& folder, const std::string& scenario_path, c
     out["run_folder"] = folder;
     out["scenario_file"] = scenario_path;
     if (!reference_folder.empty()) out["reference_folder"] = reference_folder;
-    out["window_start_s"] = metric_settings.window_start_s;
-    out["window_end_s"] = metric_settings.window_end_s;
+    out["window_start_s"] = metric_settings.window.start_s;
+    out["window_end_s"] = metric_settings.window.end_s;
     for (const auto& [name, value] : figures) out[name] = std::isfinite(value) ? nlohmann::ordered_json(value) : nullptr;
     std::cout << out.dump(2) << '\n';
   } else {
-    std::printf("%s scored over [%.17g, %.17g] s\n", folder.c_str(), metric_settings.window_start_s, metric_settings.window_end_s);
+    std::printf("%s scored over [%.17g, %.17g] s\n", folder.c_str(), metric_settings.window.start_s, metric_settings.window.end_s);
     for (const auto& [name, value] : figures) std::printf("  %-45s %.17g\n", name.c_str(), value);
   }
   return kExitOk;

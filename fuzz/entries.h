@@ -28,8 +28,7 @@ namespace ib::fuzz {
 // The scoring window the saved runs are measured in: 0.05 s, with a motor at frame 1's frequency.
 inline MetricSettings window_settings() {
   MetricSettings s;
-  s.window_start_s = 0;
-  s.window_end_s = 0.05;
+  s.window = {0, 0.05};
   s.excitation_frequency_hz = 6.9498;
   s.natural_frequency_hz = 6.9498;
   return s;

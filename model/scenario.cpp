@@ -50,7 +50,6 @@ bool ContactSpec::has(ContactLaw law) const {
   return false;
 }
 
-// The values of scenarios/paper/resonance.toml (rig.md sections 1 and 7).
 bool cut_run(Scenario& scenario, double duration_s) {
   if (!(duration_s > 0) || scenario.duration_s <= duration_s) return false;
   scenario.duration_s = duration_s;
@@ -58,6 +57,12 @@ bool cut_run(Scenario& scenario, double duration_s) {
   return true;
 }
 
+ScoringWindow scoring_window(const Scenario& scenario, std::optional<double> window_s) {
+  const double length_s = window_s.value_or(scenario.scoring_window_s);
+  return {std::max(0.0, scenario.duration_s - length_s), scenario.duration_s};
+}
+
+// The values of scenarios/paper/resonance.toml (rig.md sections 1 and 7).
 Scenario default_rig() {
   Scenario s;
   s.name = "resonance";

@@ -89,8 +89,7 @@ struct Scenario {
   ContactSpec contact;
 
   double duration_s = 100;               // simulated time [s]
-  double scoring_window_s = 14;          // metrics use the last scoring_window_s of the run [s]
-  double scoring_start_s() const { return duration_s - scoring_window_s; }
+  double scoring_window_s = 14;          // metrics use the last scoring_window_s of the run [s] (scoring_window())
 };
 
 // The default rig of rig.md section 1 with the resonance excitation; used by tests and as a template.
@@ -100,5 +99,16 @@ Scenario default_rig();
 // to it, its scoring window, the last part of the run, kept (shortened to the run when longer). Returns
 // whether it was cut. The one place of this rule.
 bool cut_run(Scenario& scenario, double duration_s);
+
+// Where a run's metrics are taken: [start_s, end_s] of its simulated time [s].
+struct ScoringWindow {
+  double start_s = 0;
+  double end_s = 0;
+};
+
+// The one rule of the scoring window: the last `window_s` of the run (a --window, a sweep row's whole motor
+// periods; none: the scenario's scoring_window_s), ending at the run's end (duration_s, after cut_run) and
+// starting no earlier than t = 0. Every window the program uses, records or writes is this function's.
+ScoringWindow scoring_window(const Scenario& scenario, std::optional<double> window_s = std::nullopt);
 
 }  // namespace ib

@@ -3,7 +3,7 @@
 namespace ib {
 
 double series_start_s(const RunSettings& settings, const Scenario& scenario) {
-  return settings.series_start_s >= 0 ? settings.series_start_s : scenario.scoring_start_s();
+  return settings.series_start_s >= 0 ? settings.series_start_s : scoring_window(scenario).start_s;
 }
 
 SimulatorDescriptor descriptor_of(const SimulatorCatalog& catalog, const std::string& name) {

@@ -31,7 +31,7 @@ struct StabilityBounds {
 struct RunSettings {
   ContactLaw law = ContactLaw::hertz;
   double output_rate_hz = 4096;       // samples per second of the written series [Hz]
-  double series_start_s = -1;         // first sample time [s]; < 0: the scenario's scoring window start
+  double series_start_s = -1;         // first sample time [s]; < 0: the scenario's scoring window's start
   double time_step_s = 0;             // fixed-step engines [s]; the adaptive reference ignores it
   StabilityBounds stability;          // a fixed-step engine stops when a tip leaves these bounds
   // Simulator-specific options as name=value text, each validated by the simulator that reads it

@@ -70,6 +70,9 @@ struct RunResult {
   RunStatus status = RunStatus::ok;
   std::string reason;                 // why the run is not ok, in words a person can check
   RunCost cost;
+  // The fixed step the run advanced by, the one its record carries (runs.csv time_step_s) [s]; 0 for an
+  // adaptive run (the reference) or one that never reached the loop (a model that did not build).
+  double time_step_s = 0;
   std::vector<std::pair<std::string, double>> diagnostics;  // simulator-specific figures (named, SI)
   // The simulator's state at the run's end, to continue from (RunSettings::initial_state); empty when
   // the run did not reach its end.

@@ -71,8 +71,8 @@ std::string modal_model_json(const ModalModel& model, const ModalState& initial,
   j["duration_s"] = run.duration_s;
   j["series_start_s"] = run.series_start_s;
   j["output_rate_hz"] = run.output_rate_hz;
-  j["scoring_window_start_s"] = run.scoring_window_start_s;
-  j["scoring_window_end_s"] = run.scoring_window_end_s;
+  j["scoring_window_start_s"] = run.scoring_window.start_s;
+  j["scoring_window_end_s"] = run.scoring_window.end_s;
   j["reference_settings"] = {{"rtol", settings.relative_tolerance},
                              {"atol_m_sqrt_kg", settings.absolute_tolerance},
                              {"accumulation_time_s", settings.accumulation_time_s}};

@@ -12,6 +12,7 @@
 
 #include <string>
 
+#include "model/scenario.h"
 #include "physics/modal_model.h"
 #include "reference/reference_solver.h"
 
@@ -23,8 +24,7 @@ struct ModelRunInfo {
   double duration_s = 0;
   double series_start_s = 0;          // first output sample [s]
   double output_rate_hz = 4096;       // output samples per second [Hz]
-  double scoring_window_start_s = 0;  // metrics over [start, end] [s]
-  double scoring_window_end_s = 0;
+  ScoringWindow scoring_window;       // metrics over [start, end] (keys scoring_window_start_s, _end_s)
 };
 
 // The model, its initial state, the run and the reference's own settings (its tolerances, for

@@ -100,8 +100,8 @@ std::string reference_model_json(const Scenario& scenario, const RunSettings& se
   run.scenario_name = scenario.name;
   run.scenario_file = scenario.source_path;
   run.duration_s = scenario.duration_s;
-  run.scoring_window_start_s = run.series_start_s = scenario.scoring_start_s();  // as `run` samples it
-  run.scoring_window_end_s = scenario.duration_s;
+  run.scoring_window = scoring_window(scenario);
+  run.series_start_s = run.scoring_window.start_s;  // as `run` samples it
   run.output_rate_hz = settings.output_rate_hz;
   return modal_model_json(model, initial_state(scenario, model), run, reference);
 }

@@ -28,14 +28,13 @@ TEST(BulletResonance, ImpactsPerCycleAndSensorPeakAreTheReferences) {
   const double f_exc = motor_frequency_hz(s);
   s.scoring_window_s = 40 / f_exc;
   MetricSettings window;
-  window.window_end_s = s.duration_s;
-  window.window_start_s = s.duration_s - s.scoring_window_s;
+  window.window = scoring_window(s);
   window.excitation_frequency_hz = f_exc;
   window.natural_frequency_hz = frame1_first_frequency_hz(s);
 
   RunSettings settings;
   settings.law = ContactLaw::viscoelastic;
-  settings.series_start_s = window.window_start_s;
+  settings.series_start_s = window.window.start_s;
   settings.options = chain_reference_options(kLinks);
   const RunResult reference = make_reference_simulator()->run(s, settings);
   ASSERT_EQ(reference.status, RunStatus::ok) << reference.reason;

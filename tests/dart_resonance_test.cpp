@@ -27,7 +27,7 @@ TEST(DartResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) 
 
   RunSettings settings;
   settings.law = ContactLaw::viscoelastic;
-  settings.series_start_s = window.window_start_s;
+  settings.series_start_s = window.window.start_s;
   settings.options = chain_reference_options(default_links(s));
   const Metrics reference = compute_metrics(make_reference_simulator()->run(s, settings).trajectory, window);
 

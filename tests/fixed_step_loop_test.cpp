@@ -24,8 +24,10 @@ constexpr double kStep_s = 1e-3;
 class ScriptedEngine final : public FixedStepEngine {
  public:
   using Path = std::function<TipState(long long n)>;
-  explicit ScriptedEngine(Path path, bool injects = false) : path_(std::move(path)), injects_(injects) {}
+  explicit ScriptedEngine(Path path, bool injects = false, double time_step_s = kStep_s)
+      : path_(std::move(path)), injects_(injects), time_step_s_(time_step_s) {}
 
+  double time_step_s() const override { return time_step_s_; }
   bool injects_contact() const override { return injects_; }
   std::optional<std::string> read_tips(double t_s, TipState& tips) override {
     calls.push_back("read");
@@ -42,9 +44,8 @@ class ScriptedEngine final : public FixedStepEngine {
     calls.push_back("apply");
     applied.push_back(loads);
   }
-  std::optional<std::string> step(double step_s) override {
+  std::optional<std::string> step() override {
     calls.push_back("step");
-    EXPECT_EQ(step_s, kStep_s);
     if (step_trouble_at && n_ == *step_trouble_at) return std::string("engine trouble stepping");
     ++n_;
     return std::nullopt;
@@ -73,6 +74,7 @@ class ScriptedEngine final : public FixedStepEngine {
  private:
   Path path_;
   bool injects_;
+  double time_step_s_;
   long long n_ = 0;
 };
 
@@ -98,7 +100,7 @@ struct LoopRun {
     settings.time_step_s = kStep_s;
     rig = build_rig(scenario, ContactLaw::hertz, 2);
   }
-  void run(ScriptedEngine& engine) { run_fixed_steps(engine, rig, scenario, settings, kStep_s, result); }
+  void run(ScriptedEngine& engine) { run_fixed_steps(engine, rig, scenario, settings, result); }
 };
 
 TEST(FixedStepLoop, StepsFromZeroToTheScenarioEndWithTheRunsStep) {
@@ -111,6 +113,29 @@ TEST(FixedStepLoop, StepsFromZeroToTheScenarioEndWithTheRunsStep) {
   EXPECT_EQ(engine.applied.size(), 10u);
   EXPECT_EQ(loop.result.cost.steps, 10);  // steps taken: the last state recorded is t = 10 h
   EXPECT_GT(loop.result.trajectory.size(), 0u);
+}
+
+// The step is the engine's (built with it, resolve_time_step_s): the loop counts time and steps with it
+// and hands it on as the run's, whatever the settings held.
+TEST(FixedStepLoop, StepsWithTheEnginesStepAndHandsItOn) {
+  LoopRun loop(0.01);
+  ScriptedEngine engine(at_rest, false, 2.5e-3);
+  loop.run(engine);
+  ASSERT_EQ(engine.times_read_s.size(), 5u);  // t = 0, 2.5, 5, 7.5, 10 ms
+  for (std::size_t n = 0; n < engine.times_read_s.size(); ++n) EXPECT_EQ(engine.times_read_s[n], n * 2.5e-3);
+  EXPECT_EQ(loop.result.cost.steps, 4);
+  EXPECT_EQ(loop.result.time_step_s, 2.5e-3);
+}
+
+TEST(FixedStepLoop, TheStepIsTheAskedOneOrTheEnginesDefault) {
+  RunSettings settings;
+  EXPECT_EQ(resolve_time_step_s(settings, 5e-5, "engine"), 5e-5);
+  settings.time_step_s = 2e-5;
+  EXPECT_EQ(resolve_time_step_s(settings, 5e-5, "engine"), 2e-5);
+  for (double bad : {-1e-4, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    settings.time_step_s = bad;
+    EXPECT_THROW(resolve_time_step_s(settings, 5e-5, "engine"), std::invalid_argument) << bad;
+  }
 }
 
 TEST(FixedStepLoop, AStepReadsRecordsAppliesStepsThenReadsTheContactForce) {

@@ -60,8 +60,7 @@ inline ContactEvent episode(double onset, double end) {
 
 inline MetricSettings window(double start, double end) {
   MetricSettings s;
-  s.window_start_s = start;
-  s.window_end_s = end;
+  s.window = {start, end};
   return s;
 }
 

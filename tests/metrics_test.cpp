@@ -137,10 +137,10 @@ TEST(Metrics, BeatNeedsTwoBeatsInTheWindowAndTwoDistinctFrequencies) {
   EXPECT_TRUE(std::isnan(m.beat_period_s));
   EXPECT_TRUE(std::isnan(m.impacts_per_beat));
 
-  s.window_end_s = 2;  // exactly two beats is enough
+  s.window.end_s = 2;  // exactly two beats is enough
   EXPECT_DOUBLE_EQ(compute_metrics(t, s).beat_period_s, 1.0);
 
-  s.window_end_s = 5;
+  s.window.end_s = 5;
   s.natural_frequency_hz = 20;  // no beating
   EXPECT_TRUE(std::isnan(compute_metrics(t, s).beat_period_s));
   s.natural_frequency_hz = 0;  // no natural frequency given

@@ -20,8 +20,8 @@ ModelRunInfo run_info(const Scenario& s) {
   run.scenario_name = s.name;
   run.scenario_file = s.source_path;
   run.duration_s = s.duration_s;
-  run.series_start_s = run.scoring_window_start_s = s.scoring_start_s();
-  run.scoring_window_end_s = s.duration_s;
+  run.scoring_window = scoring_window(s);
+  run.series_start_s = run.scoring_window.start_s;
   run.output_rate_hz = 4096;
   return run;
 }
@@ -61,8 +61,8 @@ TEST(ModalModelJson, NumbersEqualTheModels) {
   EXPECT_EQ(j["contact_law"]["exponent"].get<double>(), hertz.exponent);
   EXPECT_EQ(j["contact_law"]["damping_n_s_per_m_pow_n_plus_1"].get<double>(), hertz.damping);
   EXPECT_EQ(j["duration_s"].get<double>(), s.duration_s);
-  EXPECT_EQ(j["series_start_s"].get<double>(), s.scoring_start_s());
-  EXPECT_EQ(j["scoring_window_start_s"].get<double>(), s.scoring_start_s());
+  EXPECT_EQ(j["series_start_s"].get<double>(), scoring_window(s).start_s);
+  EXPECT_EQ(j["scoring_window_start_s"].get<double>(), scoring_window(s).start_s);
   EXPECT_EQ(j["scoring_window_end_s"].get<double>(), s.duration_s);
   EXPECT_EQ(j["output_rate_hz"].get<double>(), 4096);
   EXPECT_EQ(j["reference_settings"]["rtol"].get<double>(), 3e-10);

@@ -30,7 +30,7 @@ TEST(MujocoResonance, ImpactsPerCycleAndSensorPeakMatchTheReference) {
   RunSettings run;
   run.law = ContactLaw::viscoelastic;
   run.time_step_s = 1e-4;
-  run.series_start_s = window.window_start_s;
+  run.series_start_s = window.window.start_s;
   const auto mujoco = make_mujoco_simulator();
   const int links = *mujoco->chain_links(s, run);
   const RunResult engine = mujoco->run(s, run);

@@ -37,7 +37,7 @@ TEST(OdeResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
 
   RunSettings settings;
   settings.law = ContactLaw::viscoelastic;
-  settings.series_start_s = window.window_start_s;
+  settings.series_start_s = window.window.start_s;
   settings.options = chain_reference_options(links);
   const Metrics reference = compute_metrics(make_reference_simulator()->run(s, settings).trajectory, window);
 

@@ -154,7 +154,7 @@ TEST(DefaultRig, EqualsTheResonanceFile) {
   EXPECT_DOUBLE_EQ(rig.contact.newton->restitution, file.contact.newton->restitution);
   EXPECT_DOUBLE_EQ(rig.duration_s, file.duration_s);
   EXPECT_DOUBLE_EQ(rig.scoring_window_s, file.scoring_window_s);
-  EXPECT_DOUBLE_EQ(rig.scoring_start_s(), 86.0);
+  EXPECT_DOUBLE_EQ(scoring_window(rig).start_s, 86.0);
 }
 
 TEST(ContactLawNames, RoundTrip) {

@@ -71,8 +71,12 @@ std::string format(double value) {
 // The Bullet side of the shared fixed-step loop (adapters/common/fixed_step_loop.h).
 class BulletStepper final : public FixedStepEngine {
  public:
-  BulletStepper(const RigSpec& rig, BulletRig& bullet, bool injected)
-      : rig_(rig), bullet_(bullet), injected_(injected), energy_(rig), instantaneous_(is_instantaneous(rig.law)) {}
+  // Bullet's world keeps no step of its own (stepSimulation takes it each time): the stepper holds the run's.
+  BulletStepper(const RigSpec& rig, BulletRig& bullet, bool injected, double time_step_s)
+      : rig_(rig), bullet_(bullet), injected_(injected), time_step_s_(time_step_s), energy_(rig),
+        instantaneous_(is_instantaneous(rig.law)) {}
+
+  double time_step_s() const override { return time_step_s_; }
 
   bool injects_contact() const override { return injected_; }
 
@@ -104,12 +108,12 @@ class BulletStepper final : public FixedStepEngine {
     }
   }
 
-  std::optional<std::string> step(double step_s) override {
-    bullet_.step(step_s);
+  std::optional<std::string> step() override {
+    bullet_.step(time_step_s_);
     double force = injected_force_n_;
     if (!injected_) {
       const auto [impulse, points] = bullet_.tip_contact_impulse();
-      force = contact_force_n_ = impulse / step_s;
+      force = contact_force_n_ = impulse / time_step_s_;
       max_points_ = std::max(max_points_, points);
     }
     // The published spring-dashpot may pull (injected: applied and recorded as computed); Bullet's own
@@ -150,6 +154,7 @@ class BulletStepper final : public FixedStepEngine {
   const RigSpec& rig_;
   BulletRig& bullet_;
   const bool injected_;
+  const double time_step_s_;
   const RigEnergy energy_;
   const bool instantaneous_;
   std::array<Eigen::VectorXd, 2> angles_, rates_;
@@ -181,7 +186,7 @@ class BulletSimulator final : public Simulator {
     const Articulation articulation = articulation_option(options);
     const int links = options.integer("links", default_links(scenario), 1, 64);
     const RigSpec rig = build_rig(scenario, settings.law, links);
-    const double h = settings.time_step_s > 0 ? settings.time_step_s : default_time_step(rig);
+    const double h = resolve_time_step_s(settings, default_time_step(rig), name());
 
     // Which contact Bullet makes, and which the harness injects.
     const bool hertz = std::holds_alternative<HertzLaw>(rig.law);
@@ -208,8 +213,8 @@ class BulletSimulator final : public Simulator {
     d.emplace_back("restitution_velocity_threshold_m_s", info.m_restitutionVelocityThreshold);
     d.emplace_back("contact_erp2", info.m_erp2);
 
-    BulletStepper stepper(rig, bullet, injected);
-    run_fixed_steps(stepper, rig, scenario, settings, h, result);
+    BulletStepper stepper(rig, bullet, injected, h);
+    run_fixed_steps(stepper, rig, scenario, settings, result);
     d.emplace_back("contact_steps", static_cast<double>(stepper.contact_steps()));
     d.emplace_back("max_contact_points", stepper.max_contact_points());
     return result;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "adapters/common/injected_contact.h"
 #include "adapters/common/step_recorder.h"
@@ -48,8 +49,17 @@ std::optional<std::string> beyond_bound(const TipState& tips, const RigSpec& rig
 
 }  // namespace
 
+double resolve_time_step_s(const RunSettings& settings, double default_step_s, const std::string& engine) {
+  if (!(settings.time_step_s >= 0) || !std::isfinite(settings.time_step_s))
+    throw std::invalid_argument(engine + ": the time step must be > 0 (or 0 for the default " +
+                                std::to_string(default_step_s) + " s), got " + std::to_string(settings.time_step_s));
+  return settings.time_step_s > 0 ? settings.time_step_s : default_step_s;
+}
+
 void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario& scenario,
-                     const RunSettings& settings, double step_s, RunResult& result) {
+                     const RunSettings& settings, RunResult& result) {
+  const double step_s = engine.time_step_s();
+  result.time_step_s = step_s;
   const long long steps = static_cast<long long>(std::ceil(scenario.duration_s / step_s - 1e-9));
   StepRecorder recorder(series_start_s(settings, scenario), scenario.duration_s, settings.output_rate_hz);
   std::optional<InjectedContact> injected;
@@ -93,7 +103,7 @@ void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario
       loads.injected_contact_force_n = injected->force(tips.displacement_m[0], tips.velocity_m_s[0],
                                                        tips.displacement_m[1], tips.velocity_m_s[1], step_s);
     engine.apply_loads(loads);
-    if (auto trouble = engine.step(step_s)) {
+    if (auto trouble = engine.step()) {
       stop(*trouble);
       break;
     }

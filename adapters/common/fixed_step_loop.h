@@ -14,9 +14,12 @@
 //
 // What stays the engine's, in its Simulator::run around run_fixed_steps: its options, the rig
 // (build_rig, adapters/common/rig.h) translated into its own bodies and joints, its contact set up for
-// the law and path, the step (settings.time_step_s, or its own default when that is 0: passed as
-// step_s; explicit hinge springs bound it, explicit_hinge_step_limit_s), and its diagnostics, written
-// into the result. Accelerations are not asked for: the recorder takes a step's velocity change.
+// the law and path, and its diagnostics, written into the result. The step has one owner: the engine
+// is built with it (resolve_time_step_s: the asked step, or the engine's default; explicit hinge springs
+// bound it, explicit_hinge_step_limit_s) and advances by it at every step() (many engines bake it into
+// their model: contact softness, a world's own step); the loop reads it from the engine
+// (FixedStepEngine::time_step_s), counts time and steps with it, and hands it on as RunResult::time_step_s,
+// the step the run records. Accelerations are not asked for: the recorder takes a step's velocity change.
 // tests/fixed_step_loop_test.cpp pins this contract with a scripted engine.
 #pragma once
 
@@ -59,8 +62,11 @@ class FixedStepEngine {
   // Applies the loads of the coming step, in the engine's own order, plus whatever the engine adds
   // itself (explicit hinge springs, a contact joint).
   virtual void apply_loads(const StepLoads& loads) = 0;
-  // One step. A reason instead when the engine reported trouble during it (the run stops there).
-  virtual std::optional<std::string> step(double step_s) = 0;
+  // The step the engine was built with and advances by at every step() [s]: read from the engine's own
+  // model where it keeps one, so that the step counted and recorded is the step taken.
+  virtual double time_step_s() const = 0;
+  // One step of time_step_s(). A reason instead when the engine reported trouble during it (the run stops there).
+  virtual std::optional<std::string> step() = 0;
   // The force between the tips during the last step [N], > 0 compressive (when it makes the contact).
   virtual double contact_force_n() = 0;
   // The engine's own state, for a later run to continue from (RunSettings::initial_state): what it needs
@@ -74,10 +80,16 @@ class FixedStepEngine {
   virtual std::string explain_instability() const { return {}; }
 };
 
-// Runs the engine over the scenario with a fixed step: fills the result's trajectory, impact zoom,
-// status and reason (unstable, with the time and the bound), cost and, for a run that reached its end,
-// final state. Starts from settings.initial_state when set. The diagnostics are the engine's.
+// The step a fixed-step engine is built with: settings.time_step_s when given (> 0), else the engine's
+// default (default_step_s). The one place of this rule. Throws std::invalid_argument, naming the engine,
+// for a negative or non-finite step.
+double resolve_time_step_s(const RunSettings& settings, double default_step_s, const std::string& engine);
+
+// Runs the engine over the scenario with its fixed step (engine.time_step_s()): fills the result's
+// trajectory, impact zoom, status and reason (unstable, with the time and the bound), cost, time step and,
+// for a run that reached its end, final state. Starts from settings.initial_state when set. The
+// diagnostics are the engine's.
 void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario& scenario,
-                     const RunSettings& settings, double step_s, RunResult& result);
+                     const RunSettings& settings, RunResult& result);
 
 }  // namespace ib

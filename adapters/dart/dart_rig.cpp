@@ -106,6 +106,8 @@ void DartRig::add_tip_force(int f, double force_x_n) {
                               /*isForceLocal=*/false, /*isOffsetLocal=*/true);
 }
 
+double DartRig::time_step_s() const { return world_->getTimeStep(); }
+
 void DartRig::step() { world_->step(); }
 
 double DartRig::tip_contact_force_n() const {

@@ -50,7 +50,8 @@ class DartRig {
   const Eigen::VectorXd& hinge_rates_rad_s(int f) const;
   // Adds a force along x [N] at tip f for the coming step (DART clears it after each step).
   void add_tip_force(int f, double force_x_n);
-  void step();
+  void step();  // one step of the world's own step, time_step_s()
+  double time_step_s() const;  // the world's step (World::getTimeStep) [s]
   // The force between the tips during the last step [N], > 0 compressive, from DART's contact constraints
   // (impulse / step); 0 without contact or without collision.
   double tip_contact_force_n() const;

@@ -50,10 +50,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   plan.length_scale = plan.length_unit == "m" ? 1.0 : plan.length_unit == "cm" ? 100.0 : 1000.0;
   plan.pgs = options.choice("lcp", "dantzig", {"dantzig", "pgs"}) == "pgs";
   plan.links = settings.options.count("links") ? options.integer("links", 0, 1, 64) : default_links(scenario);
-  if (!(settings.time_step_s >= 0) || !std::isfinite(settings.time_step_s))
-    throw std::invalid_argument("dart: the time step must be > 0 (or 0 for the default " +
-                                std::to_string(kDefaultTimeStep_s) + " s), got " + std::to_string(settings.time_step_s));
-  plan.time_step_s = settings.time_step_s > 0 ? settings.time_step_s : kDefaultTimeStep_s;
+  plan.time_step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "dart");
   return plan;
 }
 
@@ -79,7 +76,7 @@ class DartStepper final : public FixedStepEngine {
         energy_(rig_) {}
 
   const RigSpec& rig() const { return rig_; }
-  double time_step_s() const { return plan_.time_step_s; }
+  double time_step_s() const override { return dart_rig_.time_step_s(); }  // the world's own
 
   bool injects_contact() const override { return contact_.force_from_tip_states; }
 
@@ -114,7 +111,7 @@ class DartStepper final : public FixedStepEngine {
     if (loads.motor_force_n) dart_rig_.add_tip_force(0, *loads.motor_force_n);
   }
 
-  std::optional<std::string> step(double) override {
+  std::optional<std::string> step() override {
     dart_rig_.step();
     if (dart_rig_.contact_points() > 0) ++contact_steps_;
     return std::nullopt;
@@ -136,7 +133,7 @@ class DartStepper final : public FixedStepEngine {
 
   std::vector<std::pair<std::string, double>> diagnostics() const {
     std::vector<std::pair<std::string, double>> d;
-    d.emplace_back("time_step_s", plan_.time_step_s);
+    d.emplace_back("time_step_s", time_step_s());
     d.emplace_back("chain_links", rig_.frames[0].chain.links);
     d.emplace_back("length_unit_per_m", plan_.length_scale);
     for (int f = 0; f < 2; ++f) {
@@ -184,7 +181,7 @@ class DartSimulator final : public Simulator {
     const RunPlan plan = plan_run(scenario, settings);
     DartStepper stepper(scenario, settings, plan);
     RunResult result;
-    run_fixed_steps(stepper, stepper.rig(), scenario, settings, stepper.time_step_s(), result);
+    run_fixed_steps(stepper, stepper.rig(), scenario, settings, result);
     result.diagnostics = stepper.diagnostics();
     return result;
   }

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "adapters/common/fixed_step_loop.h"
 #include "adapters/mujoco/mujoco_engine.h"
 
 namespace ib {
@@ -135,9 +136,7 @@ MujocoRunPlan plan_mujoco_run(const Scenario& scenario, const RunSettings& setti
   plan.integrator = options.choice("integrator", "euler", {"euler", "rk4"}) == "rk4" ? MujocoIntegrator::rk4
                                                                                      : MujocoIntegrator::euler;
   const int newton_steps = options.integer("newton_contact_steps", kDefaultNewtonContactSteps, 2, 1000);
-  if (settings.time_step_s < 0 || !std::isfinite(settings.time_step_s))
-    throw std::invalid_argument("mujoco: time step must be >= 0 s, got " + std::to_string(settings.time_step_s));
-  plan.time_step_s = settings.time_step_s > 0 ? settings.time_step_s : kDefaultMujocoTimeStep_s;
+  plan.time_step_s = resolve_time_step_s(settings, kDefaultMujocoTimeStep_s, "mujoco");
   plan.rig = build_rig(scenario, settings.law, plan.links);
 
   plan.native_contact = plan.path == ContactPath::native;

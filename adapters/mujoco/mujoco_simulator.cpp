@@ -164,6 +164,10 @@ class MujocoStepper final : public FixedStepEngine {
         // a contact law's elastic energy belongs in the balance only where MuJoCo applies that law
         law_energy_(plan.law != ContactLaw::newton && !plan.native_contact) {}
 
+  // the model's own step (its <option timestep>, written from the plan's): what mj_Euler and
+  // mj_RungeKutta advance by
+  double time_step_s() const override { return rig_.model()->opt.timestep; }
+
   bool injects_contact() const override { return plan_.harness_contact_force; }
 
   std::optional<std::string> read_tips(double t_s, TipState& tips) override {
@@ -198,7 +202,7 @@ class MujocoStepper final : public FixedStepEngine {
     }
   }
 
-  std::optional<std::string> step(double) override {
+  std::optional<std::string> step() override {
     const mjModel* m = rig_.model();
     mjData* d = rig_.data();
     try {
@@ -294,7 +298,7 @@ class MujocoSimulator final : public Simulator {
     }
     result.diagnostics = plan_diagnostics(*plan, rig->model());
     MujocoStepper stepper(*plan, *rig);
-    run_fixed_steps(stepper, plan->rig, scenario, settings, plan->time_step_s, result);
+    run_fixed_steps(stepper, plan->rig, scenario, settings, result);
     return result;
   }
 };

@@ -66,7 +66,8 @@ class OdeRig {
   // (dJointFeedback; 0 when the step had no contact joint).
   double tip_contact_force() const;
 
-  void step();
+  void step();  // one step of time_step_s()
+  double time_step_s() const { return settings_.time_step_s; }  // the step dWorldStep is given [s]
 
   // ODE's state in maximal coordinates: every body's position, quaternion (w, x, y, z), linear and angular
   // velocity, 13 values a body, frame 1's bodies first (a sweep's continuation, FixedStepEngine::save_state).

@@ -55,10 +55,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   if (settings.options.count("iterations") && plan.model.stepper != Stepper::quick)
     throw std::invalid_argument("ode option iterations: only with stepper=quick");
   plan.links = settings.options.count("links") ? options.integer("links", 0, 1, 64) : default_links(scenario);
-  if (!(settings.time_step_s >= 0) || !std::isfinite(settings.time_step_s))
-    throw std::invalid_argument("ode: the time step must be > 0 (or 0 for the default " +
-                                std::to_string(kDefaultTimeStep_s) + " s), got " + std::to_string(settings.time_step_s));
-  plan.model.time_step_s = settings.time_step_s > 0 ? settings.time_step_s : kDefaultTimeStep_s;
+  plan.model.time_step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "ode");
   return plan;
 }
 
@@ -81,7 +78,7 @@ class OdeStepper final : public FixedStepEngine {
   }
 
   const RigSpec& rig() const { return rig_; }
-  double time_step_s() const { return model_.time_step_s; }
+  double time_step_s() const override { return ode_rig_.time_step_s(); }  // what dWorldStep is given
   std::string state_layout() const {
     return "ode bodies[" + std::to_string(ode_rig_.body_count()) + "] x (position, quaternion, linear and angular velocity)";
   }
@@ -122,7 +119,7 @@ class OdeStepper final : public FixedStepEngine {
     if (model_.springs == SpringPath::explicit_torques) ode_rig_.add_explicit_spring_torques();
   }
 
-  std::optional<std::string> step(double) override {
+  std::optional<std::string> step() override {
     ode_rig_.step();
     return std::nullopt;
   }
@@ -155,7 +152,7 @@ class OdeStepper final : public FixedStepEngine {
   // The mapping's figures, named with units.
   std::vector<std::pair<std::string, double>> diagnostics(const ode::MessageLog& messages) const {
     std::vector<std::pair<std::string, double>> d;
-    d.emplace_back("time_step_s", model_.time_step_s);
+    d.emplace_back("time_step_s", time_step_s());
     d.emplace_back("chain_links", rig_.frames[0].chain.links);
     d.emplace_back("explicit_spring_step_limit_s", step_limit_s_);
     for (int f = 0; f < 2; ++f) {
@@ -220,7 +217,7 @@ class OdeSimulator final : public Simulator {
     OdeStepper stepper(scenario, settings, plan);
     stepper.listen(messages);
     RunResult result;
-    run_fixed_steps(stepper, stepper.rig(), scenario, settings, stepper.time_step_s(), result);
+    run_fixed_steps(stepper, stepper.rig(), scenario, settings, result);
     result.diagnostics = stepper.diagnostics(messages);
     return result;
   }

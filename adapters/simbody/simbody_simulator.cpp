@@ -64,10 +64,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   if (settings.options.count("constraint_tolerance") && !plan.stepping.rigid_contact)
     throw std::invalid_argument("simbody option constraint_tolerance: only with the rigid Newton contact (law newton, contact matched)");
   plan.links = settings.options.count("links") ? options.integer("links", 0, 1, 64) : default_links(scenario);
-  if (!(settings.time_step_s >= 0) || !std::isfinite(settings.time_step_s))
-    throw std::invalid_argument("simbody: the time step must be > 0 (or 0 for the default " +
-                                std::to_string(kDefaultTimeStep_s) + " s), got " + std::to_string(settings.time_step_s));
-  plan.stepping.step_s = settings.time_step_s > 0 ? settings.time_step_s : kDefaultTimeStep_s;
+  plan.stepping.step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "simbody");
   return plan;
 }
 
@@ -91,7 +88,7 @@ class SimbodyStepper final : public FixedStepEngine {
   }
 
   const RigSpec& rig() const { return rig_; }
-  double time_step_s() const { return plan_.stepping.step_s; }
+  double time_step_s() const override { return stepping_.step_s(); }  // what advance() advances by
   std::size_t state_size() const {
     return 2 * static_cast<std::size_t>(rig_.frames[0].chain.links + rig_.frames[1].chain.links);
   }
@@ -164,7 +161,8 @@ class SimbodyStepper final : public FixedStepEngine {
     }
   }
 
-  std::optional<std::string> step(double step_s) override {
+  std::optional<std::string> step() override {
+    const double step_s = time_step_s();
     const double closing_before_m_s = closing_m_s_;
     if (auto trouble = stepping_.advance()) return *trouble + explain_instability();
     last_step_impulse_force_n_ = 0;
@@ -284,7 +282,7 @@ class SimbodySimulator final : public Simulator {
       std::optional<simbody::QuietStdout> quiet;
       if (plan.stepping.rigid_contact) quiet.emplace();
       SimbodyStepper stepper(scenario, settings, plan);
-      run_fixed_steps(stepper, stepper.rig(), scenario, settings, stepper.time_step_s(), result);
+      run_fixed_steps(stepper, stepper.rig(), scenario, settings, result);
       result.diagnostics = stepper.diagnostics();
     } catch (const std::invalid_argument&) {  // a saved state of another rig: bad input, nothing run
       throw;

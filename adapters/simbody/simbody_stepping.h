@@ -35,6 +35,7 @@ class SimbodyStepping {
   const SimTK::State& state() const;
   // Advances by the loop's step (to the next multiple of it); the reason when Simbody threw.
   std::optional<std::string> advance();
+  double step_s() const { return settings_.step_s; }  // what advance() advances by [s]
   // Starts again from `state` (a continued run's: a saved state set into a copy of state()), as the
   // constructor started from the initial one.
   void restart(const SimTK::State& state);

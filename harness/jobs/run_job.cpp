@@ -34,9 +34,7 @@ std::string job_id(const std::string& scenario_name, const JobSpec& job) {
 
 MetricSettings metric_settings(const Scenario& scenario, const Measurement& measurement) {
   MetricSettings m;
-  const double window = measurement.window_s.value_or(scenario.scoring_window_s);
-  m.window_end_s = scenario.duration_s;
-  m.window_start_s = std::max(0.0, scenario.duration_s - window);
+  m.window = scoring_window(scenario, measurement.window_s);
   m.excitation_frequency_hz = motor_frequency_hz(scenario);
   m.natural_frequency_hz = frame1_first_frequency_hz(scenario);
   m.sensor_rate_hz = measurement.sensor_rate_hz;
@@ -45,7 +43,7 @@ MetricSettings metric_settings(const Scenario& scenario, const Measurement& meas
 }
 
 std::string window_in_transient_warning(const Scenario& scenario, const Measurement& measurement) {
-  const double window_start_s = metric_settings(scenario, measurement).window_start_s;
+  const double window_start_s = scoring_window(scenario, measurement.window_s).start_s;
   const double transient_s = start_up_transient_s(scenario);
   if (window_start_s >= transient_s) return "";
   // the numbers as the stderr line always printed them (%g, %.3g); the name unbounded
@@ -97,13 +95,6 @@ void time_runs(Simulator& simulator, const Scenario& scenario, const RunSettings
 double load_average_now() {
   double load[1];
   return getloadavg(load, 1) == 1 ? load[0] : std::numeric_limits<double>::quiet_NaN();
-}
-
-// A diagnostic by name, NaN when the simulator does not report it.
-double diagnostic(const RunResult& result, const std::string& name) {
-  for (const auto& [key, value] : result.diagnostics)
-    if (key == name) return value;
-  return std::numeric_limits<double>::quiet_NaN();
 }
 
 // Accuracy is judged against the reference on the engine's own chain when there is one: that
@@ -158,7 +149,7 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   const MetricSettings metrics_settings = metric_settings(scenario, measurement);
   RunSettings settings = job.settings;
   if (settings.series_start_s < 0)
-    settings.series_start_s = measurement.series == SeriesOutput::all ? 0.0 : metrics_settings.window_start_s;
+    settings.series_start_s = measurement.series == SeriesOutput::all ? 0.0 : metrics_settings.window.start_s;
   // the engines' divergence guard stops a run at the bound the verdict then judges it by: one record
   settings.stability = measurement.verdicts.stability;
 
@@ -172,8 +163,7 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   record.time_step_s = settings.time_step_s;
   record.options = options_text(settings.options);
   record.duration_s = scenario.duration_s;
-  record.window_start_s = metrics_settings.window_start_s;
-  record.window_end_s = metrics_settings.window_end_s;
+  record.window = metrics_settings.window;
   record.output_rate_hz = settings.output_rate_hz;
   record.warnings = job.warnings;
   // A window the caller chose (--window) on a start from rest: `impactbench run`'s case. A suite's or a
@@ -190,9 +180,9 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   record.logged_wall_time_s = result.cost.wall_time_s;
   record.logged_cpu_time_s = result.cost.cpu_time_s;
   record.diagnostics = result.diagnostics;
-  // The step and chain the simulator used, also when it chose them itself (its defaults).
-  if (record.time_step_s == 0 && std::isfinite(diagnostic(result, "time_step_s")))
-    record.time_step_s = diagnostic(result, "time_step_s");
+  // The step and chain the simulator used, also when it chose them itself (its defaults): the step the
+  // fixed-step loop advanced by (RunResult::time_step_s), the asked one where the run never stepped.
+  if (result.time_step_s > 0) record.time_step_s = result.time_step_s;
   if (const auto links = simulator->chain_links(scenario, settings)) record.chain_links = *links;
   const Judgement stability = judge_stability(scenario, result, measurement.verdicts);
   record.verdict = stability.verdict;
@@ -263,10 +253,11 @@ ReferenceData load_reference(const std::string& run_folder, const Scenario& scen
   const MetricSettings settings = metric_settings(scenario, measurement);
   const Trajectory& t = data.trajectory;
   const double slack_s = (1 + 1e-9) / t.output_rate_hz;
-  if (settings.window_start_s < t.time_s.front() - slack_s || settings.window_end_s > t.time_s.back() + slack_s)
+  const ScoringWindow& window = settings.window;
+  if (window.start_s < t.time_s.front() - slack_s || window.end_s > t.time_s.back() + slack_s)
     throw std::runtime_error(series_file(run_folder) + ": holds " + exact_number_text(t.time_s.front()) + " to " +
                              exact_number_text(t.time_s.back()) + " s, but the scoring window is " +
-                             exact_number_text(settings.window_start_s) + " to " + exact_number_text(settings.window_end_s) +
+                             exact_number_text(window.start_s) + " to " + exact_number_text(window.end_s) +
                              " s (" + scenario.source_path + " and --window); allowed: a window inside the series");
   data.metrics = compute_metrics(data.trajectory, settings);
   return data;

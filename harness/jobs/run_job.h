@@ -34,7 +34,7 @@ enum class SeriesOutput { window, all, none };
 
 // How runs are measured and judged, the same for all of a suite's runs.
 struct Measurement {
-  std::optional<double> window_s;       // scoring window (the last window_s of the run); default: the scenario's
+  std::optional<double> window_s;       // --window: the last window_s of the run is scored (scoring_window()); default: the scenario's
   double sensor_rate_hz = 2048;
   double merge_window_s = 0.002;
   VerdictSettings verdicts;

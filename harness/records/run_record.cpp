@@ -40,8 +40,8 @@ std::vector<Field> fields(const RunRecord& r) {
       {"verdict", std::string(to_string(r.verdict))},
       {"reason", r.reason},
       {"duration_s", r.duration_s, true},
-      {"window_start_s", r.window_start_s, true},
-      {"window_end_s", r.window_end_s, true},
+      {"window_start_s", r.window.start_s, true},
+      {"window_end_s", r.window.end_s, true},
   };
   // Metric and error names come from one place (metrics.h); a run without metrics gets NaN in each.
   const auto metric_fields = flatten(r.metrics.value_or(Metrics{}));

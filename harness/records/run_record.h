@@ -11,6 +11,7 @@
 
 #include "harness/records/jsonl_table.h"
 #include "harness/scoring/metrics.h"
+#include "model/scenario.h"
 #include "model/trajectory.h"
 #include "harness/scoring/verdict.h"
 
@@ -29,7 +30,7 @@ struct RunRecord {
   bool timed_out = false;              // failed because the suite stopped it at its time limit (runs.jsonl
                                        // "timed_out"): it decided nothing about the engine
   double duration_s = 0;               // simulated time [s]
-  double window_start_s = 0, window_end_s = 0;  // the scoring window the metrics cover [s]
+  ScoringWindow window;                // the scoring window the metrics cover (columns window_start_s, window_end_s)
   double output_rate_hz = 0;
   std::optional<Metrics> metrics;      // absent when the run produced nothing (crash, bad input)
   std::optional<MetricErrors> errors_vs_reference;        // against the continuous-beam reference

@@ -97,9 +97,9 @@ double true_peak_acceleration(const Trajectory& trajectory, int frame, SampleRan
 }
 
 FrameMetrics frame_metrics(const Trajectory& trajectory, int frame, const MetricSettings& settings) {
-  const SampleRange range = samples_in(trajectory, settings.window_start_s, settings.window_end_s);
-  const SensorSeries sensor = sensor_acceleration(trajectory, frame, settings.window_start_s,
-                                                  settings.window_end_s, settings.sensor_rate_hz);
+  const SampleRange range = samples_in(trajectory, settings.window.start_s, settings.window.end_s);
+  const SensorSeries sensor = sensor_acceleration(trajectory, frame, settings.window.start_s,
+                                                  settings.window.end_s, settings.sensor_rate_hz);
   FrameMetrics m;
   // an empty window measures nothing: NaN, not a misleading zero
   m.sensor_peak_acceleration_g =
@@ -186,7 +186,7 @@ void add_impact_metrics(Metrics& m, const std::vector<Impact>& impacts) {
 // ---- per cycle and per beat ------------------------------------------------------------------------
 
 void add_rate_metrics(Metrics& m, const MetricSettings& settings) {
-  const double window_s = settings.window_end_s - settings.window_start_s;
+  const double window_s = settings.window.end_s - settings.window.start_s;
   const double f_exc = settings.excitation_frequency_hz, f_1 = settings.natural_frequency_hz;
   m.excitation_cycles = window_s * f_exc;
   m.impacts_per_cycle = f_exc > 0 && m.excitation_cycles > 0 ? m.impacts / m.excitation_cycles : kNaN;
@@ -213,7 +213,7 @@ double relative_error(double run, double reference) {
 // reference's sample times. NaN where the run does not reach every such time or the reference is at rest.
 double displacement_relative_rms_error(const Trajectory& run, const Trajectory& reference, int frame,
                                        const MetricSettings& settings) {
-  const SampleRange range = samples_in(reference, settings.window_start_s, settings.window_end_s);
+  const SampleRange range = samples_in(reference, settings.window.start_s, settings.window.end_s);
   if (range.empty()) return kNaN;
   double difference_squares = 0, reference_squares = 0;
   for (std::size_t k = range.first; k < range.last; ++k) {
@@ -284,8 +284,8 @@ void add_energy_metric(Metrics& m, const Trajectory& t, const MetricSettings& se
   const double initial = t.initial_mechanical_energy_j;
   if (!std::isfinite(initial) || initial <= 0) return;
   for (std::size_t k = t.size(); k-- > 0;) {
-    if (t.time_s[k] > settings.window_end_s) continue;
-    if (t.time_s[k] < settings.window_start_s) break;
+    if (t.time_s[k] > settings.window.end_s) continue;
+    if (t.time_s[k] < settings.window.start_s) break;
     if (t.contact_force_n[k] != 0) continue;
     m.energy_change_relative = (t.mechanical_energy_j[k] - initial) / initial;
     return;
@@ -299,11 +299,11 @@ Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& sett
     m.frames[f].log_decrement =
         settings.excitation_frequency_hz > 0
             ? kNaN
-            : log_decrement(trajectory.time_s, trajectory.displacement_m[f], settings.window_start_s, settings.window_end_s);
+            : log_decrement(trajectory.time_s, trajectory.displacement_m[f], settings.window.start_s, settings.window.end_s);
   }
-  add_impact_metrics(m, merge_impacts(trajectory.events, settings.window_start_s, settings.window_end_s,
+  add_impact_metrics(m, merge_impacts(trajectory.events, settings.window.start_s, settings.window.end_s,
                                       settings.merge_window_s));
-  m.raw_onsets = onsets_in(trajectory.events, settings.window_start_s, settings.window_end_s);
+  m.raw_onsets = onsets_in(trajectory.events, settings.window.start_s, settings.window.end_s);
   add_rate_metrics(m, settings);
   add_energy_metric(m, trajectory, settings);
   return m;

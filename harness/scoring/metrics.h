@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/scenario.h"
 #include "model/trajectory.h"
 
 namespace ib {
@@ -15,8 +16,7 @@ namespace ib {
 constexpr double kStandardGravity_m_s2 = 9.80665;
 
 struct MetricSettings {
-  double window_start_s = 0;            // scoring window [s]
-  double window_end_s = 0;
+  ScoringWindow window;                 // where the metrics are taken (scoring_window(), model/scenario.h)
   double excitation_frequency_hz = 0;   // the motor's; 0: no excitation, no per-cycle metrics
   double natural_frequency_hz = 0;      // frame 1's f_1; with the excitation, defines the beat period
   double sensor_rate_hz = 2048;         // accelerometer sample rate f_s [Hz]

@@ -358,8 +358,8 @@ void SuiteRunner::describe_plan(int to_run) const {
     ++by_engine[job.spec.engine];
     const Scenario& s = scenarios_[job.scenario];
     char text[96];
-    const MetricSettings window = metric_settings(s, part_of(job).measurement);
-    std::snprintf(text, sizeof text, "%s (%g s, scored from %g s)", s.name.c_str(), s.duration_s, window.window_start_s);
+    const ScoringWindow window = scoring_window(s, part_of(job).measurement.window_s);
+    std::snprintf(text, sizeof text, "%s (%g s, scored from %g s)", s.name.c_str(), s.duration_s, window.start_s);
     names.insert(text);
     laws.insert(to_string(job.spec.settings.law));
     if (job.spec.settings.time_step_s > 0) {

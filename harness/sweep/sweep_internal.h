@@ -13,12 +13,12 @@
 
 namespace ib::sweep_internal {
 
-// A row's scenario: the motor at the row's ratio, the run and its window whole numbers of motor periods
-// (so that a continued run starts at the phase the last one ended at: 0).
+// A row's scenario: the motor at the row's ratio, the run and its scoring window (scenario.scoring_window_s,
+// from SweepSettings::window_s) whole numbers of motor periods (so that a continued run starts at the phase
+// the last one ended at: 0).
 struct RowScenario {
   Scenario scenario;
   double motor_frequency_hz = 0;
-  double window_s = 0;
 };
 RowScenario row_scenario(const Scenario& base, const SweepRow& row, const SweepSettings& settings);
 

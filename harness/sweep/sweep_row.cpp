@@ -49,7 +49,7 @@ std::vector<Field> row_fields(const SweepRow& row, const RowScenario& at, const 
       {"ratio", row.ratio, true},
       {"motor_frequency_hz", at.motor_frequency_hz},
       {"duration_s", at.scenario.duration_s},
-      {"window_s", at.window_s},
+      {"window_s", at.scenario.scoring_window_s},
       {"verdict", f.verdict},
       {"reason", f.reason},
       {"timed_out", f.timed_out ? 1.0 : 0.0},
@@ -105,8 +105,7 @@ RowScenario row_scenario(const Scenario& base, const SweepRow& row, const SweepS
   const double periods = std::max(1.0, std::round(run_s * at.motor_frequency_hz));
   at.scenario.duration_s = periods / at.motor_frequency_hz;
   const double window_periods = std::clamp(std::round(settings.window_s * at.motor_frequency_hz), 1.0, periods);
-  at.window_s = window_periods / at.motor_frequency_hz;
-  at.scenario.scoring_window_s = at.window_s;
+  at.scenario.scoring_window_s = window_periods / at.motor_frequency_hz;
   return at;
 }
 
@@ -116,7 +115,7 @@ std::optional<SavedState> run_sweep_row(const Scenario& base, const SweepRow& ro
   JobSpec job = row.job;
   if (!row.first_of_chain) job.settings.initial_state = from;
   Measurement measurement = settings.measurement;
-  measurement.window_s = at.window_s;
+  measurement.window_s.reset();  // the row's window is its scenario's (whole periods), not a --window
   ReferenceData kept;
   RowFigures f;
   // Only a start from rest has a start-up transient; a continued ratio starts from a settled state.
@@ -146,9 +145,9 @@ std::optional<SavedState> run_sweep_row(const Scenario& base, const SweepRow& ro
   std::vector<PoincareSample> samples;
   if (record.metrics) {
     const Metrics& m = *record.metrics;
-    const double window_start_s = at.scenario.duration_s - at.window_s;
-    samples = poincare_samples(kept.trajectory, at.motor_frequency_hz, window_start_s, at.scenario.duration_s);
-    const Regime regime = classify_regime(samples, orbit_scale(kept.trajectory, window_start_s, at.scenario.duration_s),
+    const ScoringWindow& window = record.window;  // the one the metrics were taken over
+    samples = poincare_samples(kept.trajectory, at.motor_frequency_hz, window.start_s, window.end_s);
+    const Regime regime = classify_regime(samples, orbit_scale(kept.trajectory, window.start_s, window.end_s),
                                           m.impacts, m.excitation_cycles);
     f.impacts = m.impacts;
     f.impacts_per_cycle = m.impacts_per_cycle;
