@@ -95,6 +95,7 @@ ib::Measurement MeasurementOptions::build() const {
   m.sensor_rate_hz = sensor_rate_hz;
   m.merge_window_s = merge_window_s;
   m.timed_repeats = timed_repeats;
+  m.series_rate_hz = series_rate_hz;
   if (series == "window") m.series = ib::SeriesOutput::window;
   else if (series == "all") m.series = ib::SeriesOutput::all;
   else if (series == "none") m.series = ib::SeriesOutput::none;

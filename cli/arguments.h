@@ -43,6 +43,7 @@ struct MeasurementOptions {
   double window_s = -1, sensor_rate_hz = 2048, merge_window_s = 0.002;
   int timed_repeats = 0;  // timed runs after the logged one (0: the logged run's own time is the cost)
   std::string series = "window";
+  double series_rate_hz = 0;  // what an engine run's series.csv.gz keeps [Hz]; 0: the output rate
   bool window_given = false;  // --window given other than on a command line (a study file's window_s)
   // with_timing: the command runs simulators (run, suite), so --repeat and --series apply; score measures files only
   void add_to(CLI::App* app, bool with_timing) {
@@ -59,6 +60,10 @@ struct MeasurementOptions {
                       "what a run's folder keeps of its series (series.csv.gz): window (the scoring window), all "
                       "(the whole run) or none (a suite's references keep their window)")
           ->capture_default_str();
+    if (with_timing)
+      add_shared_option(app, Shared::series_rate, series_rate_hz,
+                        "the rate an engine run's series.csv.gz keeps, every k-th sample with the peaks between [Hz]; "
+                        "0: every output sample (a suite's references always keep every one)");
   }
   // The option values are checked as they are read (option_rules.h); this checks --series and builds.
   ib::Measurement build() const;  // throws std::invalid_argument naming the option, the value and what is allowed

@@ -44,8 +44,10 @@ const OptionRule kOptionRules[] = {
     // One process each: more than 1024 on one machine (or one Slurm task) is a typo.
     {"--jobs", 1, 1024, true, true, "", "worker processes"},
     {"--repeat", 0, 100, true, true, "", "timed runs after the logged one"},
+    // What an engine run's series.csv.gz keeps (0: every output sample); the metrics read the full series first.
+    {"--series-rate", 0, Plausible::kMaxRate_hz, true, false, "Hz", "the rate an engine run's series file keeps, 0 for --rate"},
 };
-static_assert(sizeof kOptionRules / sizeof kOptionRules[0] == static_cast<int>(Shared::repeat) + 1, "one rule per Shared, in its order");
+static_assert(sizeof kOptionRules / sizeof kOptionRules[0] == static_cast<int>(Shared::series_rate) + 1, "one rule per Shared, in its order");
 
 std::string range_number(double value) {
   std::ostringstream out;

@@ -15,7 +15,7 @@
 
 namespace cli {
 
-enum class Shared { dt, rate, sensor_rate, time_limit, duration, rest_duration, window, series_start, merge_window, jobs, repeat };
+enum class Shared { dt, rate, sensor_rate, time_limit, duration, rest_duration, window, series_start, merge_window, jobs, repeat, series_rate };
 
 struct OptionRule {
   const char* name;   // as typed: "--dt"

@@ -53,6 +53,7 @@ const std::vector<KeySpec> kCommonKeys = {
     {"rate_hz", Type::number, "--rate", "output series sample rate [Hz]"},
     {"sensor_rate_hz", Type::number, "--sensor-rate", "accelerometer sample rate [Hz]"},
     {"series", Type::text, "--series", "what a run keeps of its series: window, all or none"},
+    {"series_rate_hz", Type::number, "--series-rate", "the rate an engine run's series file keeps [Hz]; 0: rate_hz"},
     {"time_limit_s", Type::number, "--time-limit", "per job (a sweep: per ratio) [s]"},
     {"window_s", Type::number, "--window", "the last S seconds of each run are scored [s]"},
     {"duration_s", Type::number, "--duration", "suite: runs cut to this length [s]; sweep: each continued ratio's run [s]"},
@@ -207,7 +208,8 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
   // Each number is checked as its command-line option is, as soon as it is read (cli/option_rules.h).
   const std::pair<const char*, Shared> numbers[] = {{"rate_hz", Shared::rate},           {"sensor_rate_hz", Shared::sensor_rate},
                                                     {"time_limit_s", Shared::time_limit}, {"window_s", Shared::window},
-                                                    {"duration_s", Shared::duration},     {"rest_duration_s", Shared::rest_duration}};
+                                                    {"duration_s", Shared::duration},     {"rest_duration_s", Shared::rest_duration},
+                                                    {"series_rate_hz", Shared::series_rate}};
   for (const auto& [key, option] : numbers) {
     if (!given.count(key)) continue;
     try {
@@ -221,6 +223,7 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
   MeasurementOptions& m = part.measurement;
   if (given.count("sensor_rate_hz")) m.sensor_rate_hz = std::stod(given["sensor_rate_hz"]);
   if (given.count("series")) m.series = given["series"];
+  if (given.count("series_rate_hz")) m.series_rate_hz = std::stod(given["series_rate_hz"]);
   if (kind == StudyPart::Kind::sweep) {
     require("name", "the sweep's folder below OUT/sweeps/ (a-z, 0-9, _ and -)");
     require("scenario", "a scenario file with a motor");

@@ -197,7 +197,7 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
     if (error) throw OutputError(output_error_text(run_folder, "create the run folder", error.value()));
     // The series and the impact zoom (a series too), gzipped, unless --series none.
     if (measurement.series != SeriesOutput::none) {
-      write_series_csv(run_folder + "/series.csv.gz", result.trajectory);
+      write_series_csv(run_folder + "/series.csv.gz", series_at_rate(result.trajectory, measurement.series_rate_hz));
       if (result.impact_zoom.size() > 0) write_series_csv(run_folder + "/impact.csv.gz", result.impact_zoom);
       write_sensor_over_series(run_folder + "/sensor.csv.gz", result.trajectory, metrics_settings.sensor_rate_hz);
     }

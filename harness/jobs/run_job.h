@@ -43,6 +43,9 @@ struct Measurement {
   // bench/timing_check.sh shows agrees with timed runs within their spread, at no extra cost.
   int timed_repeats = 0;
   SeriesOutput series = SeriesOutput::window;  // what a run's folder keeps of its series
+  // The rate its series.csv.gz keeps (series_at_rate, run_files.h) [Hz]; 0: the output rate. The metrics and
+  // sensor.csv.gz are computed from the full series before.
+  double series_rate_hz = 0;
 };
 
 // A finished reference run that other runs are compared with.

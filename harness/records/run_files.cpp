@@ -196,6 +196,37 @@ void write_series_csv(const std::string& path, const Trajectory& t) {
   write_table(path, text);
 }
 
+Trajectory series_at_rate(const Trajectory& t, double rate_hz) {
+  const std::size_t k = rate_hz > 0 && t.output_rate_hz > rate_hz
+                            ? static_cast<std::size_t>(std::floor(t.output_rate_hz / rate_hz * (1 + 1e-12)))
+                            : 1;
+  if (k <= 1 || t.size() == 0) return t;
+  Trajectory kept;
+  kept.output_rate_hz = t.output_rate_hz / static_cast<double>(k);
+  kept.start_time_s = t.start_time_s;
+  kept.initial_mechanical_energy_j = t.initial_mechanical_energy_j;
+  kept.events = t.events;
+  const bool energy = t.mechanical_energy_j.size() == t.size();
+  kept.reserve(t.size() / k + 1);
+  for (std::size_t j = 0; j < t.size(); j += k) {
+    kept.time_s.push_back(t.time_s[j]);
+    kept.contact_force_n.push_back(t.contact_force_n[j]);
+    if (energy) kept.mechanical_energy_j.push_back(t.mechanical_energy_j[j]);
+    double peak_force = t.peak_contact_force_n[j];
+    for (int f = 0; f < 2; ++f) {
+      kept.displacement_m[f].push_back(t.displacement_m[f][j]);
+      kept.velocity_m_s[f].push_back(t.velocity_m_s[f][j]);
+      kept.acceleration_m_s2[f].push_back(t.acceleration_m_s2[f][j]);
+      double peak = t.peak_abs_acceleration_m_s2[f][j];
+      for (std::size_t i = j >= k ? j - k + 1 : j; i < j; ++i) peak = std::max(peak, t.peak_abs_acceleration_m_s2[f][i]);
+      kept.peak_abs_acceleration_m_s2[f].push_back(peak);
+    }
+    for (std::size_t i = j >= k ? j - k + 1 : j; i < j; ++i) peak_force = std::max(peak_force, t.peak_contact_force_n[i]);
+    kept.peak_contact_force_n.push_back(peak_force);
+  }
+  return kept;
+}
+
 void write_sensor_csv(const std::string& path, const std::vector<double>& time_s,
                       const std::array<std::vector<double>, 2>& acceleration_m_s2) {
   std::string text = "time_s,frame1_sensor_acceleration_m_s2,frame2_sensor_acceleration_m_s2\n";

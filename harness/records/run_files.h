@@ -37,6 +37,11 @@ void replace_text_file(const std::string& path, const std::string& text);
 // .gz is written gzipped; the readers take either form (a plain series.csv from another solver, `score`).
 void write_series_csv(const std::string& path, const Trajectory& trajectory);
 void write_events_csv(const std::string& path, const Trajectory& trajectory);
+// The series as a file keeps it at a lower rate: every k-th sample from the first, k the whole number of output
+// samples per kept one (the largest rate at most rate_hz that divides the output rate); each peak column the
+// largest peak of the k intervals its sample now closes, so that no peak is lost. The events, the energy
+// baseline and the rest are kept. rate_hz <= 0 or at least the output rate: the series as it is.
+Trajectory series_at_rate(const Trajectory& trajectory, double rate_hz);
 // sensor.csv.gz: the accelerometer's reading of both frames at its own rate (metrics.h
 // sensor_acceleration, the one computation of it): time_s (window centres, exact),
 // frame{1,2}_sensor_acceleration_m_s2. The report draws it instead of computing it again.

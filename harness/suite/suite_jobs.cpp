@@ -82,12 +82,13 @@ std::string SuiteRunner::start(const PlannedJob& job, ProcessPool& pool) {
   return unit;
 }
 
-// What a job's folder keeps of its series: a reference always its window (engine runs are compared
-// with it, also on --resume), a step-search probe none unless asked (its summary and events say
+// What a job's folder keeps of its series: a reference always its window at the output rate (engine runs are
+// compared with it, also on --resume), a step-search probe none unless asked (its summary and events say
 // whether the step is stable and accurate), any other run what --series says.
 Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
   Measurement m = part_of(job).measurement;
   if (job.kind != JobKind::engine && m.series == SeriesOutput::none) m.series = SeriesOutput::window;
+  if (job.kind != JobKind::engine) m.series_rate_hz = 0;  // every sample: the engine runs are compared with it
   if (job.step_probe && !part_of(job).keep_probe_series) m.series = SeriesOutput::none;
   return m;
 }

@@ -34,7 +34,7 @@ constexpr const char* kSettingsFile = "/suite.jsonl";
 // result-deciding ones).
 const std::set<std::string> kMatrixKeys = {"scenario_files", "engines",     "laws",               "time_steps_s",
                                            "contact_paths",  "engine_options", "step_search", "verdict_tolerances",
-                                           "series"};
+                                           "series", "series_rate_hz"};
 
 std::string file_digest(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -108,6 +108,7 @@ nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
   s["merge_window_s"] = m.merge_window_s;
   s["timed_repeats"] = m.timed_repeats;
   s["series"] = m.series == SeriesOutput::all ? "all" : m.series == SeriesOutput::none ? "none" : "window";
+  if (m.series_rate_hz > 0) s["series_rate_hz"] = m.series_rate_hz;  // absent when unused: older folders resume
   s["verdict_tolerances"] = {m.verdicts.accuracy.sensor_peak_relative, m.verdicts.accuracy.contact_duration_relative,
                              m.verdicts.accuracy.impacts_per_cycle_difference, m.verdicts.accuracy.log_decrement_relative};
   s["stability_bounds"] = {m.verdicts.stability.displacement_bound_fraction_of_length,
