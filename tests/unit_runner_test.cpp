@@ -80,7 +80,7 @@ TEST(UnitRunner, NoSourceWaitsForAnotherToEnd) {
   // Two workers: while a's long unit runs, every one of b's short units runs on the other worker.
   std::vector<std::string> started;
   std::map<std::string, double> ended_at;
-  FakeSource a({{"long", 10, 1.0}}, &started, &ended_at);
+  FakeSource a({{"long", 10, 2.0}}, &started, &ended_at);
   FakeSource b({{"s1", 1, 0.05}, {"s2", 1, 0.05}, {"s3", 1, 0.05}}, &started, &ended_at);
   run_units({&a, &b}, 2);
   ASSERT_EQ(ended_at.size(), 4u);
