@@ -66,7 +66,13 @@ class SweepRunner : public SweepSource {
   SweepOutcome finish() override;
 
  private:
+  // A chain to run, with the simulated seconds of its rows not done yet (known when the sweep begins).
+  struct Pending {
+    const SweepChain* chain;
+    double simulated_s = 0;
+  };
   struct Running {
+    const SweepChain* chain;
     int rows_done = 0;  // when the chain last finished a row (or started): its clock restarts with each row
   };
 
@@ -77,7 +83,7 @@ class SweepRunner : public SweepSource {
     for (const SweepRow& row : chain.rows) done += row_done(folder_of(row)) ? 1 : 0;
     return done;
   }
-  // The simulated seconds of a chain's rows not done yet, and what its engine costs per simulated second.
+  // The simulated seconds of a chain's rows not done yet.
   double simulated_s_left(const SweepChain& chain) const;
   static std::string kind_of(const SweepChain& chain) { return chain.rows.front().job.engine + " " + options_text(chain.rows.front().job.settings.options); }
   void prepare_folder();
@@ -92,9 +98,9 @@ class SweepRunner : public SweepSource {
   Scenario scenario_;
   std::vector<SweepChain> all_, mine_;
   std::vector<std::string> my_row_ids_;
-  std::vector<const SweepChain*> pending_;
-  std::map<std::string, const SweepChain*> chain_of_unit_;
-  std::map<std::string, Running> running_;
+  std::vector<Pending> pending_;
+  std::size_t next_ = 0;  // the pending chain next_cost chose, which start_next starts
+  std::map<std::string, Running> running_;  // by unit id
   std::set<std::string> started_kinds_;
   std::map<std::string, std::pair<double, double>> cost_of_kind_;  // seconds, simulated seconds of the chains ended
   int recorded_ = -1;  // rows in the tables when last written
@@ -172,39 +178,31 @@ double SweepRunner::simulated_s_left(const SweepChain& chain) const {
 
 // The costliest chain to come: its simulated seconds at what its kind cost per simulated second so far; a kind
 // not started yet is unknown (it goes first, so that its cost is measured), one started but not ended costs
-// what the reference costs on the rig.
+// what the reference costs on the rig. Ties: the first in planned order.
 std::optional<double> SweepRunner::next_cost() {
   if (pending_.empty()) return std::nullopt;
   double best = -1;
-  for (const SweepChain* chain : pending_) {
-    const std::string kind = kind_of(*chain);
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    const std::string kind = kind_of(*pending_[i].chain);
     double cost = kUnknownCost;
     if (const auto measured = cost_of_kind_.find(kind); measured != cost_of_kind_.end() && measured->second.second > 0)
-      cost = simulated_s_left(*chain) * measured->second.first / measured->second.second;
+      cost = pending_[i].simulated_s * measured->second.first / measured->second.second;
     else if (started_kinds_.count(kind))
-      cost = simulated_s_left(*chain) * 0.01;
-    best = std::max(best, cost);
+      cost = pending_[i].simulated_s * 0.01;
+    if (cost > best) best = cost, next_ = i;
   }
   return best;
 }
 
 std::string SweepRunner::start_next(ProcessPool& pool) {
-  auto next = pending_.begin();
-  for (auto it = pending_.begin(); it != pending_.end(); ++it)
-    if (!started_kinds_.count(kind_of(**it)) && started_kinds_.count(kind_of(**next))) next = it;
-  if (started_kinds_.count(kind_of(**next))) {  // every kind started: the longest chain first
-    for (auto it = pending_.begin(); it != pending_.end(); ++it)
-      if (simulated_s_left(**it) > simulated_s_left(**next)) next = it;
-  }
-  const SweepChain& chain = **next;
-  pending_.erase(next);
+  const SweepChain& chain = *pending_[next_].chain;
+  pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(next_));
   started_kinds_.insert(kind_of(chain));
   std::filesystem::create_directories(s_.out + "/runs/" + chain.id);
   const std::string unit = "sweep " + s_.out + " " + chain.id;
   pool.start({unit, s_.time_limit_s, log_of(chain), /*append_log=*/true},
              [this, &chain](int message_pipe) { run_chain_in_child(chain, message_pipe); });
-  chain_of_unit_[unit] = &chain;
-  running_[unit] = Running{rows_done(chain)};
+  running_[unit] = Running{&chain, rows_done(chain)};
   return unit;
 }
 
@@ -219,8 +217,7 @@ void SweepRunner::record_rest_not_run(const SweepChain& chain, std::size_t from,
 }
 
 void SweepRunner::ended(const ProcessEnd& end) {
-  const SweepChain& chain = *chain_of_unit_.at(end.unit);
-  chain_of_unit_.erase(end.unit);
+  const SweepChain& chain = *running_.at(end.unit).chain;
   running_.erase(end.unit);
   const int status = end.status;
   if (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerOutputError)
@@ -250,7 +247,7 @@ void SweepRunner::ended(const ProcessEnd& end) {
 // The time limit is per ratio: a chain's clock restarts with each row it finishes.
 void SweepRunner::tick(ProcessPool& pool) {
   for (auto& [unit, run] : running_) {
-    const int done = rows_done(*chain_of_unit_.at(unit));
+    const int done = rows_done(*run.chain);
     if (done != run.rows_done) run.rows_done = done, pool.restart_clock(unit);
   }
   refresh_tables();
@@ -285,7 +282,7 @@ void SweepRunner::begin() {
   for (const SweepChain& chain : mine_) {
     const int done = rows_done(chain);
     outcome_.rows_skipped += done;
-    if (done < static_cast<int>(chain.rows.size())) pending_.push_back(&chain);
+    if (done < static_cast<int>(chain.rows.size())) pending_.push_back({&chain, simulated_s_left(chain)});
   }
   std::fprintf(stderr, "sweep: %s, %zu ratios x %zu chains%s: %d rows to run (%d recorded already)\n",
                scenario_.name.c_str(), s_.ratios.size(), mine_.size(),
