@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Suite scaling: the full study's published cases (the first [[suite]] of studies/full.toml; every engine,
+# Suite scaling: the full study's forced cases with impacts (the first [[suite]] of studies/full.toml; every engine,
 # law, contact path and step) run whole on 1, 2, ... worker processes, each into its own fresh folder. Parallel
 # efficiency E(n) = T(1) / (n T(n)). Writes OUT/scaling.csv and OUT/scaling.json (with the machine and
 # versions, bench/machine.sh); the report shows them when OUT is RESULTS/performance.
 #   bench/suite_scaling.sh [--workers 1,2] [--duration S] [OUT]     (default OUT: results/performance)
-# --duration S cuts every run to S seconds (default: the full study's 50 s): the same jobs, shorter;
+# --duration S cuts every run to S seconds (default: the full study's 20 s): the same jobs, shorter;
 # the per-job costs that do not scale with the duration (process start, reading the references, writing
 # files) then weigh more, so a cut run understates the efficiency of the full one.
 set -euo pipefail

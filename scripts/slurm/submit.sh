@@ -3,14 +3,14 @@
 # and its merge after them (scripts/slurm/merge.sbatch, --dependency=afterany): results in
 # results/NAME/shard-K, joined in results/NAME/merged with its report.
 #
-#   scripts/slurm/submit.sh NAME SHARDS [--full] [--no-search] [-- SBATCH_OPTIONS...]
+#   scripts/slurm/submit.sh NAME SHARDS [--full | --study FILE] [--no-search] [-- SBATCH_OPTIONS...]
 #
 # Options after -- go to both sbatch calls (e.g. -- --partition=short --account=me). Run it from
 # anywhere on a login node; impactbench must be built (scripts/build.sh) on a file system the nodes see.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-name=${1:?usage: scripts/slurm/submit.sh NAME SHARDS [--full] [--no-search] [-- SBATCH_OPTIONS...]}
-shards=${2:?usage: scripts/slurm/submit.sh NAME SHARDS [--full] [--no-search] [-- SBATCH_OPTIONS...]}
+name=${1:?usage: scripts/slurm/submit.sh NAME SHARDS [--full | --study FILE] [--no-search] [-- SBATCH_OPTIONS...]}
+shards=${2:?usage: scripts/slurm/submit.sh NAME SHARDS [--full | --study FILE] [--no-search] [-- SBATCH_OPTIONS...]}
 shift 2
 suite_options=()
 while [[ $# -gt 0 && $1 != -- ]]; do suite_options+=("$1"); shift; done
