@@ -126,7 +126,9 @@ constexpr const char* kDartNewton =
 constexpr const char* kSimbodyHertz =
     "Simbody's own Hunt-Crossley contact with the mapped material (equal to the law to 1e-9 on the posed rig, "
     "tests/simbody_contact_mapping_test.cpp), a force that semi-explicit Euler integrates explicitly like the "
-    "injected ones: 1e-5 s (25 steps per 0.25 ms contact), as for the other engines' Hertz";
+    "injected ones. In the forced cases 2e-5 s (12 steps per 0.25 ms contact) keeps every metric within 1.3 % of "
+    "the chain reference (as ODE's Hertz at 2e-5 s), at half the cost of 1e-5 s; the free vibration, whose peak is "
+    "its first impact's, at 1e-5 s as for the other engines' Hertz";
 constexpr const char* kSimbodySpringDashpot =
     "the law as a Simbody force element at the default 5e-5 s (12 steps per 0.6 ms contact, omega h = 0.26): "
     "explicit, restitution within 1 % of the law's, so 5 %. The element is the scenario's published law, tensile "
@@ -195,10 +197,10 @@ constexpr AgreementRow kAgreement[] = {
     {"dart", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
     {"dart", "free_vibration", kNewton, 1e-5, "matched", "length_unit=cm", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
     // ---------------------------------------------------------------- Simbody 3.7, semi-explicit Euler, explicit hinge springs
-    {"simbody", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kSimbodyHertz},
+    {"simbody", "resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kSimbodyHertz},
     {"simbody", "resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kSimbodySpringDashpot},
     {"simbody", "resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kSimbodyNewton},
-    {"simbody", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kSimbodyHertz},
+    {"simbody", "pre_resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kSimbodyHertz},
     {"simbody", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kSimbodySpringDashpot},
     {"simbody", "pre_resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kSimbodyNewton},
     {"simbody", "post_resonance", kHertz, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kSimbodyPostResonance},
