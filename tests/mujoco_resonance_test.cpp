@@ -14,8 +14,7 @@
 
 #include "harness/scoring/metrics.h"
 #include "adapters/mujoco/mujoco_simulator.h"
-#include "reference_fixtures.h"
-#include "reference/reference_simulator.h"
+#include "engine_measurements.h"
 #include "harness/jobs/run_job.h"
 
 namespace ib {
@@ -35,9 +34,7 @@ TEST(MujocoResonance, ImpactsPerCycleAndSensorPeakMatchTheReference) {
   const int links = *mujoco->chain_links(s, run);
   const RunResult engine = mujoco->run(s, run);
   ASSERT_EQ(engine.status, RunStatus::ok) << engine.reason;
-  RunSettings chain = run;
-  chain.options = chain_reference_options(links);
-  const RunResult reference = make_reference_simulator()->run(s, chain);
+  const RunResult reference = testing::reference_on_chain(s, run, links);
   ASSERT_EQ(reference.status, RunStatus::ok) << reference.reason;
 
   const Metrics m = compute_metrics(engine.trajectory, window), r = compute_metrics(reference.trajectory, window);

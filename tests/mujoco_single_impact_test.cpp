@@ -18,8 +18,7 @@
 #include "harness/scoring/metrics.h"
 #include "adapters/mujoco/mujoco_contact_mapping.h"
 #include "adapters/mujoco/mujoco_simulator.h"
-#include "reference_fixtures.h"
-#include "reference/reference_simulator.h"
+#include "engine_measurements.h"
 #include "adapters/common/rig.h"
 
 namespace ib {
@@ -78,9 +77,7 @@ TEST_P(MujocoSingleImpact, DurationAndRestitutionMatchTheReference) {
   const int links = *mujoco->chain_links(s, run);
   const RunResult engine = mujoco->run(s, run);
   ASSERT_EQ(engine.status, RunStatus::ok) << engine.reason;
-  RunSettings chain = run;
-  chain.options = chain_reference_options(links);
-  const RunResult reference = make_reference_simulator()->run(s, chain);
+  const RunResult reference = testing::reference_on_chain(s, run, links);
   ASSERT_EQ(reference.status, RunStatus::ok) << reference.reason;
   ASSERT_EQ(reference.trajectory.events.size(), 1u);
   ASSERT_EQ(engine.trajectory.events.size(), 1u) << "one impact, no flicker";
