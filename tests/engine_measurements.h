@@ -91,6 +91,17 @@ inline RunResult reference_on_chain(const Scenario& s, RunSettings settings, int
   return make_reference_simulator()->run(s, settings);
 }
 
+// An engine's run and the reference's on the chain that engine builds for the run (its chain_links: links).
+struct EngineAndReference {
+  RunResult engine, reference;
+  int links = 0;
+};
+inline EngineAndReference run_with_reference(Simulator& engine, const Scenario& s, const RunSettings& settings) {
+  const int links = *engine.chain_links(s, settings);
+  RunResult run = engine.run(s, settings);
+  return {std::move(run), reference_on_chain(s, settings, links), links};
+}
+
 // ---- The free vibration's first impact: frame 1 released 3 mm from frame 2 touches at 48 ms and parts by 49 ms.
 constexpr double kFirstImpactSeriesStart_s = 0.04;  // the first impact starts at 48 ms
 constexpr double kFirstImpactEnd_s = 0.055;         // and ends by 49 ms
