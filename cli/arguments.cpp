@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/simulator_options.h"
 #include "simulators/catalog.h"
 
 namespace cli {
@@ -101,6 +102,46 @@ ib::Measurement MeasurementOptions::build() const {
   else if (series == "none") m.series = ib::SeriesOutput::none;
   else throw std::invalid_argument("--series " + series + ": allowed: window, all, none");
   return m;
+}
+
+void matrix_settings_from(const MatrixOptions& o, const MeasurementOptions& measurement_options, ib::MatrixSettings& s) {
+  s.simulators = ib::simulator_catalog();
+  std::string engine_names;
+  for (const auto& n : ib::simulator_names()) engine_names += (engine_names.empty() ? "" : ", ") + n;
+  s.engines = split_list(o.engines, "--engines", engine_names);
+  for (const auto& e : s.engines) require_engine(e);
+  s.laws.clear();
+  for (const auto& l : split_list(o.laws, "--laws", "hertz, viscoelastic, newton")) s.laws.push_back(parse_law(l));
+  if (!o.time_steps.empty()) s.time_steps_s = parse_values(Shared::dt, o.time_steps);
+  for (const auto& path : o.paths.empty() ? std::vector<std::string>{} : split_list(o.paths, "--paths", ib::contact_path_names())) {
+    if (!ib::contact_path_from_string(path))
+      throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
+    s.contact_paths.push_back(path);
+  }
+  for (const auto& pair : o.options) {
+    const auto dot = pair.find('.'), eq = pair.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || dot > eq)
+      throw std::invalid_argument("--option " + pair + ": expected engine.name=value, e.g. reference.n=5");
+    const std::string engine = pair.substr(0, dot);
+    require_engine(engine);
+    auto& target = engine == "reference" ? s.reference_options : s.engine_options[engine];
+    target[pair.substr(dot + 1, eq - dot - 1)] = pair.substr(eq + 1);
+  }
+  for (const auto& engine : s.engines) {  // fail now, not in every job
+    ib::RunSettings run;
+    run.options = engine == "reference" ? s.reference_options : s.engine_options[engine];
+    ib::make_simulator(engine)->check_settings(run);
+  }
+  if (o.out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
+  s.output_rate_hz = o.rate_hz;  // --rate, --jobs, --time-limit: checked as read (option_rules.h)
+  s.jobs = o.jobs;
+  s.time_limit_s = o.time_limit_s;
+  s.out = o.out;
+  s.resume = o.resume;
+  s.measurement = measurement_options.build();
+  require_series_resolves_sensor(s.output_rate_hz, s.measurement.sensor_rate_hz);
+  if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
+  s.resume_command = resume_command(g_argc, g_argv);
 }
 
 }  // namespace cli

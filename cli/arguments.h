@@ -4,11 +4,15 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "cli/option_rules.h"
+#include "harness/jobs/matrix_settings.h"
 #include "harness/jobs/run_job.h"
 #include "physics/contact_laws.h"
 
@@ -71,5 +75,22 @@ struct MeasurementOptions {
  private:
   const CLI::App* app_ = nullptr;  // the command's: whether --window was given at all (any value it has is then checked)
 };
+
+// The options `suite` and `sweep` share (SuiteOptions, SweepOptions: commands.h), as typed: which
+// configurations run and how. A sweep's default law is hertz alone, a suite's every law (SuiteOptions).
+struct MatrixOptions {
+  std::string engines = "reference", laws = "hertz", paths, time_steps, out;
+  std::vector<std::string> options;  // --option ENGINE.NAME=VALUE, repeatable
+  double rate_hz = 4096, time_limit_s = 600;
+  int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  std::string shard;  // K/N, empty: the whole suite or sweep
+  bool resume = false;
+};
+
+// The shared settings from the shared options (`suite`, `sweep` and a study's parts), every value checked
+// (std::invalid_argument naming the option, the value and what is allowed): the engines and laws, the
+// steps, the contact paths, the engines' options (checked by each engine now, not in every job), the
+// folder, the shard and the measurement (--rate at least --sensor-rate); this binary's simulators.
+void matrix_settings_from(const MatrixOptions& o, const MeasurementOptions& measurement_options, ib::MatrixSettings& s);
 
 }  // namespace cli

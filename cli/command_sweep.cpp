@@ -5,8 +5,6 @@
 
 #include "cli/commands.h"
 #include "harness/sweep/sweep.h"
-#include "model/simulator_options.h"
-#include "simulators/catalog.h"
 
 namespace cli {
 
@@ -21,7 +19,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& o, MeasurementOptions& measu
   command->add_option("--laws", o.laws, "comma-separated laws")->capture_default_str();
   command->add_option("--paths", o.paths, "comma-separated contact paths of the engines; default: each engine's");
   add_shared_list_option(command, Shared::dt, o.time_steps, "comma-separated time steps of fixed-step engines [s]; default: each engine's");
-  command->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.rtol=1e-10)");
+  command->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.n=5)");
   add_shared_option(command, Shared::duration, o.duration_s, "each continued ratio's run [s], whole motor periods");
   add_shared_option(command, Shared::rest_duration, o.rest_duration_s,
                     "a start from rest's run (also a continuation's first ratio) [s]; default: the scenario's duration", false);
@@ -39,7 +37,6 @@ void add_sweep_command(CLI::App& app, SweepOptions& o, MeasurementOptions& measu
 
 ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOptions& measurement_options) {
   ib::SweepSettings s;
-  s.simulators = ib::simulator_catalog();
   s.scenario_path = o.scenario;
   s.ratios = ib::parse_ratios(o.ratios);
   s.starts.clear();
@@ -54,48 +51,12 @@ ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOp
       throw std::invalid_argument("--start " + o.start + ": allowed: rest, up, down or both (up and down), comma-separated");
   }
   if (s.starts.empty()) throw std::invalid_argument("--start '': allowed: rest, up, down or both (up and down), comma-separated");
-  std::string engine_names;
-  for (const auto& n : ib::simulator_names()) engine_names += (engine_names.empty() ? "" : ", ") + n;
-  s.engines = split_list(o.engines, "--engines", engine_names);
-  for (const auto& e : s.engines) require_engine(e);
-  s.laws.clear();
-  for (const auto& l : split_list(o.laws, "--laws", "hertz, viscoelastic, newton")) s.laws.push_back(parse_law(l));
-  if (s.laws.empty()) throw std::invalid_argument("--laws '" + o.laws + "': allowed: hertz, viscoelastic, newton, comma-separated");
-  if (!o.time_steps.empty()) s.time_steps_s = parse_values(Shared::dt, o.time_steps);
-  for (const auto& path : o.paths.empty() ? std::vector<std::string>{} : split_list(o.paths, "--paths", ib::contact_path_names())) {
-    if (!ib::contact_path_from_string(path))
-      throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
-    s.contact_paths.push_back(path);
-  }
-  for (const auto& pair : o.options) {
-    const auto dot = pair.find('.'), eq = pair.find('=');
-    if (dot == std::string::npos || eq == std::string::npos || dot > eq)
-      throw std::invalid_argument("--option " + pair + ": expected engine.name=value, e.g. reference.rtol=1e-10");
-    const std::string engine = pair.substr(0, dot);
-    require_engine(engine);
-    auto& target = engine == "reference" ? s.reference_options : s.engine_options[engine];
-    target[pair.substr(dot + 1, eq - dot - 1)] = pair.substr(eq + 1);
-  }
-  for (const auto& engine : s.engines) {  // fail now, not in every chain
-    ib::RunSettings run;
-    run.options = engine == "reference" ? s.reference_options : s.engine_options[engine];
-    ib::make_simulator(engine)->check_settings(run);
-  }
-  // --duration, --rest-duration, --window, --rate, --jobs, --time-limit: checked as read (option_rules.h)
+  matrix_settings_from(o, measurement_options, s);
+  // --duration, --rest-duration, --window: checked as read (option_rules.h)
   if (o.rest_duration_s >= 0) s.rest_duration_s = o.rest_duration_s;
   require_at_most(Shared::window, o.window_s, o.duration_s, "the run (--duration " + value_text(o.duration_s) + " s)");
-  if (o.out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
   s.continuation_duration_s = o.duration_s;
   s.window_s = o.window_s;
-  s.output_rate_hz = o.rate_hz;
-  s.jobs = o.jobs;
-  s.time_limit_s = o.time_limit_s;
-  s.out = o.out;
-  s.resume = o.resume;
-  s.measurement = measurement_options.build();
-  require_series_resolves_sensor(s.output_rate_hz, s.measurement.sensor_rate_hz);
-  if (!o.shard.empty()) s.shard = ib::parse_shard(o.shard);
-  s.resume_command = resume_command(g_argc, g_argv);
   return s;
 }
 

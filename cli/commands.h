@@ -14,27 +14,22 @@
 
 namespace cli {
 
-struct SuiteOptions {
+// `suite`'s options: the shared ones (MatrixOptions, arguments.h) and its own.
+struct SuiteOptions : MatrixOptions {
+  SuiteOptions() { laws = "hertz,viscoelastic,newton"; }
   std::vector<std::string> inputs;
-  std::string engines = "reference", laws = "hertz,viscoelastic,newton", time_steps, paths, out;
-  int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
-  double time_limit_s = 600, rate_hz = 4096, max_duration_s = 0;  // max_duration_s 0: not given (given: > 0)
-  bool resume = false, extend = false;
-  std::vector<std::string> options;
+  double max_duration_s = 0;  // 0: not given (given: > 0)
+  bool extend = false;
   bool find_steps = false, keep_series = false;
   int steps_per_octave = 4;
   std::string step_range = "1e-6,1e-3", tolerances;
-  std::string shard;  // K/N, empty: the whole suite
   std::string reference_cache;  // a folder sharing reference runs between output folders
 };
 
-struct SweepOptions {
-  std::string scenario, ratios = "0.85:1.25:0.01", start = "both", engines = "reference", laws = "hertz", paths, time_steps, out;
-  std::vector<std::string> options;
-  double duration_s = 60, rest_duration_s = -1, window_s = 10, rate_hz = 4096, time_limit_s = 600;
-  int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
-  std::string shard;
-  bool resume = false;
+// `sweep`'s options: the shared ones (MatrixOptions, arguments.h) and its own.
+struct SweepOptions : MatrixOptions {
+  std::string scenario, ratios = "0.85:1.25:0.01", start = "both";
+  double duration_s = 60, rest_duration_s = -1, window_s = 10;
 };
 
 int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,

@@ -224,6 +224,15 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
   if (given.count("sensor_rate_hz")) m.sensor_rate_hz = std::stod(given["sensor_rate_hz"]);
   if (given.count("series")) m.series = given["series"];
   if (given.count("series_rate_hz")) m.series_rate_hz = std::stod(given["series_rate_hz"]);
+  // The keys every kind of part has, into the options suite and sweep share.
+  MatrixOptions& shared = kind == StudyPart::Kind::sweep ? static_cast<MatrixOptions&>(part.sweep) : part.suite;
+  if (!engine_list.empty()) shared.engines = engine_list;
+  if (given.count("laws")) shared.laws = expand_all("laws", given["laws"], engines);
+  if (given.count("paths")) shared.paths = expand_all("paths", given["paths"], engines);
+  if (given.count("dt_s")) shared.time_steps = given["dt_s"];
+  if (given.count("options")) shared.options = part.key_items["options"];
+  if (given.count("rate_hz")) shared.rate_hz = std::stod(given["rate_hz"]);
+  if (given.count("time_limit_s")) shared.time_limit_s = std::stod(given["time_limit_s"]);
   if (kind == StudyPart::Kind::sweep) {
     require("name", "the sweep's folder below OUT/sweeps/ (a-z, 0-9, _ and -)");
     require("scenario", "a scenario file with a motor");
@@ -235,16 +244,9 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
     s.scenario = scenario_path(file, given["scenario"]);
     if (given.count("ratios")) s.ratios = given["ratios"];
     if (given.count("starts")) s.start = given["starts"];
-    if (!engine_list.empty()) s.engines = engine_list;
-    if (given.count("laws")) s.laws = expand_all("laws", given["laws"], engines);
-    if (given.count("paths")) s.paths = expand_all("paths", given["paths"], engines);
-    if (given.count("dt_s")) s.time_steps = given["dt_s"];
-    if (given.count("options")) s.options = part.key_items["options"];
     if (given.count("duration_s")) s.duration_s = std::stod(given["duration_s"]);
     if (given.count("rest_duration_s")) s.rest_duration_s = std::stod(given["rest_duration_s"]);
     if (given.count("window_s")) s.window_s = std::stod(given["window_s"]);
-    if (given.count("rate_hz")) s.rate_hz = std::stod(given["rate_hz"]);
-    if (given.count("time_limit_s")) s.time_limit_s = std::stod(given["time_limit_s"]);
     return part;
   }
   require("scenarios", "scenario files or folders");
@@ -252,13 +254,6 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
   const std::vector<std::string> scenarios =
       part.key_items.count("scenarios") ? part.key_items["scenarios"] : std::vector<std::string>{given["scenarios"]};
   for (const std::string& path : scenarios) s.inputs.push_back(scenario_path(file, path));
-  if (!engine_list.empty()) s.engines = engine_list;
-  if (given.count("laws")) s.laws = expand_all("laws", given["laws"], engines);
-  if (given.count("paths")) s.paths = expand_all("paths", given["paths"], engines);
-  if (given.count("dt_s")) s.time_steps = given["dt_s"];
-  if (given.count("options")) s.options = part.key_items["options"];
-  if (given.count("rate_hz")) s.rate_hz = std::stod(given["rate_hz"]);
-  if (given.count("time_limit_s")) s.time_limit_s = std::stod(given["time_limit_s"]);
   if (given.count("duration_s")) s.max_duration_s = std::stod(given["duration_s"]);
   if (given.count("window_s")) {
     m.window_s = std::stod(given["window_s"]);

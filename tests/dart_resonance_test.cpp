@@ -9,33 +9,20 @@
 #include <cmath>
 #include <cstdio>
 
-#include "adapters/common/rig.h"
 #include "adapters/dart/dart_simulator.h"
 #include "harness/scoring/metrics.h"
 #include "harness/jobs/run_job.h"
-#include "reference/reference_simulator.h"
-#include "reference_fixtures.h"
+#include "engine_measurements.h"
 
 namespace ib {
 namespace {
 
 TEST(DartResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
-  Scenario s = testing::paper_scenario("resonance");
-  s.duration_s = 12;
-  s.scoring_window_s = 6;
-  const MetricSettings window = metric_settings(s, Measurement{});
-
-  RunSettings settings;
-  settings.law = ContactLaw::viscoelastic;
-  settings.series_start_s = window.window.start_s;
-  settings.options = chain_reference_options(default_links(s));
-  const Metrics reference = compute_metrics(make_reference_simulator()->run(s, settings).trajectory, window);
-
-  settings.time_step_s = 5e-5;
-  settings.options = {{"contact", "matched"}};
-  const RunResult run = make_dart_simulator()->run(s, settings);
+  Scenario s = testing::settled_resonance();
+  const testing::ResonanceComparison c = testing::compare_resonance(*make_dart_simulator(), s, 5e-5, {{"contact", "matched"}});
+  const RunResult& run = c.run;
   ASSERT_EQ(run.status, RunStatus::ok) << run.reason;
-  const Metrics dart = compute_metrics(run.trajectory, window);
+  const Metrics &reference = c.reference, &dart = c.engine;
   std::printf("reference: %.4f impacts/cycle (%d impacts), frame 1 sensor peak %.3f g; dart h = 5e-5 s: %.4f impacts/cycle "
               "(%d impacts), frame 1 sensor peak %.3f g (%+.1f %%), e %.3f; %.2f us/step\n",
               reference.impacts_per_cycle, reference.impacts, reference.frames[0].sensor_peak_acceleration_g,

@@ -10,12 +10,9 @@
 #include <map>
 #include <string>
 
-#include "adapters/common/rig.h"
 #include "adapters/dart/dart_simulator.h"
 #include "engine_measurements.h"
 #include "harness/scoring/metrics.h"
-#include "reference/reference_simulator.h"
-#include "reference_fixtures.h"
 
 namespace ib {
 namespace {
@@ -24,35 +21,14 @@ using testing::CrossingImpact;
 using testing::measure_impact;
 
 constexpr double kSeriesStart_s = 0.03;  // the first impact starts at 48 ms (40 ms when released 3 times further)
-constexpr double kDuration_s = 0.055;    // and ends by 49 ms
-constexpr double kOutputRate_hz = 2e6;   // dense enough to place the tip crossings to 0.5 us
+constexpr double kDuration_s = testing::kFirstImpactEnd_s;
 
-Scenario first_impact() {
-  Scenario s = testing::paper_scenario("free_vibration");
-  s.duration_s = kDuration_s;
-  s.scoring_window_s = kDuration_s;
-  return s;
-}
+Scenario first_impact() { return testing::first_impact_scenario(false); }
 
-RunSettings settings_for(ContactLaw law, double h, std::map<std::string, std::string> options) {
-  RunSettings settings;
-  settings.law = law;
-  settings.output_rate_hz = kOutputRate_hz;
-  settings.series_start_s = kSeriesStart_s;
-  settings.time_step_s = h;
-  settings.options = std::move(options);
-  return settings;
-}
-
-CrossingImpact reference_impact(const Scenario& s, ContactLaw law) {
-  const RunResult r = make_reference_simulator()->run(s, settings_for(law, 0, chain_reference_options(default_links(s))));
-  const auto impact = measure_impact(r.trajectory, s.gap_m);
-  if (!impact) throw std::runtime_error("the reference has no impact");
-  return *impact;
-}
+CrossingImpact reference_impact(const Scenario& s, ContactLaw law) { return testing::reference_impact(s, law, kSeriesStart_s); }
 
 RunResult dart_run(const Scenario& s, ContactLaw law, double h, std::map<std::string, std::string> options) {
-  RunResult r = make_dart_simulator()->run(s, settings_for(law, h, std::move(options)));
+  RunResult r = make_dart_simulator()->run(s, testing::first_impact_settings(law, h, std::move(options), kSeriesStart_s));
   if (r.status != RunStatus::ok) throw std::runtime_error("dart run not ok: " + r.reason);
   return r;
 }

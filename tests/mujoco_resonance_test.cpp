@@ -14,8 +14,7 @@
 
 #include "harness/scoring/metrics.h"
 #include "adapters/mujoco/mujoco_simulator.h"
-#include "reference_fixtures.h"
-#include "reference/reference_simulator.h"
+#include "engine_measurements.h"
 #include "harness/jobs/run_job.h"
 
 namespace ib {
@@ -31,13 +30,9 @@ TEST(MujocoResonance, ImpactsPerCycleAndSensorPeakMatchTheReference) {
   run.law = ContactLaw::viscoelastic;
   run.time_step_s = 1e-4;
   run.series_start_s = window.window.start_s;
-  const auto mujoco = make_mujoco_simulator();
-  const int links = *mujoco->chain_links(s, run);
-  const RunResult engine = mujoco->run(s, run);
+  const testing::EngineAndReference runs = testing::run_with_reference(*make_mujoco_simulator(), s, run);
+  const RunResult &engine = runs.engine, &reference = runs.reference;
   ASSERT_EQ(engine.status, RunStatus::ok) << engine.reason;
-  RunSettings chain = run;
-  chain.options = chain_reference_options(links);
-  const RunResult reference = make_reference_simulator()->run(s, chain);
   ASSERT_EQ(reference.status, RunStatus::ok) << reference.reason;
 
   const Metrics m = compute_metrics(engine.trajectory, window), r = compute_metrics(reference.trajectory, window);

@@ -18,8 +18,7 @@
 #include "harness/scoring/metrics.h"
 #include "adapters/mujoco/mujoco_contact_mapping.h"
 #include "adapters/mujoco/mujoco_simulator.h"
-#include "reference_fixtures.h"
-#include "reference/reference_simulator.h"
+#include "engine_measurements.h"
 #include "adapters/common/rig.h"
 
 namespace ib {
@@ -74,13 +73,9 @@ TEST_P(MujocoSingleImpact, DurationAndRestitutionMatchTheReference) {
   run.output_rate_hz = 1e5;  // every step
   run.series_start_s = 0.04;
   run.options = {{"contact", c.path}};
-  const auto mujoco = make_mujoco_simulator();
-  const int links = *mujoco->chain_links(s, run);
-  const RunResult engine = mujoco->run(s, run);
+  const testing::EngineAndReference runs = testing::run_with_reference(*make_mujoco_simulator(), s, run);
+  const RunResult &engine = runs.engine, &reference = runs.reference;
   ASSERT_EQ(engine.status, RunStatus::ok) << engine.reason;
-  RunSettings chain = run;
-  chain.options = chain_reference_options(links);
-  const RunResult reference = make_reference_simulator()->run(s, chain);
   ASSERT_EQ(reference.status, RunStatus::ok) << reference.reason;
   ASSERT_EQ(reference.trajectory.events.size(), 1u);
   ASSERT_EQ(engine.trajectory.events.size(), 1u) << "one impact, no flicker";
@@ -103,7 +98,7 @@ TEST_P(MujocoSingleImpact, DurationAndRestitutionMatchTheReference) {
   // What the harness's metrics see: the force episode, and its restitution.
   double force_fraction = 1;
   if (law_pulls_engine_cannot) {
-    const RigSpec rig = build_rig(s, c.law, links);
+    const RigSpec rig = build_rig(s, c.law, runs.links);
     const double zeta = s.contact.viscoelastic->damping_n_s_per_m /
                         (2 * std::sqrt(s.contact.viscoelastic->stiffness_n_per_m * rig.contact_effective_mass_kg));
     force_fraction = clipped_contact_phase(zeta) / M_PI;

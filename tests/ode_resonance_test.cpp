@@ -18,34 +18,20 @@
 #include "harness/scoring/metrics.h"
 #include "physics/modal_model.h"
 #include "adapters/ode/ode_simulator.h"
-#include "reference_fixtures.h"
-#include "reference/reference_simulator.h"
-#include "adapters/common/rig.h"
+#include "engine_measurements.h"
 #include "harness/jobs/run_job.h"
 
 namespace ib {
 namespace {
 
 TEST(OdeResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
-  Scenario s = testing::paper_scenario("resonance");
-  s.duration_s = 12;
-  s.scoring_window_s = 6;
+  Scenario s = testing::settled_resonance();
   // ODE's contact only pushes: the reference runs the same, clipped, law (tests/ode_single_impact_test.cpp)
   s.contact.viscoelastic->clip_tension = true;
-  const int links = default_links(s);
-  const MetricSettings window = metric_settings(s, Measurement{});
-
-  RunSettings settings;
-  settings.law = ContactLaw::viscoelastic;
-  settings.series_start_s = window.window.start_s;
-  settings.options = chain_reference_options(links);
-  const Metrics reference = compute_metrics(make_reference_simulator()->run(s, settings).trajectory, window);
-
-  settings.time_step_s = 2e-5;
-  settings.options = {};
-  const RunResult run = make_ode_simulator()->run(s, settings);
+  const testing::ResonanceComparison c = testing::compare_resonance(*make_ode_simulator(), s, 2e-5, {});
+  const RunResult& run = c.run;
   ASSERT_EQ(run.status, RunStatus::ok) << run.reason;
-  const Metrics ode = compute_metrics(run.trajectory, window);
+  const Metrics &reference = c.reference, &ode = c.engine;
 
   std::printf("reference: %.4f impacts/cycle (%d impacts, %.1f cycles), frame 1 sensor peak %.3f g, frame 2 %.3f g, e %.3f\n",
               reference.impacts_per_cycle, reference.impacts, reference.excitation_cycles,

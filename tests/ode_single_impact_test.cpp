@@ -7,86 +7,23 @@
 
 #include <cmath>
 #include <cstdio>
-#include <optional>
 
-#include "harness/scoring/metrics.h"
 #include "adapters/ode/ode_simulator.h"
-#include "reference_fixtures.h"
-#include "reference/reference_simulator.h"
-#include "adapters/common/rig.h"
+#include "engine_measurements.h"
+#include "harness/scoring/metrics.h"
 
 namespace ib {
 namespace {
 
-constexpr double kSeriesStart_s = 0.04;   // the first impact starts at 48 ms
-constexpr double kDuration_s = 0.055;     // and ends by 49 ms
-constexpr double kOutputRate_hz = 2e6;    // dense enough to place the tip crossings to 0.5 us
+using testing::engine_impact;
+using testing::first_impact_scenario;
+using testing::first_impact_settings;
+using testing::kFirstImpactEnd_s;
+using testing::reference_impact;
+using Impact = testing::CrossingImpact;  // the impact as rig.md section 5 defines it, from the sampled tip motion
 
-// The free vibration case up to just after its first impact.
-Scenario first_impact(bool clip_tension) {
-  Scenario s = testing::paper_scenario("free_vibration");
-  s.duration_s = kDuration_s;
-  s.scoring_window_s = kDuration_s;
-  s.contact.viscoelastic->clip_tension = clip_tension;
-  return s;
-}
-
-// The impact as rig.md section 5 defines it, measured the same way on every run from the sampled tip
-// motion: from the indentation's upward zero crossing (touch) to its downward one (separation), with
-// the relative tip velocities there.
-struct Impact {
-  double duration_s = 0, restitution = 0, approach_m_s = 0;
-};
-
-std::optional<Impact> measure_impact(const Trajectory& t, double gap_m) {
-  const auto indentation = [&](std::size_t k) { return t.displacement_m[0][k] - t.displacement_m[1][k] - gap_m; };
-  const auto closing = [&](std::size_t k) { return t.velocity_m_s[0][k] - t.velocity_m_s[1][k]; };
-  // linear interpolation between samples k-1 and k at the zero of the indentation
-  const auto crossing = [&](std::size_t k, double& time, double& rate) {
-    const double a = indentation(k - 1), b = indentation(k), w = a / (a - b);
-    time = t.time_s[k - 1] + w * (t.time_s[k] - t.time_s[k - 1]);
-    rate = closing(k - 1) + w * (closing(k) - closing(k - 1));
-  };
-  double onset = 0, approach = 0, end = 0, rebound = 0;
-  std::size_t k = 1;
-  while (k < t.size() && !(indentation(k - 1) <= 0 && indentation(k) > 0)) ++k;
-  if (k >= t.size()) return std::nullopt;
-  crossing(k, onset, approach);
-  while (k < t.size() && !(indentation(k - 1) > 0 && indentation(k) <= 0)) ++k;
-  if (k >= t.size()) return std::nullopt;
-  crossing(k, end, rebound);
-  return Impact{end - onset, -rebound / approach, approach};
-}
-
-RunSettings settings_for(ContactLaw law, double h, std::map<std::string, std::string> options) {
-  RunSettings settings;
-  settings.law = law;
-  settings.output_rate_hz = kOutputRate_hz;
-  settings.series_start_s = kSeriesStart_s;
-  settings.time_step_s = h;
-  settings.options = std::move(options);
-  return settings;
-}
-
-Impact reference_impact(const Scenario& s, ContactLaw law) {
-  const RunResult r = make_reference_simulator()->run(
-      s, settings_for(law, 0, chain_reference_options(default_links(s))));
-  const auto impact = measure_impact(r.trajectory, s.gap_m);
-  if (!impact) throw std::runtime_error("the reference has no impact");
-  return *impact;
-}
-
-struct OdeImpact {
-  Impact impact;
-  RunResult run;
-};
-
-OdeImpact ode_impact(const Scenario& s, ContactLaw law, double h, const std::string& contact) {
-  RunResult r = make_ode_simulator()->run(s, settings_for(law, h, {{"contact", contact}}));
-  if (r.status != RunStatus::ok) throw std::runtime_error("ode run not ok: " + r.reason);
-  const auto impact = measure_impact(r.trajectory, s.gap_m);
-  if (!impact) throw std::runtime_error("the ode run has no impact");
-  return {*impact, std::move(r)};
+testing::EngineImpact ode_impact(const Scenario& s, ContactLaw law, double h, const std::string& contact) {
+  return engine_impact(*make_ode_simulator(), s, first_impact_settings(law, h, {{"contact", contact}}));
 }
 
 // ODE's contact joint only pushes (lambda >= 0): it realises the spring-dashpot clipped at zero force,
@@ -96,7 +33,7 @@ OdeImpact ode_impact(const Scenario& s, ContactLaw law, double h, const std::str
 // and from the onset, which a step-based contact detects up to one step late: h / 0.62 ms = 1.6 %
 // and 0.3 % of the duration.
 TEST(OdeSingleImpact, SpringDashpotConvergesToTheReferenceAsTheStepShrinks) {
-  const Scenario s = first_impact(true);
+  const Scenario s = first_impact_scenario(true);
   const Impact reference = reference_impact(s, ContactLaw::viscoelastic);
   std::printf("reference (chain, clipped law): duration %.4f ms, restitution %.4f, approach %.4f m/s\n",
               1e3 * reference.duration_s, reference.restitution, reference.approach_m_s);
@@ -105,11 +42,11 @@ TEST(OdeSingleImpact, SpringDashpotConvergesToTheReferenceAsTheStepShrinks) {
   };
   std::vector<double> restitution_errors;
   for (const Step& step : {Step{1e-5, 0.10, 0.03}, Step{2e-6, 0.025, 0.01}}) {
-    const OdeImpact ode = ode_impact(s, ContactLaw::viscoelastic, step.h, "matched");
+    const testing::EngineImpact ode = ode_impact(s, ContactLaw::viscoelastic, step.h, "matched");
     const double restitution_error = ode.impact.restitution / reference.restitution - 1;
     const double duration_error = ode.impact.duration_s / reference.duration_s - 1;
     restitution_errors.push_back(restitution_error);
-    const Metrics m = compute_metrics(ode.run.trajectory, MetricSettings{0, kDuration_s});
+    const Metrics m = compute_metrics(ode.run.trajectory, MetricSettings{0, kFirstImpactEnd_s});
     std::printf("ode h = %g s: duration %.4f ms (%+.2f %%), restitution %.4f (%+.2f %%); harness's event: duration "
                 "%.4f ms, restitution %.4f\n",
                 step.h, 1e3 * ode.impact.duration_s, 100 * duration_error, ode.impact.restitution, 100 * restitution_error,
@@ -125,7 +62,7 @@ TEST(OdeSingleImpact, SpringDashpotConvergesToTheReferenceAsTheStepShrinks) {
 // The injected path applies the published (unclipped) law from the tip states at each step's start:
 // explicit in the force, no backward-Euler loss; at h = 2e-6 s (omega h = 0.01) within 1 %.
 TEST(OdeSingleImpact, InjectedSpringDashpotMatchesThePublishedLaw) {
-  const Scenario s = first_impact(false);
+  const Scenario s = first_impact_scenario(false);
   const Impact reference = reference_impact(s, ContactLaw::viscoelastic);
   const Impact ode = ode_impact(s, ContactLaw::viscoelastic, 2e-6, "injected").impact;
   std::printf("injected h = 2e-6 s: duration %.4f ms (reference %.4f), restitution %.4f (reference %.4f)\n",
@@ -140,11 +77,11 @@ TEST(OdeSingleImpact, InjectedSpringDashpotMatchesThePublishedLaw) {
 // the velocity jump linearly across the step), at the default step and a finer one; target e = 0.8
 // within 2 %.
 TEST(OdeSingleImpact, NewtonBounceRealisesTheTargetRestitution) {
-  const Scenario s = first_impact(false);
+  const Scenario s = first_impact_scenario(false);
   const double target = s.contact.newton->restitution;
   for (double h : {1e-4, 1e-5}) {
-    const OdeImpact ode = ode_impact(s, ContactLaw::newton, h, "matched");
-    const Metrics m = compute_metrics(ode.run.trajectory, MetricSettings{0, kDuration_s});
+    const testing::EngineImpact ode = ode_impact(s, ContactLaw::newton, h, "matched");
+    const Metrics m = compute_metrics(ode.run.trajectory, MetricSettings{0, kFirstImpactEnd_s});
     std::printf("newton h = %g s: restitution %.5f over %d impact(s)\n", h, m.mean_restitution, m.impacts);
     EXPECT_EQ(m.impacts, 1);
     EXPECT_NEAR(m.mean_restitution / target, 1, 0.02) << "h = " << h;

@@ -9,12 +9,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "adapters/common/rig.h"
 #include "adapters/simbody/simbody_simulator.h"
 #include "harness/scoring/metrics.h"
 #include "harness/jobs/run_job.h"
-#include "reference/reference_simulator.h"
-#include "reference_fixtures.h"
+#include "engine_measurements.h"
 
 namespace ib {
 namespace {
@@ -22,23 +20,11 @@ namespace {
 // Matched spring-dashpot, semi-explicit Euler at 5e-5 s (the default step; the contact's omega h = 0.26):
 // stable, impacts per cycle within 0.05 of the reference's, frame 1's sensor peak within 10 %.
 TEST(SimbodyResonance, SpringDashpotImpactsPerCycleMatchTheReference) {
-  Scenario s = testing::paper_scenario("resonance");
-  s.duration_s = 12;
-  s.scoring_window_s = 6;
-  const int links = default_links(s);
-  const MetricSettings window = metric_settings(s, Measurement{});
-
-  RunSettings settings;
-  settings.law = ContactLaw::viscoelastic;
-  settings.series_start_s = window.window.start_s;
-  settings.options = chain_reference_options(links);
-  const Metrics reference = compute_metrics(make_reference_simulator()->run(s, settings).trajectory, window);
-
-  settings.time_step_s = 5e-5;
-  settings.options = {{"contact", "matched"}};
-  const RunResult run = make_simbody_simulator()->run(s, settings);
+  Scenario s = testing::settled_resonance();
+  const testing::ResonanceComparison c = testing::compare_resonance(*make_simbody_simulator(), s, 5e-5, {{"contact", "matched"}});
+  const RunResult& run = c.run;
   ASSERT_EQ(run.status, RunStatus::ok) << run.reason;
-  const Metrics sb = compute_metrics(run.trajectory, window);
+  const Metrics &reference = c.reference, &sb = c.engine;
 
   std::printf("reference: %.4f impacts/cycle (%d impacts, %.1f cycles), frame 1 sensor peak %.3f g, e %.3f\n",
               reference.impacts_per_cycle, reference.impacts, reference.excitation_cycles,

@@ -53,7 +53,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"articulation",
      "multibody (one btMultiBody per frame, hinge springs as joint torques each step; default) or constraints "
      "(btRigidBody links joined by btGeneric6DofSpring2Constraint springs)"},
-    {"links", "links K per frame, 1..64 (default: the smallest K whose first frequency is within 0.5 % of the beam's)"},
+    {"links", kLinksOptionHelp},
 };
 
 Articulation articulation_option(const OptionReader& options) {
@@ -177,14 +177,14 @@ class BulletSimulator final : public Simulator {
 
   std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {
     const OptionReader options(name(), settings.options, kOptions);
-    return options.integer("links", default_links(scenario), 1, 64);
+    return links_option(options, settings, scenario);
   }
 
   RunResult run(const Scenario& scenario, const RunSettings& settings) override {
     const OptionReader options(name(), settings.options, kOptions);
     const ContactPath path = options.contact_path();
     const Articulation articulation = articulation_option(options);
-    const int links = options.integer("links", default_links(scenario), 1, 64);
+    const int links = links_option(options, settings, scenario);
     const RigSpec rig = build_rig(scenario, settings.law, links);
     const double h = resolve_time_step_s(settings, default_time_step(rig), name());
 

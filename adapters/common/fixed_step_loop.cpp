@@ -56,6 +56,17 @@ double resolve_time_step_s(const RunSettings& settings, double default_step_s, c
   return settings.time_step_s > 0 ? settings.time_step_s : default_step_s;
 }
 
+std::optional<std::string> nonfinite_hinges(double t_s, const TipState& tips, const std::array<Eigen::VectorXd, 2>& angles,
+                                            const std::array<Eigen::VectorXd, 2>& rates) {
+  const bool tips_finite = std::isfinite(tips.displacement_m[0] + tips.displacement_m[1] + tips.velocity_m_s[0] +
+                                         tips.velocity_m_s[1]);
+  if (!tips_finite || (angles[0].allFinite() && angles[1].allFinite() && rates[0].allFinite() && rates[1].allFinite()))
+    return std::nullopt;
+  std::ostringstream why;
+  why << "non-finite hinge angle or rate at t = " << t_s << " s";
+  return why.str();
+}
+
 void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario& scenario,
                      const RunSettings& settings, RunResult& result) {
   const double step_s = engine.time_step_s();

@@ -85,6 +85,11 @@ class FixedStepEngine {
 // for a negative or non-finite step.
 double resolve_time_step_s(const RunSettings& settings, double default_step_s, const std::string& engine);
 
+// A reason read_tips gives for a hinge angle or rate that is not finite while the tips are (non-finite tips
+// the loop reports itself): "non-finite hinge angle or rate at t = T s"; nullopt when every value is finite.
+std::optional<std::string> nonfinite_hinges(double t_s, const TipState& tips, const std::array<Eigen::VectorXd, 2>& angles,
+                                            const std::array<Eigen::VectorXd, 2>& rates);
+
 // Runs the engine over the scenario with its fixed step (engine.time_step_s()): fills the result's
 // trajectory, impact zoom, status and reason (unstable, with the time and the bound), cost, time step and,
 // for a run that reached its end, final state. Starts from settings.initial_state when set. The

@@ -23,6 +23,22 @@ int default_links(const Scenario& scenario) {
   return 64;
 }
 
+int links_option(const OptionReader& options, const RunSettings& settings, const Scenario& scenario) {
+  return settings.options.count("links") ? options.integer("links", 0, 1, 64) : default_links(scenario);
+}
+
+std::array<Eigen::VectorXd, 2> zero_hinge_values(const RigSpec& rig) {
+  return {Eigen::VectorXd::Zero(rig.frames[0].chain.links), Eigen::VectorXd::Zero(rig.frames[1].chain.links)};
+}
+
+void add_chain_diagnostics(const RigSpec& rig, int f, std::vector<std::pair<std::string, double>>& diagnostics) {
+  const std::string frame = "frame" + std::to_string(f + 1);
+  const LinkChain& chain = rig.frames[f].chain;
+  diagnostics.emplace_back(frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI));
+  diagnostics.emplace_back(frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
+  diagnostics.emplace_back(frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
+}
+
 namespace {
 
 FrameRig build_frame(const FrameSpec& spec, int links, double base_x, double initial_tip_displacement) {

@@ -18,6 +18,8 @@
 #include "physics/link_chain.h"
 #include "physics/modal_model.h"
 #include "model/scenario.h"
+#include "model/simulator.h"
+#include "model/simulator_options.h"
 
 namespace ib {
 
@@ -58,6 +60,19 @@ constexpr double kTipSphereRadius_m = 5e-3;
 int default_links(const Scenario& scenario);
 
 RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links);
+
+// The option "links" of every engine that builds this rig: its help line (an engine's option_help) and its
+// value, the option when given (checked: 1..64, named by the engine's reader), else default_links(scenario).
+constexpr const char* kLinksOptionHelp =
+    "links K per frame, 1..64 (default: the smallest K whose first frequency is within 0.5 % of the beam's)";
+int links_option(const OptionReader& options, const RunSettings& settings, const Scenario& scenario);
+
+// Both frames' hinge angles or rates, zero: the size each chain's state has (K entries per frame).
+std::array<Eigen::VectorXd, 2> zero_hinge_values(const RigSpec& rig);
+
+// Frame f's chain as an engine's diagnostics name it: frameN_chain_first_frequency_hz,
+// frameN_joint_stiffness_n_m_per_rad, frameN_joint_damping_n_m_s_per_rad (N = f + 1).
+void add_chain_diagnostics(const RigSpec& rig, int f, std::vector<std::pair<std::string, double>>& diagnostics);
 
 // The longest step at which explicit hinge springs and dampers stay stable [s], for engines that apply
 // them as forces and integrate with semi-implicit (symplectic) Euler (ODE's springs=explicit, Bullet).

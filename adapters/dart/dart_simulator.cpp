@@ -30,7 +30,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"contact", "matched (Newton: DART's restitution with analytic sphere collision; Hertz and spring-dashpot: the law's force from the tip states, DART has no compliant rigid contact; default), injected (the law's force from the tip states, no collision), native (DART's defaults: FCL collision, restitution 0, friction 1)"},
     {"length_unit", "the length unit of the DART model: m (default), cm or mm; DART's contact solver has velocity constants in model units (no bounce when e v <= 0.1 unit/s, bounce capped at 100 unit/s), so cm puts them at 1 mm/s and 1 m/s; the physics is the same in any unit"},
     {"lcp", "DART's boxed LCP solver: dantzig (default) or pgs"},
-    {"links", "links K per frame, 1..64 (default: the smallest K whose first frequency is within 0.5 % of the beam's)"},
+    {"links", kLinksOptionHelp},
 };
 
 struct RunPlan {
@@ -49,7 +49,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   plan.length_unit = options.choice("length_unit", "m", {"m", "cm", "mm"});
   plan.length_scale = plan.length_unit == "m" ? 1.0 : plan.length_unit == "cm" ? 100.0 : 1000.0;
   plan.pgs = options.choice("lcp", "dantzig", {"dantzig", "pgs"}) == "pgs";
-  plan.links = settings.options.count("links") ? options.integer("links", 0, 1, 64) : default_links(scenario);
+  plan.links = links_option(options, settings, scenario);
   plan.time_step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "dart");
   return plan;
 }
@@ -136,13 +136,7 @@ class DartStepper final : public FixedStepEngine {
     d.emplace_back("time_step_s", time_step_s());
     d.emplace_back("chain_links", rig_.frames[0].chain.links);
     d.emplace_back("length_unit_per_m", plan_.length_scale);
-    for (int f = 0; f < 2; ++f) {
-      const std::string frame = "frame" + std::to_string(f + 1);
-      const LinkChain& chain = rig_.frames[f].chain;
-      d.emplace_back(frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI));
-      d.emplace_back(frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
-      d.emplace_back(frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
-    }
+    for (int f = 0; f < 2; ++f) add_chain_diagnostics(rig_, f, d);
     d.emplace_back("contact_force_from_tip_states", contact_.force_from_tip_states ? 1 : 0);
     d.emplace_back("collision_detector_analytic", contact_.collision == Collision::analytic ? 1 : 0);
     d.emplace_back("collision_detector_fcl", contact_.collision == Collision::fcl_default ? 1 : 0);

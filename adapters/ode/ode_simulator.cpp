@@ -34,7 +34,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"springs", "hinge springs: implicit (both hinge stops at the rest angle with StopERP/StopCFM from k, c and the step; default) or explicit (dJointAddHingeTorque each step; stable only below the step in the diagnostic explicit_spring_step_limit_s, about 7.5e-5 s for K = 8)"},
     {"stepper", "world (dWorldStep, direct LCP solver; default) or quick (dWorldQuickStep, iterative)"},
     {"iterations", "dWorldQuickStep iterations, 1..100000 (default 20, ODE's own default); only with stepper=quick"},
-    {"links", "links K per frame, 1..64 (default: the smallest K whose first frequency is within 0.5 % of the beam's)"},
+    {"links", kLinksOptionHelp},
 };
 
 struct RunPlan {
@@ -54,7 +54,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   plan.model.quick_step_iterations = options.integer("iterations", kOdeDefaultQuickStepIterations, 1, 100000);
   if (settings.options.count("iterations") && plan.model.stepper != Stepper::quick)
     throw std::invalid_argument("ode option iterations: only with stepper=quick");
-  plan.links = settings.options.count("links") ? options.integer("links", 0, 1, 64) : default_links(scenario);
+  plan.links = links_option(options, settings, scenario);
   plan.model.time_step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "ode");
   return plan;
 }
@@ -70,12 +70,9 @@ class OdeStepper final : public FixedStepEngine {
         ode_rig_(rig_, model_),
         energy_(rig_),
         newton_(is_instantaneous(rig_.law)),
-        step_limit_s_(explicit_hinge_step_limit_s(rig_)) {
-    for (int f = 0; f < 2; ++f) {
-      angles_[f] = Eigen::VectorXd::Zero(rig_.frames[f].chain.links);
-      rates_[f] = Eigen::VectorXd::Zero(rig_.frames[f].chain.links);
-    }
-  }
+        step_limit_s_(explicit_hinge_step_limit_s(rig_)),
+        angles_(zero_hinge_values(rig_)),
+        rates_(zero_hinge_values(rig_)) {}
 
   const RigSpec& rig() const { return rig_; }
   double time_step_s() const override { return ode_rig_.time_step_s(); }  // what dWorldStep is given
@@ -93,14 +90,7 @@ class OdeStepper final : public FixedStepEngine {
       ode_rig_.hinge_state(f, angles_[f], rates_[f]);
     }
     // before ODE would be handed a state it aborts on (non-finite tips: the loop says so itself)
-    const bool tips_finite = std::isfinite(tips.displacement_m[0] + tips.displacement_m[1] + tips.velocity_m_s[0] +
-                                           tips.velocity_m_s[1]);
-    if (tips_finite && !(angles_[0].allFinite() && angles_[1].allFinite() && rates_[0].allFinite() &&
-                         rates_[1].allFinite())) {
-      std::ostringstream why;
-      why << "non-finite hinge angle or rate at t = " << t_s << " s" << explain_instability();
-      return why.str();
-    }
+    if (auto why = nonfinite_hinges(t_s, tips, angles_, rates_)) return *why + explain_instability();
     return std::nullopt;
   }
 
@@ -156,11 +146,8 @@ class OdeStepper final : public FixedStepEngine {
     d.emplace_back("chain_links", rig_.frames[0].chain.links);
     d.emplace_back("explicit_spring_step_limit_s", step_limit_s_);
     for (int f = 0; f < 2; ++f) {
+      add_chain_diagnostics(rig_, f, d);
       const std::string frame = "frame" + std::to_string(f + 1);
-      const LinkChain& chain = rig_.frames[f].chain;
-      d.emplace_back(frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI));
-      d.emplace_back(frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
-      d.emplace_back(frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
       if (model_.springs == SpringPath::implicit_stops) {
         d.emplace_back(frame + "_hinge_stop_erp", ode_rig_.hinge_stop_erp(f));
         d.emplace_back(frame + "_hinge_stop_cfm_rad_per_n_m_s", ode_rig_.hinge_stop_cfm(f));

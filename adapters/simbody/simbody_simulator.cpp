@@ -31,7 +31,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"integrator", "euler (semi-explicit Euler, default), rk2, rk3, rkm (Runge-Kutta-Merson), verlet: fixed step = the run's step; with accuracy also cpodes (BDF); not with the rigid Newton contact (its own stepper)"},
     {"accuracy", "error-controlled integration with this relative accuracy, 1e-10..0.1 (integrator rk3, rkm, verlet or cpodes; default rkm); the run's step is then only the recording interval"},
     {"constraint_tolerance", "rigid Newton contact: the distance at which the spheres count as touching [m], 1e-9..1e-3 (default 1e-6; Simbody's own 1e-3 fires the impact 0.5 mm early)"},
-    {"links", "links K per frame, 1..64 (default: the smallest K whose first frequency is within 0.5 % of the beam's)"},
+    {"links", kLinksOptionHelp},
 };
 
 struct RunPlan {
@@ -63,7 +63,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
         "own SemiExplicitEulerTimeStepper; allowed only with contact=injected or another law");
   if (settings.options.count("constraint_tolerance") && !plan.stepping.rigid_contact)
     throw std::invalid_argument("simbody option constraint_tolerance: only with the rigid Newton contact (law newton, contact matched)");
-  plan.links = settings.options.count("links") ? options.integer("links", 0, 1, 64) : default_links(scenario);
+  plan.links = links_option(options, settings, scenario);
   plan.stepping.step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "simbody");
   return plan;
 }
@@ -80,12 +80,9 @@ class SimbodyStepper final : public FixedStepEngine {
         stepping_(chain_.system(), chain_.initial_state(), plan.stepping),
         energy_(rig_),
         newton_(is_instantaneous(rig_.law)),
-        step_limit_s_(explicit_hinge_step_limit_s(rig_)) {
-    for (int f = 0; f < 2; ++f) {
-      angles_[f] = Eigen::VectorXd::Zero(rig_.frames[f].chain.links);
-      rates_[f] = Eigen::VectorXd::Zero(rig_.frames[f].chain.links);
-    }
-  }
+        step_limit_s_(explicit_hinge_step_limit_s(rig_)),
+        angles_(zero_hinge_values(rig_)),
+        rates_(zero_hinge_values(rig_)) {}
 
   const RigSpec& rig() const { return rig_; }
   double time_step_s() const override { return stepping_.step_s(); }  // what advance() advances by
@@ -107,14 +104,7 @@ class SimbodyStepper final : public FixedStepEngine {
       tips.velocity_m_s[f] = tip.velocity_m_s;
       chain_.hinge_state(state, f, angles_[f], rates_[f]);
     }
-    const bool tips_finite = std::isfinite(tips.displacement_m[0] + tips.displacement_m[1] + tips.velocity_m_s[0] +
-                                           tips.velocity_m_s[1]);
-    if (tips_finite && !(angles_[0].allFinite() && angles_[1].allFinite() && rates_[0].allFinite() &&
-                         rates_[1].allFinite())) {
-      std::ostringstream why;
-      why << "non-finite hinge angle or rate at t = " << t_s << " s" << explain_instability();
-      return why.str();
-    }
+    if (auto why = nonfinite_hinges(t_s, tips, angles_, rates_)) return *why + explain_instability();
     closing_m_s_ = tips.velocity_m_s[0] - tips.velocity_m_s[1];
     separation_m_ = rig_.gap_m - (tips.displacement_m[0] - tips.displacement_m[1]);
     return std::nullopt;
@@ -232,13 +222,7 @@ std::vector<std::pair<std::string, double>> SimbodyStepper::diagnostics() const 
   }
   d.emplace_back("integrator_steps", static_cast<double>(stepping_.internal_steps()));
   d.emplace_back("integrator_steps_attempted", static_cast<double>(stepping_.attempted_steps()));
-  for (int f = 0; f < 2; ++f) {
-    const std::string frame = "frame" + std::to_string(f + 1);
-    const LinkChain& chain = rig_.frames[f].chain;
-    d.emplace_back(frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI));
-    d.emplace_back(frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
-    d.emplace_back(frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
-  }
+  for (int f = 0; f < 2; ++f) add_chain_diagnostics(rig_, f, d);
   d.emplace_back("contact_injected", setup_.kind == ContactKind::injected ? 1 : 0);
   if (!setup_.note.empty()) d.emplace_back("hertz_exponent_not_representable_injected", 1);
   if (setup_.kind == ContactKind::hunt_crossley) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/jobs/matrix_settings.h"
 #include "harness/jobs/run_job.h"
 #include "harness/jobs/unit_source.h"
 #include "harness/jobs/shard_plan.h"
@@ -18,23 +19,13 @@
 
 namespace ib {
 
-struct SuiteSettings {
+// The matrix (matrix_settings.h: engines, laws, paths, steps, options, rate, workers, folder, measurement) of a
+// suite, with what a suite adds.
+struct SuiteSettings : MatrixSettings {
+  SuiteSettings() { laws = {ContactLaw::hertz, ContactLaw::viscoelastic, ContactLaw::newton}; }
   std::vector<std::string> inputs;                 // scenario files or folders (searched recursively)
-  std::vector<std::string> engines = {"reference"};
-  std::vector<ContactLaw> laws = {ContactLaw::hertz, ContactLaw::viscoelastic, ContactLaw::newton};
-  std::vector<double> time_steps_s;                // fixed-step engines; empty: each engine's default
-  std::vector<std::string> contact_paths;          // engines' option "contact" (matched, injected, native); empty: default
-  std::map<std::string, std::string> reference_options;  // options of every reference run
-  std::map<std::string, std::map<std::string, std::string>> engine_options;  // per engine
-  double output_rate_hz = 4096;
   double max_duration_s = 0;                       // > 0: runs longer scenarios for this long only (window kept)
-  int jobs = 1;                                    // worker processes
-  double time_limit_s = 600;                       // per job; then it is stopped and recorded
-  std::string out;                                 // output folder
-  bool resume = false;
   bool extend = false;   // --extend: add a suite with other settings to a folder that holds one (DIR/suite.jsonl)
-  Measurement measurement;
-  SimulatorCatalog simulators;                     // what runs the jobs (simulators/catalog.h: this binary's)
   // Set: instead of fixed time steps, each (scenario, law, engine, options) group searches its largest
   // stable and accurate steps by bisection (step_search.h) and appends a row to DIR/steps.csv and
   // DIR/steps.jsonl when its search ends. time_steps_s is then ignored for the engines.
@@ -43,10 +34,8 @@ struct SuiteSettings {
   // Set: reference runs are shared with other output folders through this one (harness/jobs/reference_cache.h):
   // a reference whose key is there is copied, not solved; one solved here is stored there.
   std::string reference_cache;
-  // Set: runs only this shard of the suite (shard_plan.h) and records its plan in DIR/shard.jsonl.
-  // --resume then continues the same shard: a folder holding another shard, or a whole suite, is refused.
-  std::optional<Shard> shard;
-  std::string resume_command;  // the command that continues this suite, kept in a shard's plan for merge's messages
+  // shard (set): its plan is recorded in DIR/shard.jsonl; a --resume of a folder holding another shard, or a
+  // whole suite, is refused.
 };
 
 struct SuiteOutcome {

@@ -56,8 +56,7 @@ std::string SuiteRunner::start(const PlannedJob& job, ProcessPool& pool) {
   fs::create_directories(folder, error);
   if (error) throw OutputError(output_error_text(folder, "create the run folder", error.value()));
   const Scenario& scenario = scenarios_[job.scenario];
-  if (cacheable(job) &&
-      restore_cached_reference(settings_.reference_cache, reference_cache_key(scenario, job.spec, measurement_of(job)), folder)) {
+  if (cacheable(job) && restore_cached_reference(settings_.reference_cache, cache_key_of(job), folder)) {
     progress_->estimate().start(job.id, progress_->now_s());
     const std::string json = append_row_of(job);  // as if its process had just ended
     if (!step_groups_.empty()) recorded_lines_[job.id] = json;
@@ -85,6 +84,10 @@ std::string SuiteRunner::start(const PlannedJob& job, ProcessPool& pool) {
 // What a job's folder keeps of its series: a reference always its window at the output rate (engine runs are
 // compared with it, also on --resume), a step-search probe none unless asked (its summary and events say
 // whether the step is stable and accurate), any other run what --series says.
+nlohmann::ordered_json SuiteRunner::cache_key_of(const PlannedJob& job) const {
+  return reference_cache_key(scenarios_[job.scenario], job.spec, measurement_of(job));
+}
+
 Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
   Measurement m = part_of(job).measurement;
   if (job.kind != JobKind::engine && m.series == SeriesOutput::none) m.series = SeriesOutput::window;
@@ -164,8 +167,7 @@ std::string SuiteRunner::collect(const PlannedJob& job, const ProcessEnd& end) {
   const bool clean = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder + "/row.jsonl");
   if (clean) {
     if (cacheable(job) && read_recorded_run(read_text_file(folder + "/row.jsonl")).verdict == Verdict::ok)
-      store_cached_reference(settings_.reference_cache,
-                             reference_cache_key(scenarios_[job.scenario], job.spec, measurement_of(job)), folder);
+      store_cached_reference(settings_.reference_cache, cache_key_of(job), folder);
     const std::vector<const PlannedJob*> scored = unrecorded_scored_from(job);
     std::string json;
     if (!recorded_.count(job.id)) {

@@ -177,6 +177,8 @@ class SuiteRunner : public SuiteSource {
   bool cacheable(const PlannedJob& job) const {
     return job.kind != JobKind::engine && !settings_.reference_cache.empty() && unrecorded_scored_from(job).empty();
   }
+  // Its entry's key in the reference cache (reference_cache.h): the same when looked up and when stored.
+  nlohmann::ordered_json cache_key_of(const PlannedJob& job) const;
 
   // A job compared with a reference that a signal from outside stopped: it waits for --resume too (run
   // now, it would be recorded without its comparison).

@@ -92,14 +92,7 @@ nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
   for (const std::string& file : part_files_[part])
     if (!files.contains(file)) files[file] = "unreadable";
   s["scenario_files"] = files;
-  s["engines"] = settings.engines;
-  std::vector<std::string> laws;
-  for (ContactLaw law : settings.laws) laws.push_back(to_string(law));
-  s["laws"] = laws;
-  s["time_steps_s"] = settings.time_steps_s;
-  s["contact_paths"] = settings.contact_paths;
-  s["engine_options"] = settings.engine_options;
-  s["reference_options"] = settings.reference_options;
+  record_configurations(settings, s);
   s["output_rate_hz"] = settings.output_rate_hz;
   s["max_duration_s"] = settings.max_duration_s;
   const Measurement& m = settings.measurement;

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/jobs/matrix_settings.h"
 #include "harness/jobs/run_job.h"
 #include "harness/jobs/unit_source.h"
 #include "harness/jobs/shard_plan.h"
@@ -30,31 +31,18 @@ const char* to_string(SweepStart start);
 // 1e-9; throws std::invalid_argument naming --ratios, the value and what is allowed.
 std::vector<double> parse_ratios(const std::string& text);
 
-struct SweepSettings {
+// The matrix (matrix_settings.h: engines, laws, paths, steps, options, rate, workers, folder, measurement) of a
+// sweep, with what a sweep adds; a sweep's default law is hertz alone, its time limit per ratio.
+struct SweepSettings : MatrixSettings {
   std::string scenario_path;                       // a scenario with a motor
   std::vector<double> ratios;                      // ascending
   std::vector<SweepStart> starts = {SweepStart::rest};
-  std::vector<std::string> engines = {"reference"};
-  std::vector<ContactLaw> laws = {ContactLaw::hertz};
-  std::vector<std::string> contact_paths;          // engines' option "contact"; empty: each engine's default
-  std::vector<double> time_steps_s;                // fixed-step engines; empty: each engine's default
-  std::map<std::string, std::string> reference_options;
-  std::map<std::string, std::map<std::string, std::string>> engine_options;
   // Each ratio's run length [s], rounded to whole motor periods: a continuation's ratios after its first
   // (default 60 s: docs/sweeps.md); a start from rest, and a continuation's first ratio (from rest), run the scenario's
   // own duration unless rest_duration_s is set.
   double continuation_duration_s = 60;
   std::optional<double> rest_duration_s;
   double window_s = 10;                            // the last window_s of each run is scored [s] (whole periods)
-  double output_rate_hz = 4096;
-  int jobs = 1;                                    // worker processes
-  double time_limit_s = 600;                       // per ratio
-  std::string out;
-  bool resume = false;
-  std::optional<Shard> shard;
-  std::string resume_command;
-  Measurement measurement;                         // sensor rate, merge window, verdicts, series kept
-  SimulatorCatalog simulators;
 };
 
 struct SweepOutcome {

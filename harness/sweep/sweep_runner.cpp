@@ -36,16 +36,10 @@ nlohmann::ordered_json settings_record(const SweepSettings& s, const Scenario& s
   j["scenario"] = scenario.name;
   j["scenario_file"] = s.scenario_path;
   j["ratios"] = s.ratios;
-  std::vector<std::string> starts, laws;
+  std::vector<std::string> starts;
   for (SweepStart start : s.starts) starts.push_back(to_string(start));
-  for (ContactLaw law : s.laws) laws.push_back(to_string(law));
   j["starts"] = starts;
-  j["engines"] = s.engines;
-  j["laws"] = laws;
-  j["contact_paths"] = s.contact_paths;
-  j["time_steps_s"] = s.time_steps_s;
-  j["reference_options"] = s.reference_options;
-  j["engine_options"] = s.engine_options;
+  record_configurations(s, j);
   j["continuation_duration_s"] = s.continuation_duration_s;
   j["rest_duration_s"] = s.rest_duration_s.value_or(scenario.duration_s);
   j["window_s"] = s.window_s;
