@@ -2,8 +2,8 @@
 
 savefig of a figure with constrained layout draws it twice: once with every drawing call disabled, only so that
 the layout runs first, then for real. The first pass walks every tick and text of every panel for nothing but
-the layout, which is most of a figure's cost after the layout itself; `save_svg` runs the layout alone in that
-pass. And each of the three SVG renderers a save makes (the first pass's, the layout's and the file's) measures
+the layout; `save_svg` runs the layout alone in that pass (matplotlib 3.6, Debian's: another version saves as
+savefig does). And each of the three SVG renderers a save makes (the first pass's, the layout's and the file's) measures
 every string again in its own cache: an SVG renderer's text metrics depend on the string and the font alone
 (text2path measures at a fixed size and 72 dpi), so `install_text_metrics_cache` keeps one for all of them."""
 
