@@ -120,13 +120,17 @@ _CASES = {}  # what the worker processes draw from, set before they fork (nothin
 
 
 def _draw(task):
-    """One task's figures: a case's (task ("case", index)) or a law's stability map and comparison with
-    the experiment (task ("law", law))."""
+    """One task's figures: a case's (task ("case", index)), a law's stability map and comparison with
+    the experiment (task ("law", law)), or a frequency sweep's sections (task ("sweep", index)), figures and
+    tables."""
     c = _CASES
     kind, key = task
     if kind == "case":
         scenario, law, chosen = c["cases"][key]
         return case_figures(c["suite"], scenario, law, chosen, c["steps"], c["tolerances"], c["folder"], c["stamp"])
+    if kind == "sweep":
+        name, data_of_sweep = c["sweeps"][key]
+        return sweep.sections(data_of_sweep, c["folder"], c["stamp"], f"Frequency sweep ({name})")
     paths = [step_figures.stability_map(c["suite"], key, c["folder"], c["stamp"], c["steps"]),
              zoom_figures.against_experiment(c["suite"], key, c["chosen_by_law"][key], c["experiment"], c["folder"],
                                              c["stamp"])]
@@ -146,16 +150,17 @@ def case_line(case):
     return "; ".join(parts) + "."
 
 
-def draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances, folder, stamp):
-    """Every case's figures and every law's, as (paths per case, paths per law), spread over the machine's
-    cores (each figure is independent, and drawing them is most of the report's time); in one process where
-    fork is not available. The costliest tasks go first (the cases with series: a dozen panels each), so
-    that the two workers end together."""
+def draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances, folder, stamp, sweeps):
+    """Every case's figures, every law's and every sweep's sections, as (paths per case, paths per law,
+    sections per sweep), spread over the machine's cores (each figure is independent, and drawing them is
+    most of the report's time); in one process where fork is not available. The costliest tasks go first
+    (the cases with series: a dozen panels each), so that the two workers end together."""
     laws = sorted(chosen_by_law)
     _CASES.update(suite=suite, cases=cases, chosen_by_law=chosen_by_law, experiment=experiment, steps=steps,
-                  tolerances=tolerances, folder=folder, stamp=stamp)
+                  tolerances=tolerances, folder=folder, stamp=stamp, sweeps=sweeps)
     with_series = [i for i, (_, _, chosen) in enumerate(cases) if any(suite.has_series(r) for r in chosen.values())]
     tasks = ([("case", i) for i in with_series] + [("law", law) for law in laws] +
+             [("sweep", i) for i in range(len(sweeps))] +
              [("case", i) for i in range(len(cases)) if i not in with_series])
     workers = min(len(tasks), os.cpu_count() or 1)
     if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
@@ -164,7 +169,8 @@ def draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances, fol
         with multiprocessing.get_context("fork").Pool(workers) as pool:
             drawn = pool.map(_draw, tasks, chunksize=1)
     by_task = dict(zip(tasks, drawn))
-    return [by_task[("case", i)] for i in range(len(cases))], [by_task[("law", law)] for law in laws]
+    return ([by_task[("case", i)] for i in range(len(cases))], [by_task[("law", law)] for law in laws],
+            [by_task[("sweep", i)] for i in range(len(sweeps))])
 
 
 def main():
@@ -209,8 +215,20 @@ def main():
                 chosen[config] = run
         chosen_by_law.setdefault(law, {})[scenario] = chosen
         cases.append((scenario, law, chosen))
-    paths_by_case, paths_by_law = draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances,
-                                               figures_folder, stamp)
+    # A study's frequency sweeps (a study file's [[sweep]] parts: SUITE/sweeps/NAME/), read here and drawn with the
+    # cases, each with its answer first.
+    sweeps = []
+    sweeps_folder = os.path.join(args.suite, "sweeps")
+    for name in sorted(os.listdir(sweeps_folder)) if os.path.isdir(sweeps_folder) else []:
+        folder = os.path.join(sweeps_folder, name)
+        if not sweep.is_sweep(folder):
+            continue
+        try:
+            sweeps.append((name, sweep.read(folder)))
+        except data.ResultsError as error:
+            sys.exit(f"make_report: {error}")
+    paths_by_case, paths_by_law, sections_by_sweep = draw_figures(suite, cases, chosen_by_law, experiment, steps,
+                                                                  tolerances, figures_folder, stamp, sweeps)
     for (scenario, law, chosen), paths, case in zip(cases, paths_by_case, document["cases"]):
         header, rows = tables.case_table(suite, scenario, law, experiment)
         line = case_line(case)
@@ -233,20 +251,11 @@ def main():
         sys.exit(f"make_report: {error}")
     if measured:
         sections.append(("Performance", measured[0], measured[1], []))
-    # A study's frequency sweeps (a study file's [[sweep]] parts: SUITE/sweeps/NAME/), each with its answer first.
     document["sweep_answers"] = []
-    sweeps_folder = os.path.join(args.suite, "sweeps")
-    for name in sorted(os.listdir(sweeps_folder)) if os.path.isdir(sweeps_folder) else []:
-        folder = os.path.join(sweeps_folder, name)
-        if not sweep.is_sweep(folder):
-            continue
-        try:
-            data_of_sweep = sweep.read(folder)
-        except data.ResultsError as error:
-            sys.exit(f"make_report: {error}")
+    for (name, data_of_sweep), sweep_sections in zip(sweeps, sections_by_sweep):
         document["sweep_answers"].append(f"Frequency sweep ({name}): " + sweep.summary_sentence(data_of_sweep))
         document["warnings"] += data_of_sweep.warning_entries()  # the page's one Warnings list
-        sections += sweep.sections(data_of_sweep, figures_folder, stamp, f"Frequency sweep ({name})")
+        sections += sweep_sections
     if document["sweep_answers"]:
         with open(os.path.join(out, "summary.json"), "w") as f:
             json.dump(document, f, indent=1, allow_nan=False)

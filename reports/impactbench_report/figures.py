@@ -16,8 +16,10 @@ plt.rcParams["svg.fonttype"] = "none"
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from . import analysis, engines  # noqa: E402
+from . import analysis, engines, svg_saving  # noqa: E402
 from .tables import step_text  # noqa: E402
+
+svg_saving.install_text_metrics_cache()
 
 VERDICT_COLOURS = {"ok": "#2ca02c", "inaccurate": "#ff7f0e", "unstable": "#d62728", "failed": "#7f7f7f"}
 VERDICT_MARKERS = {"ok": "o", "inaccurate": "s", "unstable": "X", "failed": "P"}
@@ -54,7 +56,7 @@ def save(figure, folder, name, caption):
     SVG's title; returns the path."""
     figure.suptitle(textwrap.fill(caption, max(60, int(17 * figure.get_figwidth()))), fontsize=7)
     path = os.path.join(folder, name + ".svg")
-    figure.savefig(path, format="svg", metadata={"Title": caption})
+    svg_saving.save_svg(figure, path, {"Title": caption})
     plt.close(figure)
     return path
 

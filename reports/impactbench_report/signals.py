@@ -55,12 +55,19 @@ def amplitude_spectrum(values, rate_hz, segment_s=2.0):
 
 
 def wavelet_amplitude(values, rate_hz, frequencies_hz, w=MORLET_W):
-    """Continuous wavelet transform (scipy.signal.cwt, Morlet wavelet scipy.signal.morlet2 with w cycles) as
-    an amplitude: each scale's |coefficient| divided by the response to a unit cosine at its centre
-    frequency, so a sine of amplitude A at f reads A at (t, f). Rows follow frequencies_hz."""
+    """Continuous wavelet transform (Morlet wavelet scipy.signal.morlet2 with w cycles) as an amplitude: each
+    scale's |coefficient| divided by the response to a unit cosine at its centre frequency, so a sine of
+    amplitude A at f reads A at (t, f). Rows follow frequencies_hz."""
     frequencies_hz = np.asarray(frequencies_hz, float)
+    values = np.asarray(values, float)
     widths = w * rate_hz / (2 * np.pi * frequencies_hz)  # scale in samples whose centre frequency is f
-    coefficients = signal.cwt(np.asarray(values, float), signal.morlet2, widths, w=w)
+    # scipy.signal.cwt's transform (wavelets of up to 10 widths, 'same' convolution), but by FFT: cwt's direct
+    # convolution costs the length of the signal times the wavelet's, and the low frequencies' wavelets are
+    # as long as the signal
+    coefficients = np.empty((len(widths), len(values)), complex)
+    for row, width in enumerate(widths):
+        wavelet = signal.morlet2(np.min([10 * width, len(values)]), width, w=w)
+        coefficients[row] = signal.fftconvolve(values, np.conj(wavelet[::-1]), mode="same")
     # sum_m cos(2 pi f m) psi*(m) = (1/2) pi^(-1/4) sqrt(2 pi s) for morlet2's unit-energy normalisation
     unit_response = 0.5 * np.pi ** -0.25 * np.sqrt(2 * np.pi * widths)
     return np.abs(coefficients) / unit_response[:, None]

@@ -18,6 +18,7 @@ import tempfile
 import unittest
 
 import numpy as np
+from scipy import signal as scipy_signal
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import matplotlib  # noqa: E402
@@ -93,6 +94,18 @@ class SignalProcessing(unittest.TestCase):
             nearest = np.argmin(np.abs(frequencies - frequency))
             self.assertLessEqual(abs(np.argmax(middle) - nearest), 1)
             self.assertAlmostEqual(middle.max(), amplitude, delta=0.03 * amplitude)
+
+    @unittest.skipUnless(hasattr(scipy_signal, "cwt"), "scipy without signal.cwt (removed in 1.15)")
+    def test_scalogram_is_scipys_continuous_wavelet_transform(self):
+        rate, frequencies = 512.0, np.geomspace(1, 200, 72)
+        t = np.arange(0, 5, 1 / rate)
+        values = np.sin(2 * np.pi * 10 * t) + (np.arange(len(t)) % 97 == 0) * 5.0  # a sine and impulses
+        widths = signals.MORLET_W * rate / (2 * np.pi * frequencies)
+        expected = np.abs(scipy_signal.cwt(values, scipy_signal.morlet2, widths, w=signals.MORLET_W))
+        expected /= (0.5 * np.pi ** -0.25 * np.sqrt(2 * np.pi * widths))[:, None]
+        scalogram = signals.wavelet_amplitude(values, rate, frequencies)
+        self.assertEqual(scalogram.shape, expected.shape)
+        np.testing.assert_allclose(scalogram, expected, rtol=0, atol=1e-12 * expected.max())
 
 
 def write_csv(path, columns):
