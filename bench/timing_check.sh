@@ -7,23 +7,25 @@
 # OUT/timing_check.json (per simulator: the logged runs' median CPU time, the timed runs' median and
 # spread, the difference, and whether it lies within the spread), with the machine (bench/machine.sh) and
 # its load.
-#   bench/timing_check.sh [--rounds R] [--repeat N] [--duration S] [OUT]   (default: 3 rounds, 3 timed, 10 s;
-#                                                                          OUT results/performance)
+#   bench/timing_check.sh [--rounds R] [--repeat N] [--duration S] [--engines LIST] [OUT]
+#     default: 3 rounds, 3 timed, 10 s, every simulator of the build (impactbench engines --names), OUT results/performance
 set -euo pipefail
 cd "$(dirname "$0")/.."
-rounds=3 repeat=3 duration=10
+rounds=3 repeat=3 duration=10 engines=""
 while [[ ${1:-} == --* ]]; do
   case $1 in
     --rounds) rounds=$2; shift ;;
     --repeat) repeat=$2; shift ;;
     --duration) duration=$2; shift ;;
-    *) echo "timing_check.sh: unknown option $1; allowed: --rounds R, --repeat N, --duration S, then an output folder" >&2; exit 2 ;;
+    --engines) engines=$2; shift ;;
+    *) echo "timing_check.sh: unknown option $1; allowed: --rounds R, --repeat N, --duration S, --engines LIST, then an output folder" >&2; exit 2 ;;
   esac
   shift
 done
 out=${1:-results/performance}
 mkdir -p "$out"
 impactbench=build/cli/impactbench
+[[ -n $engines ]] || engines=$("$impactbench" engines --names)
 work=$(mktemp -d "${TMPDIR:-/tmp}/impactbench-timing-XXXXXX")
 trap 'rm -rf "$work"' EXIT
 # The resonance case cut to the duration, scored over its second half (the window does not change the cost).
@@ -32,7 +34,7 @@ sed -e "s/^duration_s = .*/duration_s = $duration/" -e "s/^scoring_window_s = .*
 csv="$out/timing_check.csv"
 echo "round,engine,time_step_s,steps,logged_cpu_time_s,timed_runs,cpu_time_s,cpu_time_min_s,cpu_time_max_s,logged_wall_time_s,wall_time_s,load_average" >"$csv"
 for round in $(seq 1 "$rounds"); do
-  for engine in reference mujoco ode bullet; do
+  for engine in ${engines//,/ }; do
     echo "timing_check: round $round of $rounds, $engine"
     # The engine alone: no reference comparison is needed to time it (run compares, so keep the files small).
     "$impactbench" run "$work/resonance.toml" --engine "$engine" --law hertz --repeat "$repeat" --series none \

@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "harness/records/run_files.h"
 #include "model/scenario_toml.h"
+#include "simulators/catalog.h"
 
 int main(int argc, char** argv) {
   using namespace cli;
@@ -103,10 +104,13 @@ int main(int argc, char** argv) {
   merge->add_option("shards", merge_inputs, "the shards' folders")->required();
   merge->add_flag("--no-report", merge_no_report, "join only; make the report later with 'report OUT'");
 
-  std::string export_engine = "mujoco", export_out;
-  CLI::App* export_model = app.add_subcommand("export", "write the model an engine builds for a scenario (MuJoCo: MJCF for its viewer; reference: its modal model as JSON)");
+  // default: the build's first engine (the catalog's order: adapters/CMakeLists.txt), the reference when it has none
+  const std::vector<std::string> simulators = ib::simulator_names();
+  std::string export_engine = simulators.size() > 1 ? simulators[1] : simulators.front(), export_out;
+  CLI::App* export_model = app.add_subcommand("export", "write the model a simulator builds for a scenario, in its own format "
+                                                        "(an engine's for its viewer, e.g. MJCF; reference: its modal model as JSON)");
   export_model->add_option("scenario", scenario_path, "scenario file (.toml)")->required();
-  export_model->add_option("--engine", export_engine, "engine")->capture_default_str();
+  export_model->add_option("--engine", export_engine, "engine (engines --names)")->capture_default_str();
   export_model->add_option("--law", law, "contact law: hertz, viscoelastic or newton")->capture_default_str();
   add_shared_option(export_model, Shared::dt, time_step_s, "time step [s]; default: the engine's", false);
   export_model->add_option("--option", options, "engine option name=value, repeatable");

@@ -14,8 +14,8 @@ namespace {
 
 RunRecord engine_record() {
   RunRecord r;
-  r.job_id = "resonance/mujoco/hertz/dt=1e-4";
-  r.engine = "mujoco";
+  r.job_id = "resonance/engine_a/hertz/dt=1e-4";
+  r.engine = "engine_a";  // the record reads no engine's name
   r.verdict = Verdict::inaccurate;
   r.reason = "vs own chain: frame 1 sensor peak +28.8 % (tolerance 10 %)";
   r.cost.steps = 200000;
@@ -40,7 +40,7 @@ RunRecord engine_record() {
 TEST(RecordedRun, AWrittenRecordReadsBackFieldByField) {
   const RecordedRun r = read_recorded_run(json_line(engine_record()));
   ASSERT_TRUE(r.readable);
-  EXPECT_EQ(r.job_id, "resonance/mujoco/hertz/dt=1e-4");
+  EXPECT_EQ(r.job_id, "resonance/engine_a/hertz/dt=1e-4");
   EXPECT_EQ(r.verdict, Verdict::inaccurate);
   EXPECT_EQ(r.reason, "vs own chain: frame 1 sensor peak +28.8 % (tolerance 10 %)");
   EXPECT_FALSE(r.timed_out);

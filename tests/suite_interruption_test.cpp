@@ -7,8 +7,8 @@
 //     as Slurm and systemd stop a task: a worker stopped from outside is not a finding about its engine;
 //   - SIGTERM to one worker alone: the suite goes on, records nothing for that job and says so.
 // Each is sent once a few results are recorded. The suite (two short scenarios, two laws, the reference
-// and MuJoCo when built) is compared with an uninterrupted run of the same command: the same job ids and
-// every field of runs.jsonl and runs.csv equal except the timing ones (ib::timing_field_names()), compared sorted by job id, and every run's series.csv.gz, events.csv and
+// and the build's first engine, tests/catalog_engines.h) is compared with an uninterrupted run of the
+// same command: the same job ids and every field of runs.jsonl and runs.csv equal except the timing ones (ib::timing_field_names()), compared sorted by job id, and every run's series.csv.gz, events.csv and
 // impact.csv.gz equal byte for byte. The report is made from nothing else, so one test (Ctrl-C) also makes
 // both reports (it takes matplotlib several seconds each) and compares summary.md with its date, its
 // folder and the timing it shows masked (the run-time column, and the "at equal run time" line, whose
@@ -33,7 +33,9 @@
 #include <thread>
 #include <vector>
 
+#include "catalog_engines.h"
 #include "harness/records/run_record.h"
+#include "simulators/catalog.h"
 
 namespace {
 
@@ -45,9 +47,11 @@ const std::vector<std::string>& kTimingFields = ib::timing_field_names();
 std::vector<std::string> suite_arguments(const fs::path& out) {
   std::vector<std::string> args = {IMPACTBENCH_EXECUTABLE, "suite", std::string(IMPACTBENCH_TEST_DATA_DIR) + "/report_suite",
                                    "--laws", "hertz,viscoelastic", "--jobs", "2", "--out", out.string()};
-#if IMPACTBENCH_WITH_MUJOCO
-  for (const char* a : {"--engines", "reference,mujoco", "--dt", "1e-4"}) args.push_back(a);
-#endif
+  const std::vector<std::string> engines = ib::test::engines_among(ib::simulator_names());
+  if (!engines.empty())
+    for (const std::string& a : {std::string("--engines"), ib::test::engines_option("reference", engines, 1), std::string("--dt"),
+                                 std::string("1e-4")})
+      args.push_back(a);
   return args;
 }
 

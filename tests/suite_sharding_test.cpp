@@ -22,8 +22,10 @@
 #include <string>
 #include <vector>
 
+#include "catalog_engines.h"
 #include "command_test_support.h"
 #include "harness/records/run_record.h"
+#include "simulators/catalog.h"
 #include "suite_test_support.h"
 
 namespace {
@@ -37,18 +39,8 @@ const std::set<std::string> kRunTimingFields(ib::timing_field_names().begin(), i
 const std::set<std::string> kStepTimingFields = {"probes_wall_time_s"};
 constexpr int kShards = 3;
 
-std::string engines() {
-  std::string list = "reference";
-#if IMPACTBENCH_WITH_MUJOCO
-  list += ",mujoco";
-#endif
-#if IMPACTBENCH_WITH_ODE
-  list += ",ode";
-#elif IMPACTBENCH_WITH_BULLET
-  list += ",bullet";
-#endif
-  return list;
-}
+// The reference and the build's first two engines (tests/catalog_engines.h): sharding is the harness's, any engine does.
+std::string engines() { return ib::test::engines_option("reference", ib::test::engines_among(ib::simulator_names()), 2); }
 
 std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 

@@ -64,8 +64,8 @@ def answer_rows(document):
 
 def own_chain_note(run):
     """The run's largest error vs its own chain where it is beyond tolerance and not the one vs beam
-    already shown: an engine error that the chain's own discretisation error hides (ODE's damping in the
-    free vibration: its excess decay cancels the chain's deficit against the beam)."""
+    already shown: an engine error that the chain's own discretisation error hides (an engine's excess
+    damping in the free vibration, say, cancelling the chain's deficit against the beam)."""
     own = run.get("largest_error_vs_own_chain")
     beam = run["largest_error_vs_beam"]
     if not own or own["tolerance_multiple"] <= 1:

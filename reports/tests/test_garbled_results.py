@@ -27,7 +27,7 @@ class GarbledResults(unittest.TestCase):
         return path, run.stderr
 
     def test_a_row_cut_short_names_the_line(self):
-        path, error = self.report(HEADER + GOOD + "s/mujoco/hertz,s,hertz,muj")
+        path, error = self.report(HEADER + GOOD + "s/engine_a/hertz,s,hertz,eng")
         self.assertIn(f"make_report: {path}:3: not the header's 10 columns", error)
         self.assertIn("--resume", error)
 

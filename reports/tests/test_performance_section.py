@@ -42,11 +42,11 @@ class PerformanceSection(unittest.TestCase):
         self.assertIsNone(performance.section(self.suite))
 
     def test_the_median_aggregate_is_shown_with_the_machine(self):
-        mean = dict(benchmark("mujoco/hertz", us_per_step=9.0, steps=20000.0), run_type="aggregate", aggregate_name="mean")
-        median = dict(benchmark("mujoco/hertz", us_per_step=6.25, steps=20000.0), run_type="aggregate", aggregate_name="median")
+        mean = dict(benchmark("engine_a/hertz", us_per_step=9.0, steps=20000.0), run_type="aggregate", aggregate_name="mean")
+        median = dict(benchmark("engine_a/hertz", us_per_step=6.25, steps=20000.0), run_type="aggregate", aggregate_name="median")
         self.write("engine_step_benchmark.json", {"context": MACHINE, "benchmarks": [mean, median]})
         markdown, page = performance.section(self.suite)
-        self.assertIn("| mujoco/hertz | 6.25 | 2e+04 |", markdown)
+        self.assertIn("| engine_a/hertz | 6.25 | 2e+04 |", markdown)
         self.assertNotIn("| 9 |", markdown)
         for text in (markdown, page):
             self.assertIn("Test CPU 9000 x 2 cores", text)
@@ -55,12 +55,12 @@ class PerformanceSection(unittest.TestCase):
 
     def test_overhead_and_scaling_figures_are_the_files_own(self):
         self.write("harness_overhead_benchmark.json", {"context": MACHINE, "benchmarks": [
-            benchmark("ode/newton", harness_ms=104.0, bare_ms=100.0, overhead_percent=4.0)]})
+            benchmark("engine_b/newton", harness_ms=104.0, bare_ms=100.0, overhead_percent=4.0)]})
         self.write("scaling.json", {"suite": "default suite part 1", "duration_option": "--duration 50", "machine": MACHINE,
                                     "rows": [{"workers": 1, "wall_time_s": 1800.0, "jobs": 240, "parallel_efficiency": 1.0},
                                              {"workers": 2, "wall_time_s": 960.0, "jobs": 240, "parallel_efficiency": 0.9375}]})
         markdown, _ = performance.section(self.suite)
-        self.assertIn("| ode/newton | 104 | 100 | +4.0 % |", markdown)
+        self.assertIn("| engine_b/newton | 104 | 100 | +4.0 % |", markdown)
         self.assertIn("| 2 | 960 | 240 | 93.8 % |", markdown)
         self.assertIn("--duration 50", markdown)
 

@@ -22,6 +22,13 @@ from impactbench_report import tables  # noqa: E402
 EXECUTABLE = SCENARIOS = None
 
 
+def build_engines(count):
+    """The first `count` engines of the build under test, in its catalog's order (`impactbench engines --names`,
+    the reference first): the report is tested on whatever engines the build has, named nowhere here."""
+    names = subprocess.run([EXECUTABLE, "engines", "--names"], capture_output=True, text=True, check=True).stdout
+    return [n for n in names.strip().split(",") if n and n != "reference"][:count]
+
+
 def path_of(row):
     options = dict(o.split("=", 1) for o in row["options"].split(";") if "=" in o)
     return options.get("contact", "matched")
@@ -43,10 +50,11 @@ class Report(unittest.TestCase):
     def setUpClass(cls):
         cls.folder = tempfile.mkdtemp(prefix="impactbench_report_test_")
         cls.suite = os.path.join(cls.folder, "suite")
+        cls.engines = build_engines(3)
         # --window 2: the scenarios' own windows (the free vibration's 0.3 s run is scored whole either way),
         # named on the command line so that the suite warns about short_resonance's, inside its start-up
         # transient; no --paths: the engines' default (matched) alone, no native run
-        run = subprocess.run([EXECUTABLE, "suite", SCENARIOS, "--engines", "reference,mujoco,ode,bullet",
+        run = subprocess.run([EXECUTABLE, "suite", SCENARIOS, "--engines", ",".join(["reference"] + cls.engines),
                               "--laws", "viscoelastic,newton", "--dt", "1e-4,5e-5", "--window", "2", "--jobs", "2",
                               "--out", cls.suite], capture_output=True, text=True)
         # unstable runs (exit code 1) are findings the report must show, not failures of this test
@@ -88,8 +96,11 @@ class Report(unittest.TestCase):
         self.assertEqual(sorted(re.findall(r"<img src='figures/([^']+)'", page)), figures)
         self.assertNotRegex(page, r"(src|href)=['\"](https?:)?//")  # nothing fetched from elsewhere
         self.assertLess(len(page), 400_000)  # opens at once: the figures are separate files
-        for fact in ("machine", "engines", "load average", "commands", "Caveats", "MuJoCo", "ODE", "Bullet",
-                     "id='answer'"):
+        with open(os.path.join(self.suite, "engines.json")) as f:  # each engine under its name for people
+            display = {d["name"]: d["display_name"] for d in json.load(f)["simulators"]}
+        self.assertTrue(self.engines)
+        for fact in ["machine", "engines", "load average", "commands", "Caveats", "id='answer'"] + \
+                [display[e] for e in self.engines]:
             self.assertIn(fact, page)
         for name in ("runs.csv", "runs.jsonl", "summary.md", "summary.json"):
             self.assertTrue(os.path.exists(os.path.join(self.report, name)), name)
@@ -165,7 +176,7 @@ class Report(unittest.TestCase):
                             and r["verdict"] in ("ok", "inaccurate") and path_of(r) in paths:
                         self.assertLessEqual(best_score, independent_score(r, tolerances) + 1e-12, r["job_id"])
         self.assertGreater(traced, 100)
-        self.assertEqual({e["engine"] for e in summary["engines"]}, {"mujoco", "ode", "bullet"})
+        self.assertEqual({e["engine"] for e in summary["engines"]}, set(self.engines))
 
     def test_a_suite_without_native_runs_says_not_run_rather_than_no_stable_run(self):
         self.assertFalse(any(path_of(r) == "native" for r in self.rows if r["engine"] != "reference"))
@@ -238,7 +249,7 @@ class StepsReport(unittest.TestCase):
     def setUpClass(cls):
         cls.folder = tempfile.mkdtemp(prefix="impactbench_steps_report_test_")
         cls.suite = os.path.join(cls.folder, "suite")
-        run = subprocess.run([EXECUTABLE, "suite", SCENARIOS, "--engines", "mujoco", "--laws", "viscoelastic",
+        run = subprocess.run([EXECUTABLE, "suite", SCENARIOS, "--engines", build_engines(1)[0], "--laws", "viscoelastic",
                               "--paths", "matched", "--find-steps", "--step-range", "5e-5,4e-4", "--jobs", "2",
                               "--out", cls.suite], capture_output=True, text=True)
         assert run.returncode in (0, 1), run.stderr

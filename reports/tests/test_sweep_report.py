@@ -74,11 +74,11 @@ class SweepAnswer(unittest.TestCase):
         self.assertIn("at 1.17 f_1 it impacts, 1.00 impacts per cycle (period-1)", text)
 
     def test_regime_agreement_counts_and_lists_the_ratios_where_an_engine_differs(self):
-        engine = [row("mujoco", "up", 1.0, "period-1", 1.0, peak=11.0, options="contact=matched"),
-                  row("mujoco", "up", 1.08, "no impact", 0.0, options="contact=matched"),
-                  row("mujoco", "up", 1.17, "", 0.0, verdict="unstable", options="contact=matched")]
+        engine = [row("engine_a", "up", 1.0, "period-1", 1.0, peak=11.0, options="contact=matched"),
+                  row("engine_a", "up", 1.08, "no impact", 0.0, options="contact=matched"),
+                  row("engine_a", "up", 1.17, "", 0.0, verdict="unstable", options="contact=matched")]
         table = sweep.agreement(self.read(reference_rows() + engine))
-        self.assertEqual(len(table), 1)  # mujoco, hertz, up (no down rows of the engine)
+        self.assertEqual(len(table), 1)  # engine_a, hertz, up (no down rows of the engine)
         t = table[0]
         self.assertEqual(t["ratios"], 3)
         self.assertAlmostEqual(t["agreement"], 1 / 3)
