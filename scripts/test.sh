@@ -27,10 +27,14 @@ summary() {
 trap 'summary $?' EXIT
 
 # ctest starts the longest tests first when it knows their cost: a fresh build/ starts from the costs
-# kept in tests/ctest-cost-data.txt (refresh it with scripts/update-test-costs.sh), then from its own.
+# kept in tests/ctest-cost-data.txt, build-sanitize/ from tests/ctest-cost-data-sanitize.txt (the
+# sanitizers slow some tests far more than others; refresh both with scripts/update-test-costs.sh), then
+# from its own.
 seed_costs() {
+  local kept=tests/ctest-cost-data.txt
+  [[ $1 == build-sanitize ]] && kept=tests/ctest-cost-data-sanitize.txt
   mkdir -p "$1/Testing/Temporary"
-  [[ -f $1/Testing/Temporary/CTestCostData.txt ]] || cp tests/ctest-cost-data.txt "$1/Testing/Temporary/CTestCostData.txt"
+  [[ -f $1/Testing/Temporary/CTestCostData.txt ]] || cp "$kept" "$1/Testing/Temporary/CTestCostData.txt"
 }
 # ctest with its output kept in DIR/ctest.log, then the ten slowest tests of that run.
 run_ctest() {
