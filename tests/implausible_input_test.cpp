@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include "catalog_engines.h"
 #include "command_test_support.h"
 
 namespace {
@@ -27,15 +28,11 @@ Output impactbench(const std::string& arguments) { return ib::test::run_impactbe
 std::string paper(const std::string& name) { return ib::test::paper_scenario(name); }
 fs::path fresh(const std::string& name) { return ib::test::fresh_command_folder("impactbench_implausible_", name); }
 
-// The first engine of the binary under test, as it names them (`engines --names`: the reference first),
-// or "" when it was built with none: a rule of the harness needs one engine, never a particular one.
+// The first engine of the binary under test (catalog_engines.h), or "" when it was built with none: a rule
+// of the harness needs one engine, never a particular one.
 std::string first_engine() {
-  std::stringstream names(impactbench("engines --names").text);
-  for (std::string engine; std::getline(names, engine, ',');) {
-    while (!engine.empty() && std::isspace(static_cast<unsigned char>(engine.back()))) engine.pop_back();
-    if (!engine.empty() && engine != "reference") return engine;
-  }
-  return "";
+  const std::vector<std::string> engines = ib::test::command_engines();
+  return engines.empty() ? "" : engines.front();
 }
 
 // The command ends with exit 2 and says each fragment.
