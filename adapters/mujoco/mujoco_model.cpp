@@ -17,7 +17,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
      "states), injected (the harness applies the law's force, MuJoCo's contact off) or native (MuJoCo's default "
      "contact settings) (default matched)"},
     {"integrator", "euler (MuJoCo's default: semi-implicit, joint damping implicit) or rk4 (default euler)"},
-    {"links", "links K per frame, 1..64 (default: the smallest K whose first frequency is within 0.5 % of the beam's)"},
+    {"links", kLinksOptionHelp},
     {"newton_contact_steps",
      "Newton law, matched path: time steps the contact force lasts, 2..1000 (default 4); see "
      "adapters/mujoco/README.md"},
@@ -121,9 +121,7 @@ std::string mujoco_tip_site_name(int frame) { return frame_name(frame) + "_tip";
 std::string mujoco_tip_geom_name(int frame) { return frame_name(frame) + "_tip_sphere"; }
 
 int mujoco_chain_links(const Scenario& scenario, const RunSettings& settings) {
-  const OptionReader options("mujoco", settings.options, kOptions);
-  const int fallback = settings.options.count("links") ? 0 : default_links(scenario);
-  return options.integer("links", fallback, 1, 64);
+  return links_option(OptionReader("mujoco", settings.options, kOptions), settings, scenario);
 }
 
 MujocoRunPlan plan_mujoco_run(const Scenario& scenario, const RunSettings& settings) {
