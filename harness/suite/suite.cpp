@@ -98,10 +98,9 @@ void SuiteRunner::begin() {
   begin_step_searches();
 }
 
-// The ready job to start next: of the jobs whose references have ended, a reference first (other jobs wait
-// for it), then a kind not measured yet, then the costliest (next_to_start). A job compared with a reference
-// that a signal from outside stopped waits for --resume (run now, it would be recorded without its comparison).
-const PlannedJob* SuiteRunner::ready_job() {
+// The jobs whose references have ended. A job compared with a reference that a signal from outside stopped
+// waits for --resume (run now, it would be recorded without its comparison): it leaves the pending jobs.
+std::vector<const PlannedJob*> SuiteRunner::ready_jobs() {
   std::vector<const PlannedJob*> ready;
   for (auto it = pending_.begin(); it != pending_.end();) {
     if (reference_stopped(**it)) {
@@ -113,27 +112,26 @@ const PlannedJob* SuiteRunner::ready_job() {
     if (references_ended(**it)) ready.push_back(*it);
     ++it;
   }
-  if (ready.empty()) return nullptr;
-  for (const PlannedJob* job : ready)
-    if (job->kind != JobKind::engine) return job;
-  std::vector<JobWork> work;
-  for (const PlannedJob* job : ready) work.push_back(work_of(*job));
-  return ready[next_to_start(progress_->estimate(), work)];
+  return ready;
 }
 
 // What waits for a unit decides its turn before its own cost does (the critical path first, so that no chain
 // of units is left to run alone at the end): a reference first, cheap, since the jobs compared with it wait for
 // it; then a step search's probe, since each probe waits for the one before it (a search is a chain whose
-// length only its probes reveal); then the costliest job.
+// length only its probes reveal); then, of the other jobs, a kind not measured yet, then the costliest
+// (next_to_start).
 std::optional<double> SuiteRunner::next_cost() {
-  next_ = ready_job();
-  const bool reference = next_ && next_->kind != JobKind::engine;
-  next_search_ = reference ? nullptr : ready_search();
-  if (next_search_) next_ = nullptr;
-  const PlannedJob* job = next_ ? next_ : next_search_ ? &*next_search_->next_probe : nullptr;
-  if (!job) return std::nullopt;
-  if (reference || next_search_) return kUnknownCost;
-  const double cost = progress_->estimate().cost_s(work_of(*job));
+  const std::vector<const PlannedJob*> ready = ready_jobs();
+  const auto reference = std::find_if(ready.begin(), ready.end(),
+                                      [](const PlannedJob* job) { return job->kind != JobKind::engine; });
+  next_ = reference != ready.end() ? *reference : nullptr;
+  next_search_ = next_ ? nullptr : ready_search();
+  if (next_ || next_search_) return kUnknownCost;
+  if (ready.empty()) return std::nullopt;
+  std::vector<JobWork> work;
+  for (const PlannedJob* job : ready) work.push_back(work_of(*job));
+  next_ = ready[next_to_start(progress_->estimate(), work)];
+  const double cost = progress_->estimate().cost_s(work_of(*next_));
   return cost < 0 ? kUnknownCost : cost;
 }
 

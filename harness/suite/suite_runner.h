@@ -171,8 +171,8 @@ class SuiteRunner : public SuiteSource {
       if (!own_ended(*other)) return false;
     return true;
   }
-  // The ready job to start next (the costliest, a kind not measured first), or null.
-  const PlannedJob* ready_job();
+  // The pending jobs whose references have ended (next_cost chooses among them).
+  std::vector<const PlannedJob*> ready_jobs();
   // A reference job whose run the reference cache may hold or keep (SuiteSettings::reference_cache).
   bool cacheable(const PlannedJob& job) const {
     return job.kind != JobKind::engine && !settings_.reference_cache.empty() && unrecorded_scored_from(job).empty();
