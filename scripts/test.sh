@@ -57,7 +57,7 @@ end_phase "tests ($(grep -c ' Test *#' build/ctest.log) in build/)"
 # The layers (scripts/check_layers.py, ctest "layering" above): the model, the physics and the harness
 # compile with no simulator at all (no engine's headers, paths or definitions), in build-harness-only/.
 # Their unit tests link these three libraries and nothing else (tests/CMakeLists.txt,
-# impactbench_harness_test): they ran above, so they are not built a second time here.
+# harness_unit_tests): they ran above, so they are not built a second time here.
 cmake -S . -B build-harness-only -G Ninja -DIMPACTBENCH_HARNESS_ONLY=ON -DIMPACTBENCH_TESTS=OFF >/dev/null
 cmake --build build-harness-only -j "$(nproc)"
 end_phase "harness-only build"

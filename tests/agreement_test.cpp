@@ -46,7 +46,7 @@
 #include "model/simulator.h"
 
 namespace ib {
-namespace {
+namespace agreement_test {
 
 constexpr const char* kCases[] = {"resonance", "pre_resonance", "post_resonance", "free_vibration"};
 constexpr ContactLaw kLaws[] = {kHertz, kSpringDashpot, kNewton};
@@ -280,5 +280,5 @@ TEST(AgreementTable, OneRowPerEngineCaseAndLaw) {
   }
 }
 
-}  // namespace
+}  // namespace agreement_test
 }  // namespace ib

@@ -8,7 +8,7 @@
 #include <vector>
 
 namespace ib {
-namespace {
+namespace amplitude_decay_test {
 
 struct Series {
   std::vector<double> time_s, displacement_m;
@@ -58,5 +58,5 @@ TEST(AmplitudeDecay, FewerThanThreeWholeCyclesGiveNoDecrement) {
   EXPECT_TRUE(std::isnan(log_decrement(s.time_s, at_rest, 0, 3)));
 }
 
-}  // namespace
+}  // namespace amplitude_decay_test
 }  // namespace ib

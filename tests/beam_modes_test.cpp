@@ -8,7 +8,7 @@
 #include "model/scenario.h"
 
 namespace ib {
-namespace {
+namespace beam_modes_test {
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -110,5 +110,5 @@ TEST(BeamModes, ModalSumConvergesToTheContinuousTipReceptance) {
   }
 }
 
-}  // namespace
+}  // namespace beam_modes_test
 }  // namespace ib

@@ -19,7 +19,7 @@
 #include "adapters/bullet/bullet_contact.h"
 
 namespace ib::bullet {
-namespace {
+namespace bullet_contact_mapping_test {
 
 constexpr double kRadius = 5e-3;                 // the rig's tip spheres [m]
 constexpr double kM1 = 0.65628, kM2 = 0.42569;   // the K = 8 chains' tip effective masses [kg]
@@ -273,5 +273,5 @@ TEST(BulletContactMapping, AppliedImpulsesAreWrittenBackOnlyWithWarmStarting) {
   }
 }
 
-}  // namespace
+}  // namespace bullet_contact_mapping_test
 }  // namespace ib::bullet

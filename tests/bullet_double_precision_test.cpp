@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-namespace {
+namespace bullet_double_precision_test {
 
 namespace fs = std::filesystem;
 
@@ -59,4 +59,4 @@ TEST(BulletDoublePrecision, ConfiguringAgainstTheSinglePrecisionBuildFails) {
   EXPECT_NE(single_output.find("bullet-float64"), std::string::npos) << single_output;
 }
 
-}  // namespace
+}  // namespace bullet_double_precision_test

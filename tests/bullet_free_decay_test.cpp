@@ -18,7 +18,7 @@
 #include "reference/reference_simulator.h"
 
 namespace ib {
-namespace {
+namespace bullet_free_decay_test {
 
 constexpr int kLinks = 8;  // the default for the paper's rig (first frequency 0.2 % above the beam's)
 
@@ -123,5 +123,5 @@ INSTANTIATE_TEST_SUITE_P(Articulations, BulletFreeDecay,
                            return std::get<0>(info.param) + "_frame" + std::to_string(std::get<1>(info.param));
                          });
 
-}  // namespace
+}  // namespace bullet_free_decay_test
 }  // namespace ib

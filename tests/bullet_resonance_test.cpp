@@ -14,7 +14,7 @@
 #include "reference/reference_simulator.h"
 
 namespace ib {
-namespace {
+namespace bullet_resonance_test {
 
 constexpr int kLinks = 8;
 
@@ -61,5 +61,5 @@ TEST(BulletResonance, ImpactsPerCycleAndSensorPeakAreTheReferences) {
               1e6 * bullet.cost.cpu_time_s / static_cast<double>(bullet.cost.steps));
 }
 
-}  // namespace
+}  // namespace bullet_resonance_test
 }  // namespace ib

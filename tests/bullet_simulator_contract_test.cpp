@@ -12,7 +12,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace bullet_simulator_contract_test {
 
 TEST(BulletSimulator, NameVersionAndOptions) {
   const auto bullet = make_bullet_simulator();
@@ -129,5 +129,5 @@ TEST(BulletSimulator, InstabilityIsReportedWithTimeAndQuantity) {
   }
 }
 
-}  // namespace
+}  // namespace bullet_simulator_contract_test
 }  // namespace ib

@@ -13,7 +13,7 @@
 #include "reference/reference_simulator.h"
 
 namespace ib {
-namespace {
+namespace bullet_single_impact_test {
 
 constexpr int kLinks = 8;
 
@@ -137,5 +137,5 @@ TEST(BulletSingleImpact, NewtonRealisesTheTargetRestitution) {
   }
 }
 
-}  // namespace
+}  // namespace bullet_single_impact_test
 }  // namespace ib

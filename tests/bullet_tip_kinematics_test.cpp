@@ -14,7 +14,7 @@
 #include "adapters/common/rig.h"
 
 namespace ib::bullet {
-namespace {
+namespace bullet_tip_kinematics_test {
 
 struct PlanarTip {
   double x_m = 0, velocity_x_m_s = 0;
@@ -66,5 +66,5 @@ TEST(BulletTipKinematics, TipMotionIsThePlanarChainsKinematics) {
   EXPECT_GT(largest_angle, 1e-2);
 }
 
-}  // namespace
+}  // namespace bullet_tip_kinematics_test
 }  // namespace ib::bullet

@@ -17,7 +17,7 @@
 
 #include "command_test_support.h"
 
-namespace {
+namespace cli_option_ranges_test {
 
 namespace fs = std::filesystem;
 using Output = ib::test::CommandOutput;
@@ -196,4 +196,4 @@ TEST(CliOptionRanges, RunDurationRunsThatLongAndKeepsTheScoringWindow) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace cli_option_ranges_test

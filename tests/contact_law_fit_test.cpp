@@ -19,7 +19,7 @@
 #include "simulators/catalog.h"
 
 namespace ib {
-namespace {
+namespace contact_law_fit_test {
 
 struct Case {
   std::string engine, path;
@@ -135,5 +135,5 @@ INSTANTIATE_TEST_SUITE_P(Engines, ContactLawFit, ::testing::ValuesIn(cases()), [
   return info.param.engine + "_" + info.param.path + "_" + to_string(info.param.law);
 });
 
-}  // namespace
+}  // namespace contact_law_fit_test
 }  // namespace ib

@@ -12,7 +12,7 @@
 #include "engine_measurements.h"
 
 namespace ib {
-namespace {
+namespace dart_free_decay_test {
 
 using testing::contact_free_decay;
 using testing::free_decay_settings;
@@ -37,5 +37,5 @@ TEST(DartFreeDecay, ImplicitJointSpringsAddOmegaHOverTwoToTheDamping) {
   testing::expect_backward_euler_damping(s, run_dart(s, h), h, 0.05);
 }
 
-}  // namespace
+}  // namespace dart_free_decay_test
 }  // namespace ib

@@ -15,7 +15,7 @@
 #include "engine_measurements.h"
 
 namespace ib {
-namespace {
+namespace dart_resonance_test {
 
 TEST(DartResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
   Scenario s = testing::settled_resonance();
@@ -34,5 +34,5 @@ TEST(DartResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) 
   EXPECT_NEAR(dart.frames[0].sensor_peak_acceleration_g / reference.frames[0].sensor_peak_acceleration_g, 1, 0.10);
 }
 
-}  // namespace
+}  // namespace dart_resonance_test
 }  // namespace ib

@@ -15,7 +15,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace dart_simulator_contract_test {
 
 Scenario first_impact() {
   Scenario s = testing::paper_scenario("free_vibration");
@@ -127,5 +127,5 @@ TEST(DartSimulator, InstabilityIsReportedWithTimeAndQuantity) {
   EXPECT_LT(r.cost.steps, 70);
 }
 
-}  // namespace
+}  // namespace dart_simulator_contract_test
 }  // namespace ib

@@ -15,7 +15,7 @@
 #include "harness/scoring/metrics.h"
 
 namespace ib {
-namespace {
+namespace dart_single_impact_test {
 
 using testing::CrossingImpact;
 using testing::measure_impact;
@@ -99,5 +99,5 @@ TEST(DartSingleImpact, NewtonBelowTheBounceThresholdIsPlasticInMetres) {
   }
 }
 
-}  // namespace
+}  // namespace dart_single_impact_test
 }  // namespace ib

@@ -13,7 +13,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace effective_mass_test {
 
 // A rigid link hinged at z0 carrying the tip mass at L: the mass that a force at the tip, along the
 // motion, meets is I_hinge / (L - z0)^2, with I_hinge = I_c + m (c - z0)^2 + M (L - z0)^2.
@@ -54,5 +54,5 @@ TEST(EffectiveMass, TheTwoTipsCombineAsTheChainsModalModelSays) {
     }
 }
 
-}  // namespace
+}  // namespace effective_mass_test
 }  // namespace ib

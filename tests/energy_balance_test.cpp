@@ -8,7 +8,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace energy_balance_test {
 
 using testing::paper_scenario;
 
@@ -51,5 +51,5 @@ INSTANTIATE_TEST_SUITE_P(
       return std::string(info.param.scenario) + "_" + to_string(info.param.law) + "_" + to_string(info.param.modes);
     });
 
-}  // namespace
+}  // namespace energy_balance_test
 }  // namespace ib

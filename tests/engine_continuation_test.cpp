@@ -9,7 +9,7 @@
 #include "simulators/catalog.h"
 
 namespace ib {
-namespace {
+namespace engine_continuation_test {
 
 // The largest differences between a continued run and the second half of the uninterrupted one.
 struct Gap {
@@ -101,5 +101,5 @@ std::vector<std::string> engines() {
 INSTANTIATE_TEST_SUITE_P(Engines, EngineContinuation, ::testing::ValuesIn(engines()),
                          [](const auto& info) { return info.param; });
 
-}  // namespace
+}  // namespace engine_continuation_test
 }  // namespace ib

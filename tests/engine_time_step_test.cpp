@@ -15,7 +15,7 @@
 #include "simulators/catalog.h"
 
 namespace ib {
-namespace {
+namespace engine_time_step_test {
 
 constexpr double kDuration_s = 0.5;
 // Two steps every engine runs stably on its default chain (none above the default of the engine whose
@@ -97,5 +97,5 @@ std::vector<std::string> fixed_step_simulators() {
 INSTANTIATE_TEST_SUITE_P(Catalog, EngineTimeStep, ::testing::ValuesIn(fixed_step_simulators()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
-}  // namespace
+}  // namespace engine_time_step_test
 }  // namespace ib

@@ -11,7 +11,7 @@
 
 #include "command_test_support.h"
 
-namespace {
+namespace export_score_command_test {
 
 namespace fs = std::filesystem;
 using Output = ib::test::CommandOutput;
@@ -93,4 +93,4 @@ TEST(ScoreCommand, BadInputExitsWithTwoAndSaysWhy) {
   EXPECT_NE(out.text.find("--scenario"), std::string::npos) << out.text;
 }
 
-}  // namespace
+}  // namespace export_score_command_test

@@ -16,7 +16,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace fixed_step_loop_test {
 
 constexpr double kStep_s = 1e-3;
 
@@ -296,5 +296,5 @@ TEST(FixedStepLoop, TheSeriesStartsAtTheRunsSeriesStart) {
   EXPECT_NEAR(loop.result.trajectory.time_s.front(), 0.005, 1e-12);
 }
 
-}  // namespace
+}  // namespace fixed_step_loop_test
 }  // namespace ib

@@ -13,7 +13,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace frame2_free_decay_test {
 
 // Frequency and damping ratio from frame 2's positive tip peaks (parabola-refined), as engine_measurements.h
 // measures frame 1's.
@@ -75,5 +75,5 @@ TEST(Frame2FreeDecay, RingsAtItsOwnFrequencyWithTheScenariosDamping) {
   EXPECT_NEAR(frequency_hz / rayleigh_hz, 1, 0.01) << frequency_hz << " Hz, Rayleigh " << rayleigh_hz << " Hz";
 }
 
-}  // namespace
+}  // namespace frame2_free_decay_test
 }  // namespace ib

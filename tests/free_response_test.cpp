@@ -8,7 +8,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace free_response_test {
 
 using testing::paper_scenario;
 
@@ -112,5 +112,5 @@ TEST(FreeResponse, ForcedResponseReachesTheSteadyStateAmplitude) {
   EXPECT_EQ(r.status, RunStatus::ok);
 }
 
-}  // namespace
+}  // namespace free_response_test
 }  // namespace ib

@@ -16,7 +16,7 @@
 #include "entries.h"
 
 namespace ib {
-namespace {
+namespace fuzz_regressions_test {
 
 namespace fs = std::filesystem;
 
@@ -83,5 +83,5 @@ TEST(FuzzRegressions, SavedRunsAreRepairedForResume) {
   fs::remove_all(folder);
 }
 
-}  // namespace
+}  // namespace fuzz_regressions_test
 }  // namespace ib

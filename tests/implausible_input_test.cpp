@@ -19,7 +19,7 @@
 #include "catalog_engines.h"
 #include "command_test_support.h"
 
-namespace {
+namespace implausible_input_test {
 
 namespace fs = std::filesystem;
 using Output = ib::test::CommandOutput;
@@ -222,4 +222,4 @@ TEST(ImplausibleInput, TheReportOfADamagedFolderSaysWhatIsWrongWithoutATraceback
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace implausible_input_test

@@ -10,7 +10,7 @@
 #include "physics/modal_model.h"
 
 namespace ib {
-namespace {
+namespace link_chain_test {
 
 TEST(LinkChain, FirstFrequencyConvergesToTheBeamsAsLinksGrow) {
   const FrameSpec frame = default_rig().frames[0];
@@ -83,5 +83,5 @@ TEST(LinkChain, StaticTipComplianceMatchesTheJointSum) {
   EXPECT_NEAR(linearise(chain).tip_lever.dot(angles) / joint_sum, 1.0, 1e-12);
 }
 
-}  // namespace
+}  // namespace link_chain_test
 }  // namespace ib

@@ -13,7 +13,7 @@
 #include "metric_signals.h"
 
 namespace ib {
-namespace {
+namespace metric_comparison_test {
 
 using namespace test;
 
@@ -102,5 +102,5 @@ TEST(Metrics, ComparisonIsNaNWhereItIsNotDefined) {
   EXPECT_DOUBLE_EQ(e.impacts_per_cycle_difference, 2.0);  // 20 impacts in 10 cycles against none
 }
 
-}  // namespace
+}  // namespace metric_comparison_test
 }  // namespace ib

@@ -14,7 +14,7 @@
 #include "metric_signals.h"
 
 namespace ib {
-namespace {
+namespace metrics_test {
 
 using namespace test;
 
@@ -362,5 +362,5 @@ TEST(Metrics, FlattenErrorsPrefixesEveryName) {
   EXPECT_EQ(flat, expected);
 }
 
-}  // namespace
+}  // namespace metrics_test
 }  // namespace ib

@@ -11,7 +11,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace modal_model_json_test {
 
 using Json = nlohmann::json;
 
@@ -101,5 +101,5 @@ TEST(ModalModelJson, OnlyTheChosenLawAndMotorOnlyWithOne) {
   EXPECT_TRUE(exported(testing::paper_scenario("resonance"), ContactLaw::newton).contains("motor"));
 }
 
-}  // namespace
+}  // namespace modal_model_json_test
 }  // namespace ib

@@ -15,7 +15,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace mujoco_chain_free_decay_test {
 
 struct Mode {
   double frequency_hz = 0;
@@ -104,5 +104,5 @@ INSTANTIATE_TEST_SUITE_P(FramesAndIntegrators, MujocoChainFreeDecay,
                            return "frame" + std::to_string(std::get<0>(info.param) + 1) + "_" + std::get<1>(info.param);
                          });
 
-}  // namespace
+}  // namespace mujoco_chain_free_decay_test
 }  // namespace ib

@@ -14,7 +14,7 @@
 #include "adapters/mujoco/mujoco_engine.h"
 
 namespace ib {
-namespace {
+namespace mujoco_contact_mapping_test {
 
 // Two spheres of radius 5 mm on slide joints along x, surfaces 1 mm apart, no gravity. Only the pair
 // collides, with the given parameters (none: a model to read body_invweight0 from).
@@ -178,5 +178,5 @@ TEST(MujocoContactMapping, NewtonContactReboundsWithTheRestitution) {
   EXPECT_NEAR(impact.restitution, e, 0.02 * e);
 }
 
-}  // namespace
+}  // namespace mujoco_contact_mapping_test
 }  // namespace ib

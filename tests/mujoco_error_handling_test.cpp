@@ -15,7 +15,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace mujoco_error_handling_test {
 
 namespace fs = std::filesystem;
 
@@ -95,5 +95,5 @@ TEST_F(MujocoErrorHandling, RunFlaggedByMujocoEndsUnstableWithTheWarning) {
   std::printf("reason: %s\n", result.reason.c_str());
 }
 
-}  // namespace
+}  // namespace mujoco_error_handling_test
 }  // namespace ib

@@ -17,7 +17,7 @@
 #include "harness/jobs/run_job.h"
 
 namespace ib {
-namespace {
+namespace mujoco_long_step_verdict_test {
 
 struct Case {
   ContactLaw law;
@@ -73,5 +73,5 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
-}  // namespace
+}  // namespace mujoco_long_step_verdict_test
 }  // namespace ib

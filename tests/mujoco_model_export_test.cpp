@@ -17,7 +17,7 @@
 #include "adapters/common/rig.h"
 
 namespace ib {
-namespace {
+namespace mujoco_model_export_test {
 
 namespace fs = std::filesystem;
 
@@ -177,5 +177,5 @@ TEST(MujocoModelExport, RejectsBadOptionsAndNamesTheChain) {
   }
 }
 
-}  // namespace
+}  // namespace mujoco_model_export_test
 }  // namespace ib

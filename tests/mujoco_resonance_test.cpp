@@ -18,7 +18,7 @@
 #include "harness/jobs/run_job.h"
 
 namespace ib {
-namespace {
+namespace mujoco_resonance_test {
 
 TEST(MujocoResonance, ImpactsPerCycleAndSensorPeakMatchTheReference) {
   Scenario s = testing::paper_scenario("resonance");
@@ -51,5 +51,5 @@ TEST(MujocoResonance, ImpactsPerCycleAndSensorPeakMatchTheReference) {
   EXPECT_EQ(m.raw_onsets, m.impacts) << "contact flicker";
 }
 
-}  // namespace
+}  // namespace mujoco_resonance_test
 }  // namespace ib

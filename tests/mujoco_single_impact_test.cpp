@@ -22,7 +22,7 @@
 #include "adapters/common/rig.h"
 
 namespace ib {
-namespace {
+namespace mujoco_single_impact_test {
 
 // The first overlap of the tips in a sampled trajectory: times where delta = u1 - u2 - gap crosses
 // zero and the relative speeds there, linearly interpolated between samples.
@@ -119,5 +119,5 @@ INSTANTIATE_TEST_SUITE_P(Laws, MujocoSingleImpact,
                                            Case{ContactLaw::hertz, false, "matched", "hertz"}),
                          [](const auto& info) { return info.param.name; });
 
-}  // namespace
+}  // namespace mujoco_single_impact_test
 }  // namespace ib

@@ -12,7 +12,7 @@
 #include "model/simulator.h"
 
 namespace ib {
-namespace {
+namespace native_contact_law_test {
 
 // Free vibration over its first 0.2 s: frame 1 released 2.5 mm toward frame 2, several impacts.
 Scenario first_impacts() {
@@ -58,5 +58,5 @@ std::vector<std::string> engines_in_build() {
 INSTANTIATE_TEST_SUITE_P(Engines, NativeContact, ::testing::ValuesIn(engines_in_build()),
                          [](const auto& info) { return info.param; });
 
-}  // namespace
+}  // namespace native_contact_law_test
 }  // namespace ib

@@ -21,7 +21,7 @@
 #include "simulators/catalog.h"
 
 namespace ib {
-namespace {
+namespace newton_restitution_test {
 
 constexpr double kDuration_s = 0.06;  // the first impact starts at 48 ms and is over by 49 ms
 constexpr double kTimeStep_s = 1e-5;
@@ -96,5 +96,5 @@ std::vector<Case> cases() {
 INSTANTIATE_TEST_SUITE_P(Engines, NewtonRestitution, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& info) { return info.param.engine + "_" + info.param.path; });
 
-}  // namespace
+}  // namespace newton_restitution_test
 }  // namespace ib

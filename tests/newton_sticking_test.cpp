@@ -7,7 +7,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace newton_sticking_test {
 
 using testing::paper_scenario;
 
@@ -83,5 +83,5 @@ TEST(NewtonSticking, PlasticImpactsStickAndReleaseOnTheRig) {
   EXPECT_LT(r.energy.relative_residual(), 1e-6);
 }
 
-}  // namespace
+}  // namespace newton_sticking_test
 }  // namespace ib

@@ -8,7 +8,7 @@
 #include <string>
 
 namespace ib {
-namespace {
+namespace number_text_test {
 
 TEST(NumberText, MeasuredValuesHaveNineDigitsCountsAreWholeAndNonFiniteIsEmpty) {
   EXPECT_EQ(number_text(0.123456789123), "0.123456789");
@@ -40,5 +40,5 @@ TEST(NumberText, ACsvCellWithACommaQuoteOrLineBreakIsQuoted) {
   EXPECT_EQ(csv_escape(""), "");
 }
 
-}  // namespace
+}  // namespace number_text_test
 }  // namespace ib

@@ -12,7 +12,7 @@
 #include "adapters/ode/ode_library.h"
 
 namespace ib {
-namespace {
+namespace ode_bounce_test {
 
 struct Bounce {
   double restitution = 0;  // opening speed after the contact / closing speed before it
@@ -81,5 +81,5 @@ TEST(OdeBounce, ANegativeThresholdSilentlyDisablesTheBounce) {
   EXPECT_GE(ode::kBounceThreshold_m_s, 0.0);
 }
 
-}  // namespace
+}  // namespace ode_bounce_test
 }  // namespace ib

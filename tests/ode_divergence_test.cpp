@@ -21,7 +21,7 @@
 #include "harness/scoring/verdict.h"
 
 namespace ib {
-namespace {
+namespace ode_divergence_test {
 
 namespace fs = std::filesystem;
 
@@ -131,5 +131,5 @@ TEST(OdeDivergence, TheSuiteRecordsTheVerdictAndAnOdeAbort) {
   fs::remove_all(root);
 }
 
-}  // namespace
+}  // namespace ode_divergence_test
 }  // namespace ib

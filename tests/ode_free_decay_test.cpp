@@ -11,7 +11,7 @@
 #include "engine_measurements.h"
 
 namespace ib {
-namespace {
+namespace ode_free_decay_test {
 
 using testing::chain_mode;
 using testing::ChainMode;
@@ -69,5 +69,5 @@ TEST(OdeFreeDecay, ExplicitSpringsGiveTheChainModeBelowTheirStepLimit) {
   EXPECT_NEAR(d.damping_ratio / mode.zeta, 1, 0.02);
 }
 
-}  // namespace
+}  // namespace ode_free_decay_test
 }  // namespace ib

@@ -14,7 +14,7 @@
 #include "adapters/common/rig.h"
 
 namespace ib {
-namespace {
+namespace ode_options_test {
 
 double diagnostic(const RunResult& r, const std::string& name) {
   for (const auto& [key, value] : r.diagnostics)
@@ -148,5 +148,5 @@ TEST(OdeOptions, QuickStepIterationsControlItsAgreementWithTheDirectSolver) {
   EXPECT_GT(with_few, 1e-3 * amplitude);
 }
 
-}  // namespace
+}  // namespace ode_options_test
 }  // namespace ib

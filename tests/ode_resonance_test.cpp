@@ -22,7 +22,7 @@
 #include "harness/jobs/run_job.h"
 
 namespace ib {
-namespace {
+namespace ode_resonance_test {
 
 TEST(OdeResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
   Scenario s = testing::settled_resonance();
@@ -49,5 +49,5 @@ TEST(OdeResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
   EXPECT_NEAR(ode.frames[0].sensor_peak_acceleration_g / reference.frames[0].sensor_peak_acceleration_g, 1, 0.10);
 }
 
-}  // namespace
+}  // namespace ode_resonance_test
 }  // namespace ib

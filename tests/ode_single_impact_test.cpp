@@ -13,7 +13,7 @@
 #include "harness/scoring/metrics.h"
 
 namespace ib {
-namespace {
+namespace ode_single_impact_test {
 
 using testing::engine_impact;
 using testing::first_impact_scenario;
@@ -88,5 +88,5 @@ TEST(OdeSingleImpact, NewtonBounceRealisesTheTargetRestitution) {
   }
 }
 
-}  // namespace
+}  // namespace ode_single_impact_test
 }  // namespace ib

@@ -16,7 +16,7 @@
 #include "adapters/ode/ode_simulator.h"
 
 namespace ib {
-namespace {
+namespace ode_soft_constraint_test {
 
 TEST(OdeLibrary, IsTheDoublePrecisionBuild) {
   ode::ensure_initialised();
@@ -242,5 +242,5 @@ TEST(OdeSoftConstraint, HingeStopsAreTheSameBackwardEulerSpring) {
   EXPECT_LT(worst, 1e-6 * std::abs(theta0)) << "largest angle difference " << worst << " rad";
 }
 
-}  // namespace
+}  // namespace ode_soft_constraint_test
 }  // namespace ib

@@ -23,7 +23,7 @@
 #include "harness/suite/suite.h"
 
 namespace ib {
-namespace {
+namespace output_errors_test {
 
 namespace fs = std::filesystem;
 
@@ -239,5 +239,5 @@ TEST_F(OutputErrors, TheReportCommandSaysItsFolderCannotBeMade) {
       << report.text;
 }
 
-}  // namespace
+}  // namespace output_errors_test
 }  // namespace ib

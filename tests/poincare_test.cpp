@@ -6,7 +6,7 @@
 #include <cmath>
 
 namespace ib {
-namespace {
+namespace poincare_test {
 
 // u = A cos(w t + phase) on both frames, sampled at `rate_hz` from 0 to `end_s`, with exact v and a.
 Trajectory harmonic(double amplitude_m, double omega_rad_s, double phase_rad, double rate_hz, double end_s) {
@@ -85,5 +85,5 @@ TEST(Regime, NoImpactWhateverTheSamplesAndTooFewSamplesAreIrregular) {
   EXPECT_EQ(classify_regime(orbit(1, 16, 0), kScale, 16, 16).period, 1);
 }
 
-}  // namespace
+}  // namespace poincare_test
 }  // namespace ib

@@ -11,7 +11,7 @@
 #include "harness/jobs/progress.h"
 
 namespace ib {
-namespace {
+namespace progress_estimate_test {
 
 struct SyntheticJob {
   JobWork work;
@@ -177,5 +177,5 @@ TEST(ProgressEstimate, StartsEachKindOnceBeforeTheCostliestFirst) {
   EXPECT_EQ(next_to_start(estimate, {pending[0], pending[1]}), 1u);  // then the longest
 }
 
-}  // namespace
+}  // namespace progress_estimate_test
 }  // namespace ib

@@ -10,7 +10,7 @@
 #include "harness/records/run_record.h"
 
 namespace ib {
-namespace {
+namespace recorded_run_test {
 
 RunRecord engine_record() {
   RunRecord r;
@@ -80,5 +80,5 @@ TEST(RecordedRun, ALineCutShortOrAForeignVerdictIsNotARecord) {
   EXPECT_TRUE(read_recorded_run(R"({"job_id": "x", "verdict": "unstable"})").readable);
 }
 
-}  // namespace
+}  // namespace recorded_run_test
 }  // namespace ib

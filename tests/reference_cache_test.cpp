@@ -14,7 +14,7 @@
 #include "suite_test_support.h"
 
 namespace ib {
-namespace {
+namespace reference_cache_test {
 
 namespace fs = std::filesystem;
 
@@ -89,5 +89,5 @@ TEST_F(ReferenceCache, ADamagedEntryIsAMissAndOtherSettingsAreOtherEntries) {
   EXPECT_EQ(run_into("fourth").references_from_cache, 2);
 }
 
-}  // namespace
+}  // namespace reference_cache_test
 }  // namespace ib

@@ -8,7 +8,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace reference_convergence_test {
 
 using testing::paper_scenario;
 
@@ -94,5 +94,5 @@ TEST(ReferenceConvergence, SameInputGivesTheSameBits) {
   }
 }
 
-}  // namespace
+}  // namespace reference_convergence_test
 }  // namespace ib

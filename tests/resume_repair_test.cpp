@@ -17,7 +17,7 @@
 #include "harness/records/run_record.h"
 
 namespace ib {
-namespace {
+namespace resume_repair_test {
 
 namespace fs = std::filesystem;
 
@@ -64,5 +64,5 @@ TEST(ResumeRepair, RowsAreLaidOutByTheHeaderWhateverTheKeyOrder) {
   fs::remove_all(folder);
 }
 
-}  // namespace
+}  // namespace resume_repair_test
 }  // namespace ib

@@ -11,7 +11,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace rig_test {
 
 TEST(Rig, DefaultLinksIsTheSmallestWithinHalfAPercent) {
   const Scenario s = testing::paper_scenario("resonance");
@@ -98,5 +98,5 @@ TEST(Rig, EnergyAndEffectiveMassesAreThoseOfTheChain) {
   }
 }
 
-}  // namespace
+}  // namespace rig_test
 }  // namespace ib

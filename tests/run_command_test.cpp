@@ -15,7 +15,7 @@
 #include "catalog_engines.h"
 #include "command_test_support.h"
 
-namespace {
+namespace run_command_test {
 
 namespace fs = std::filesystem;
 
@@ -137,4 +137,4 @@ TEST(RunCommand, BadInputExitsWithTwoAndSaysWhy) {
   EXPECT_FALSE(fs::exists(dir));
 }
 
-}  // namespace
+}  // namespace run_command_test

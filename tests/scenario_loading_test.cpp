@@ -13,7 +13,7 @@
 #include "model/scenario_toml.h"
 
 namespace ib {
-namespace {
+namespace scenario_loading_test {
 
 const std::string kPaperDir = std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper";
 const std::string kMalformedDir = std::string(IMPACTBENCH_TEST_DATA_DIR) + "/malformed_scenarios";
@@ -421,5 +421,5 @@ TEST(UnreadableScenario, FolderNamesThePath) {
       << error.what();
 }
 
-}  // namespace
+}  // namespace scenario_loading_test
 }  // namespace ib

@@ -7,7 +7,7 @@
 #include "model/scenario.h"
 
 namespace ib {
-namespace {
+namespace scoring_window_test {
 
 Scenario run_of(double duration_s, double window_s) {
   Scenario s = default_rig();
@@ -62,5 +62,5 @@ TEST(ScoringWindow, StartsTheSeriesUnlessTheRunSaysOtherwise) {
   EXPECT_EQ(series_start_s(settings, s), 3);
 }
 
-}  // namespace
+}  // namespace scoring_window_test
 }  // namespace ib

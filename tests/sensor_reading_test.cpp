@@ -13,7 +13,7 @@
 #include "metric_signals.h"
 
 namespace ib {
-namespace {
+namespace sensor_reading_test {
 
 using namespace test;
 
@@ -99,5 +99,5 @@ TEST(Metrics, SensorWindowsStayInsideTheWindowAndTheSeries) {
   EXPECT_NEAR(early.time_s.front(), 0.5 + 0.5 / 2048, 1e-12);
 }
 
-}  // namespace
+}  // namespace sensor_reading_test
 }  // namespace ib

@@ -15,7 +15,7 @@
 #include "simulators/catalog.h"
 
 namespace ib {
-namespace {
+namespace series_rate_test {
 
 namespace fs = std::filesystem;
 
@@ -100,5 +100,5 @@ TEST(SeriesRate, TheRunMeasuresTheSameAndItsFileReadsBackAtTheLowerRate) {
   fs::remove_all(root);
 }
 
-}  // namespace
+}  // namespace series_rate_test
 }  // namespace ib

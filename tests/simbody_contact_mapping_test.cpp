@@ -19,7 +19,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace simbody_contact_mapping_test {
 
 using namespace simbody;
 
@@ -135,5 +135,5 @@ TEST(SimbodyContactMapping, RigidNewtonRestitutionAtTheRigsClosingSpeed) {
   EXPECT_LT(errors[1] * 3, errors[0]);  // first order in h
 }
 
-}  // namespace
+}  // namespace simbody_contact_mapping_test
 }  // namespace ib

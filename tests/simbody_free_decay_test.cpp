@@ -14,7 +14,7 @@
 #include "engine_measurements.h"
 
 namespace ib {
-namespace {
+namespace simbody_free_decay_test {
 
 using testing::contact_free_decay;
 using testing::free_decay_settings;
@@ -47,5 +47,5 @@ TEST(SimbodyFreeDecay, EveryIntegratorGivesTheChainMode) {
   expect_chain_mode("rkm accuracy 1e-6", s, run_simbody(s, 5e-5, {{"accuracy", "1e-6"}}), 0.02);
 }
 
-}  // namespace
+}  // namespace simbody_free_decay_test
 }  // namespace ib

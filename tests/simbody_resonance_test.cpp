@@ -15,7 +15,7 @@
 #include "engine_measurements.h"
 
 namespace ib {
-namespace {
+namespace simbody_resonance_test {
 
 // Matched spring-dashpot, semi-explicit Euler at 5e-5 s (the default step; the contact's omega h = 0.26):
 // stable, impacts per cycle within 0.05 of the reference's, frame 1's sensor peak within 10 %.
@@ -39,5 +39,5 @@ TEST(SimbodyResonance, SpringDashpotImpactsPerCycleMatchTheReference) {
   EXPECT_NEAR(sb.frames[0].sensor_peak_acceleration_g / reference.frames[0].sensor_peak_acceleration_g, 1, 0.10);
 }
 
-}  // namespace
+}  // namespace simbody_resonance_test
 }  // namespace ib

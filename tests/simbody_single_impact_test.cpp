@@ -13,7 +13,7 @@
 #include "engine_measurements.h"
 
 namespace ib {
-namespace {
+namespace simbody_single_impact_test {
 
 using testing::engine_impact;
 using testing::first_impact_scenario;
@@ -93,5 +93,5 @@ TEST(SimbodySingleImpact, InjectedLawsMatchThePublishedLaws) {
   }
 }
 
-}  // namespace
+}  // namespace simbody_single_impact_test
 }  // namespace ib

@@ -7,7 +7,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace single_impact_test {
 
 using testing::approaching;
 using testing::solve;
@@ -130,5 +130,5 @@ TEST(SingleImpact, GrazingContactBetweenGridPointsIsNotMissed) {
   }
 }
 
-}  // namespace
+}  // namespace single_impact_test
 }  // namespace ib

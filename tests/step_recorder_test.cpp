@@ -9,7 +9,7 @@
 #include <limits>
 
 namespace ib {
-namespace {
+namespace step_recorder_test {
 
 // Frame 1 moves at 1 m/s then, at t = 0.5 s, jumps to -1 m/s within one step; a force acts on steps
 // 50 and 51 (t in (0.49, 0.51]).
@@ -145,5 +145,5 @@ TEST(StepRecorder, TheZoomHoldsTheFirstImpactOfTheWindow) {
   EXPECT_EQ(*std::max_element(impact.contact_force_n.begin(), impact.contact_force_n.end()), 20.0);
 }
 
-}  // namespace
+}  // namespace step_recorder_test
 }  // namespace ib

@@ -27,7 +27,7 @@
 #include "suite_test_support.h"
 
 namespace ib {
-namespace {
+namespace step_search_test {
 
 namespace fs = std::filesystem;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -369,5 +369,5 @@ TEST(StepSearchCommand, BadSearchOptionsAreClearErrors) {
   EXPECT_NE(alone.output.find("need --find-steps"), std::string::npos) << alone.output;
 }
 
-}  // namespace
+}  // namespace step_search_test
 }  // namespace ib

@@ -13,7 +13,7 @@
 #include "reference_fixtures.h"
 
 namespace ib {
-namespace {
+namespace stiff_extreme_scenarios_test {
 
 const std::string kScenarios = std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/";
 
@@ -326,5 +326,5 @@ TEST(ZeroDamping1000s, TotalEnergyIsConserved) {
   }
 }
 
-}  // namespace
+}  // namespace stiff_extreme_scenarios_test
 }  // namespace ib

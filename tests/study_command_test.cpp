@@ -11,7 +11,7 @@
 #include "command_test_support.h"
 #include "simulators/catalog.h"
 
-namespace {
+namespace study_command_test {
 
 namespace fs = std::filesystem;
 using ib::test::run_impactbench_logged_as;
@@ -182,4 +182,4 @@ window_s = 1
   fs::remove_all(folder);
 }
 
-}  // namespace
+}  // namespace study_command_test

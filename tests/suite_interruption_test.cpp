@@ -37,7 +37,7 @@
 #include "harness/records/run_record.h"
 #include "simulators/catalog.h"
 
-namespace {
+namespace suite_interruption_test {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
@@ -391,4 +391,4 @@ TEST_F(SuiteInterruption, OneWorkerStoppedFromOutsideIsRunAgainOnResume) {
   resume_and_compare(recorded, /*compare_reports=*/false);
 }
 
-}  // namespace
+}  // namespace suite_interruption_test

@@ -19,7 +19,7 @@
 #include "reference/reference_simulator.h"
 
 namespace ib {
-namespace {
+namespace suite_native_contact_test {
 
 namespace fs = std::filesystem;
 
@@ -128,5 +128,5 @@ TEST_F(SuiteNativeContact, AResumedSuiteRecordsALostScoredRowAgain) {
   }
 }
 
-}  // namespace
+}  // namespace suite_native_contact_test
 }  // namespace ib

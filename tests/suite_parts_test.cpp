@@ -16,7 +16,7 @@
 #include "suite_test_support.h"
 
 namespace ib {
-namespace {
+namespace suite_parts_test {
 
 namespace fs = std::filesystem;
 
@@ -122,5 +122,5 @@ TEST_F(SuiteParts, ResumingThePartsRunsNothingTwice) {
   EXPECT_EQ(settings_lines(root_ / "out").size(), 2u);
 }
 
-}  // namespace
+}  // namespace suite_parts_test
 }  // namespace ib

@@ -16,7 +16,7 @@
 #include "suite_test_support.h"
 
 namespace ib {
-namespace {
+namespace suite_plan_test {
 
 namespace fs = std::filesystem;
 
@@ -123,5 +123,5 @@ TEST_F(SuitePlan, WhatCannotRunIsPlannedAsSuch) {
   EXPECT_TRUE(units.front().after.empty());
 }
 
-}  // namespace
+}  // namespace suite_plan_test
 }  // namespace ib

@@ -27,7 +27,7 @@
 #include <vector>
 
 namespace ib {
-namespace {
+namespace suite_records_test {
 
 namespace fs = std::filesystem;
 
@@ -283,5 +283,5 @@ TEST_F(SuiteRecords, UnreadableFilesGetAJobIdEachThatFitsAFileName) {
   EXPECT_NE(jsonl.find("1 to 64 characters"), std::string::npos) << jsonl;
 }
 
-}  // namespace
+}  // namespace suite_records_test
 }  // namespace ib

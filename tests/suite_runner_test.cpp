@@ -22,7 +22,7 @@
 #include "harness/records/reporters.h"
 
 namespace ib {
-namespace {
+namespace suite_runner_test {
 
 namespace fs = std::filesystem;
 
@@ -210,5 +210,5 @@ TEST_F(SuiteRunner, AnOutputFolderThatCannotBeMadeIsAClearError) {
   }
 }
 
-}  // namespace
+}  // namespace suite_runner_test
 }  // namespace ib

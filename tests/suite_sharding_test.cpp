@@ -28,7 +28,7 @@
 #include "simulators/catalog.h"
 #include "suite_test_support.h"
 
-namespace {
+namespace suite_sharding_test {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
@@ -409,4 +409,4 @@ TEST_F(SuiteSharding, StepSearchShardsMergedGiveTheWholeSearch) {
   expect_same_results(*root_ / "steps-whole", *root_ / "steps-merged", /*steps=*/true);
 }
 
-}  // namespace
+}  // namespace suite_sharding_test

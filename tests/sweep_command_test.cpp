@@ -8,7 +8,7 @@
 #include "command_test_support.h"
 
 namespace ib::test {
-namespace {
+namespace sweep_command_test {
 
 namespace fs = std::filesystem;
 
@@ -63,5 +63,5 @@ TEST(SweepCommand, WritesItsTablesAndAResumeWithOtherSettingsIsRefused) {
   EXPECT_NE(same.text.find("0 run now, 2 already recorded"), std::string::npos) << same.text;
 }
 
-}  // namespace
+}  // namespace sweep_command_test
 }  // namespace ib::test

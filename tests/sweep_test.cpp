@@ -17,7 +17,7 @@
 #include "simulators/catalog.h"
 
 namespace ib {
-namespace {
+namespace sweep_test {
 
 namespace fs = std::filesystem;
 
@@ -244,5 +244,5 @@ TEST(SweepResults, AResumeWithOtherSettingsOrAScenarioWithoutAMotorIsRefusedBefo
   EXPECT_FALSE(fs::exists(root + "/b/sweep.json"));
 }
 
-}  // namespace
+}  // namespace sweep_test
 }  // namespace ib

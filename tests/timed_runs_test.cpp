@@ -17,7 +17,7 @@
 #include "suite_test_support.h"
 
 namespace ib {
-namespace {
+namespace timed_runs_test {
 
 // The reference under another name whose reported run times are scripted: the logged run takes 100 s,
 // the timed ones take the times given, in order. Counts its runs in `runs` (which outlives it: run_job
@@ -145,5 +145,5 @@ TEST(TimedRuns, TimedRunsDoNotChangeWhatIsMeasured) {
   EXPECT_LE(b.cost.wall_time_s, b.wall_time_max_s);
 }
 
-}  // namespace
+}  // namespace timed_runs_test
 }  // namespace ib

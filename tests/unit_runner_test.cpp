@@ -15,7 +15,7 @@
 #include "harness/jobs/worker_process.h"
 
 namespace ib {
-namespace {
+namespace unit_runner_test {
 
 using Clock = std::chrono::steady_clock;
 
@@ -127,5 +127,5 @@ TEST(UnitRunner, AWriteErrorComesBackWithItsMessage) {
   EXPECT_FALSE(pool.wait_end());  // none runs
 }
 
-}  // namespace
+}  // namespace unit_runner_test
 }  // namespace ib

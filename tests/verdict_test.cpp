@@ -8,7 +8,7 @@
 #include <limits>
 
 namespace ib {
-namespace {
+namespace verdict_test {
 
 // A quiet run: both tips at rest, 1 s at 100 Hz, constant energy.
 RunResult quiet_run() {
@@ -155,5 +155,5 @@ TEST(Verdict, NamesRoundTrip) {
   EXPECT_FALSE(verdict_from_string("fine"));
 }
 
-}  // namespace
+}  // namespace verdict_test
 }  // namespace ib

@@ -12,7 +12,7 @@
 #include <vector>
 
 namespace ib {
-namespace {
+namespace verdict_thresholds_test {
 
 // Both tips at rest, 1 s at 100 Hz, mechanical energy 1 mJ: ok by every bound.
 RunResult quiet_run() {
@@ -129,5 +129,5 @@ TEST(VerdictThresholds, AccuracyTolerancesAreTenPercentAndATenthOfAnImpactPerCyc
     }
 }
 
-}  // namespace
+}  // namespace verdict_thresholds_test
 }  // namespace ib
