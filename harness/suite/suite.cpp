@@ -130,8 +130,9 @@ std::optional<double> SuiteRunner::next_cost() {
   if (ready.empty()) return std::nullopt;
   std::vector<JobWork> work;
   for (const PlannedJob* job : ready) work.push_back(work_of(*job));
-  next_ = ready[next_to_start(progress_->estimate(), work)];
-  const double cost = progress_->estimate().cost_s(work_of(*next_));
+  const std::size_t costliest = next_to_start(progress_->estimate(), work);
+  next_ = ready[costliest];
+  const double cost = progress_->estimate().cost_s(work[costliest]);
   return cost < 0 ? kUnknownCost : cost;
 }
 
