@@ -1,9 +1,9 @@
 // The reference solver: event-driven integration of the modal equations with contact.
 //
-//  - Free flight (no contact force): exact closed-form propagation (FreeFlight) on a grid of
-//    grid_points_per_period steps per period of the fastest mode; contact onset located by TOMS 748
-//    on the closed form, with the indentation's local maxima between grid points checked so that
-//    grazing contacts are not missed.
+//  - Free flight (no contact force): exact closed-form propagation (FreeFlight), in steps that bounds on
+//    the modal amplitudes prove contact-free where they can, else on a grid of grid_points_per_period
+//    steps per period of the fastest mode; contact onset located by TOMS 748 on the closed form, with
+//    the indentation's local maxima between grid points checked so that grazing contacts are not missed.
 //  - Compliant contact (Hertz, spring-dashpot): adaptive Dormand-Prince 5(4) with dense output
 //    (Boost.Odeint) at the given tolerances; separation located on the dense output, then the last
 //    step is retaken exactly to the separation time.
