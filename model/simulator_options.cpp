@@ -1,6 +1,8 @@
 #include "model/simulator_options.h"
 
+#include <charconv>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace ib {
@@ -61,25 +63,45 @@ std::string OptionReader::choice(const std::string& name, const std::string& fal
   reject(name, *value, list);
 }
 
-double OptionReader::number(const std::string& name, double fallback, double low, double high) const {
-  const std::string* value = find(name);
-  if (!value) return fallback;
+namespace {
+
+// A bound as a person writes it: the shortest text that reads back as the same double (64, 0.001, 1e-06),
+// not std::to_string's six fixed decimals.
+std::string bound_text(double bound) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, bound).ptr);
+}
+
+// VALUE as a finite number, or nothing when it is not one in full ("2x", "nan", "").
+std::optional<double> finite_number(const std::string& value) {
   std::size_t used = 0;
   double v = 0;
   try {
-    v = std::stod(*value, &used);
+    v = std::stod(value, &used);
   } catch (const std::exception&) {
-    used = 0;
+    return std::nullopt;
   }
-  const std::string allowed = "a number from " + std::to_string(low) + " to " + std::to_string(high);
-  if (used != value->size() || !std::isfinite(v) || v < low || v > high) reject(name, *value, allowed);
+  if (used != value.size() || !std::isfinite(v)) return std::nullopt;
   return v;
 }
 
+}  // namespace
+
+double OptionReader::number(const std::string& name, double fallback, double low, double high) const {
+  const std::string* value = find(name);
+  if (!value) return fallback;
+  const std::optional<double> v = finite_number(*value);
+  if (!v || *v < low || *v > high) reject(name, *value, "a number from " + bound_text(low) + " to " + bound_text(high));
+  return *v;
+}
+
 int OptionReader::integer(const std::string& name, int fallback, int low, int high) const {
-  const double v = number(name, fallback, low, high);
-  if (v != std::floor(v)) reject(name, *find(name), "an integer from " + std::to_string(low) + " to " + std::to_string(high));
-  return static_cast<int>(v);
+  const std::string* value = find(name);
+  if (!value) return fallback;
+  const std::optional<double> v = finite_number(*value);
+  if (!v || *v != std::floor(*v) || *v < low || *v > high)
+    reject(name, *value, "an integer from " + std::to_string(low) + " to " + std::to_string(high));
+  return static_cast<int>(*v);
 }
 
 ContactPath OptionReader::contact_path() const {

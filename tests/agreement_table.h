@@ -20,6 +20,10 @@ struct RunLength {
   double duration_s;  // simulated time [s]
   double window_s;    // scoring window: the last window_s of the run [s]
   const char* why;
+  // No impact in the reference under any law: the law cannot act, so the case is checked with Hertz alone
+  // (the engine's chain, motor and damping; AgreementTable.ACaseWithoutContactHasNoImpactUnderAnyLaw shows
+  // the premise). The full study runs it with Hertz alone too (docs/studies.md).
+  bool without_contact = false;
 };
 constexpr RunLength kRunLengths[] = {
     {"resonance", 20, 10,
@@ -31,7 +35,8 @@ constexpr RunLength kRunLengths[] = {
      "1e-6 of the 100 s run's (chain reference, every law)"},
     {"post_resonance", 50, 14,
      "no impacts; frame 1's peak is the forced response plus the start-up transient, which decays with "
-     "zeta omega_1 = 0.13 1/s: at 50 s the peak is 0.6 % above the 100 s run's (0.1252 g vs 0.1245 g), at 30 s 8 %"},
+     "zeta omega_1 = 0.13 1/s: at 50 s the peak is 0.6 % above the 100 s run's (0.1252 g vs 0.1245 g), at 30 s 8 %",
+     true},
     {"free_vibration", 4, 4,
      "the whole run is the window; every reference impact comes before 2.6 s (beam and chain, every law), so 4 s "
      "holds all of them and the metrics are those of the published 14 s"},
@@ -152,8 +157,6 @@ constexpr AgreementRow kAgreement[] = {
     {"mujoco", "pre_resonance", kSpringDashpot, 1e-4, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kMujocoSpringDashpot},
     {"mujoco", "pre_resonance", kNewton, 1e-4, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kMujocoNewton},
     {"mujoco", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
-    {"mujoco", "post_resonance", kSpringDashpot, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
-    {"mujoco", "post_resonance", kNewton, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"mujoco", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
     {"mujoco", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
     {"mujoco", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
@@ -165,8 +168,6 @@ constexpr AgreementRow kAgreement[] = {
     {"ode", "pre_resonance", kSpringDashpot, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kImplicitSpringDashpot},
     {"ode", "pre_resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kOdeNewton},
     {"ode", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
-    {"ode", "post_resonance", kSpringDashpot, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
-    {"ode", "post_resonance", kNewton, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"ode", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
     {"ode", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
     {"ode", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
@@ -178,8 +179,6 @@ constexpr AgreementRow kAgreement[] = {
     {"bullet", "pre_resonance", kSpringDashpot, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kImplicitSpringDashpot},
     {"bullet", "pre_resonance", kNewton, 5e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kBulletNewton},
     {"bullet", "post_resonance", kHertz, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
-    {"bullet", "post_resonance", kSpringDashpot, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
-    {"bullet", "post_resonance", kNewton, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"bullet", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
     {"bullet", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
     {"bullet", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
@@ -191,8 +190,6 @@ constexpr AgreementRow kAgreement[] = {
     {"dart", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kDartSpringDashpot},
     {"dart", "pre_resonance", kNewton, 2e-5, "matched", "length_unit=cm", {0.03, 0.05, na}, {0.03, 0.10, na}, kDartNewton},
     {"dart", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
-    {"dart", "post_resonance", kSpringDashpot, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
-    {"dart", "post_resonance", kNewton, 1e-4, "matched", "length_unit=cm", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"dart", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
     {"dart", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
     {"dart", "free_vibration", kNewton, 1e-5, "matched", "length_unit=cm", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
@@ -204,8 +201,6 @@ constexpr AgreementRow kAgreement[] = {
     {"simbody", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kSimbodySpringDashpot},
     {"simbody", "pre_resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kSimbodyNewton},
     {"simbody", "post_resonance", kHertz, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kSimbodyPostResonance},
-    {"simbody", "post_resonance", kSpringDashpot, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kSimbodyPostResonance},
-    {"simbody", "post_resonance", kNewton, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kSimbodyPostResonance},
     {"simbody", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
     {"simbody", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
     {"simbody", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},

@@ -5,56 +5,19 @@
 // integrators.
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <complex>
 #include <vector>
 
 #include "physics/link_chain.h"
 #include "adapters/mujoco/mujoco_simulator.h"
+#include "modal_identification.h"
 #include "reference_fixtures.h"
 
 namespace ib {
 namespace mujoco_chain_free_decay_test {
 
-struct Mode {
-  double frequency_hz = 0;
-  double damping_ratio = 0;
-  double energy = 0;  // share of the signal, for picking the modes the release excites
-};
-
-// The damped modes in a sampled free decay, by the matrix pencil method (Hua and Sarkar 1990): the
-// samples of a sum of damped exponentials y_n = sum a_i z_i^n make a Hankel matrix of rank `order`
-// whose shifted right singular vectors give the z_i exactly (no noise here beyond rounding). The
-// signal also carries weak harmonics of the geometric nonlinearity, so the modes are ranked by energy.
-std::vector<Mode> matrix_pencil(const std::vector<double>& y, double dt, int order) {
-  const int n = static_cast<int>(y.size()), l = n / 3;
-  Eigen::MatrixXd hankel(n - l, l + 1);
-  for (int i = 0; i < n - l; ++i)
-    for (int j = 0; j <= l; ++j) hankel(i, j) = y[i + j];
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(hankel, Eigen::ComputeThinV);
-  const Eigen::MatrixXd v = svd.matrixV().leftCols(order);
-  const Eigen::MatrixXd shift = v.topRows(l).completeOrthogonalDecomposition().pseudoInverse() * v.bottomRows(l);
-  const Eigen::VectorXcd z = Eigen::EigenSolver<Eigen::MatrixXd>(shift).eigenvalues();
-  // amplitudes by least squares on the Vandermonde matrix, then each pole's energy over the record
-  Eigen::MatrixXcd vandermonde(n, order);
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < order; ++k) vandermonde(i, k) = std::pow(z[k], i);
-  const Eigen::VectorXcd amplitude = vandermonde.colPivHouseholderQr().solve(
-      Eigen::Map<const Eigen::VectorXd>(y.data(), n).cast<std::complex<double>>());
-  std::vector<Mode> modes;
-  for (int k = 0; k < order; ++k) {
-    if (z[k].imag() <= 0) continue;  // one of each conjugate pair; real poles are overdamped modes
-    const std::complex<double> s = std::log(z[k]) / dt;
-    Mode mode;
-    mode.frequency_hz = std::abs(s) / (2 * M_PI);
-    mode.damping_ratio = -s.real() / std::abs(s);
-    mode.energy = (vandermonde.col(k) * amplitude[k]).squaredNorm();
-    modes.push_back(mode);
-  }
-  std::sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) { return a.energy > b.energy; });
-  return modes;
-}
+using Mode = test::DampedMode;
 
 class MujocoChainFreeDecay : public ::testing::TestWithParam<std::tuple<int, std::string>> {};
 
@@ -81,7 +44,7 @@ TEST_P(MujocoChainFreeDecay, FirstTwoModesAreTheReferenceChains) {
 
   const ModalBasis reference = chain_modes(build_link_chain(s.frames[0], links));
   // all 2K poles of the chain's tip response
-  std::vector<Mode> modes = matrix_pencil(result.trajectory.displacement_m[0], 1 / run.output_rate_hz, 2 * links);
+  std::vector<Mode> modes = test::matrix_pencil_modes(result.trajectory.displacement_m[0], 1 / run.output_rate_hz, 2 * links);
   ASSERT_GE(modes.size(), 2u);
   modes.resize(2);
   std::sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) { return a.frequency_hz < b.frequency_hz; });
