@@ -41,6 +41,10 @@ struct RunSettings {
   // rig) instead of the scenario's initial state, at t = 0 with the motor at phase 0. A sweep's
   // continuation ends every run at a whole number of motor periods, so the forcing stays phase-continuous.
   std::optional<SavedState> initial_state;
+  // Whether the caller reads the exact peaks between samples (the series' peak columns, the true peak
+  // metric): off, a simulator may leave out the work they cost (the reference does). A sweep's row that
+  // keeps no series reads none of them.
+  bool peaks_between_samples = true;
 };
 
 // The first sample time of a run's series: settings.series_start_s, or the scenario's scoring window

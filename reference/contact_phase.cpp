@@ -4,6 +4,51 @@
 
 namespace ib::reference_internal {
 
+template <class Eval>
+void Solver::record_interval(const TipState& sa, const TipState& sb, Eval&& eval) {
+  if (!recorder_.wants(sb.t)) return;
+  std::array<TipState, 3> points;  // at most one extremum each of a1, a2 and F_c
+  int count = 0;
+  for (int f = 0; f < 2; ++f) {
+    if (sa.jerk[f] * sb.jerk[f] < 0) {
+      const double c =
+          find_root([&](double t) { return eval(t).jerk[f]; }, sa.t, sb.t, sa.jerk[f], sb.jerk[f], kExtremumBits);
+      points[count++] = eval(c);
+    }
+  }
+  if (sa.force_rate * sb.force_rate < 0) {
+    const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
+                               sb.force_rate, kExtremumBits);
+    points[count++] = eval(c);
+  }
+  for (int i = 1; i < count; ++i)  // insertion sort by time: at most three points
+    for (int j = i; j > 0 && points[j].t < points[j - 1].t; --j) std::swap(points[j], points[j - 1]);
+  int next = 0;
+  for (double ts = recorder_.next_sample_time(); ts <= sb.t; ts = recorder_.next_sample_time()) {
+    while (next < count && points[next].t <= ts) recorder_.feed(points[next++]);
+    recorder_.sample(ts == sb.t ? sb : eval(ts));
+  }
+  while (next < count) recorder_.feed(points[next++]);
+  recorder_.feed(sb);
+}
+
+// Peak force and maximum indentation of a contact episode, exact between steps.
+template <class Eval>
+void Solver::track_event(ContactEvent& event, const TipState& sa, const TipState& sb, Eval&& eval) const {
+  event.peak_force_n = std::max({event.peak_force_n, sa.force, sb.force});
+  event.max_indentation_m = std::max({event.max_indentation_m, sa.indentation, sb.indentation});
+  if (sa.force_rate > 0 && sb.force_rate < 0) {
+    const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
+                               sb.force_rate, kExtremumBits);
+    event.peak_force_n = std::max(event.peak_force_n, eval(c).force);
+  }
+  if (sa.indentation_rate > 0 && sb.indentation_rate < 0) {
+    const double c = find_root([&](double t) { return eval(t).indentation_rate; }, sa.t, sb.t, sa.indentation_rate,
+                               sb.indentation_rate, kExtremumBits);
+    event.max_indentation_m = std::max(event.max_indentation_m, eval(c).indentation);
+  }
+}
+
 // ---- compliant contact and sticking -----------------------------------------------------------
 // Integrates a contact phase with Dormand-Prince until it ends (separation, or release from
 // sticking) or the run ends. Returns false when the run cannot go on (status set).
@@ -12,13 +57,13 @@ bool Solver::integrate_contact(double& t, ModalState& x, Phase phase) {
   std::copy(x.q.data(), x.q.data() + m_, y.begin());
   std::copy(x.v.data(), x.v.data() + m_, y.begin() + m_);
   auto rhs = [&](const OdeState& s, OdeState& ds, double ts) {
-    const TipState k = tip_state(s.data(), s.data() + m_, ts, phase);
+    const double motor = model_.motor ? model_.motor->at(ts) : 0;
+    const ContactState k = contact_state(s.data(), s.data() + m_, motor, phase);
     const Eigen::Map<const Eigen::ArrayXd> q(s.data(), m_), v(s.data() + m_, m_);
     Eigen::Map<Eigen::ArrayXd> dq(ds.data(), m_), dv(ds.data() + m_, m_);
-    const double motor = model_.motor ? model_.motor->at(ts) : 0;
     dq = v;
     dv = model_.motor_lever.array() * motor - two_zeta_omega_ * v - omega2_ * q - model_.contact_lever.array() * k.force;
-    ds[2 * m_] = motor_power(s.data() + m_, ts);
+    ds[2 * m_] = model_.motor ? motor * model_.motor_lever.dot(Eigen::Map<const Eigen::VectorXd>(s.data() + m_, m_)) : 0;
     ds[2 * m_ + 1] = structural_power(s.data() + m_);
     ds[2 * m_ + 2] = (k.force - elastic_contact_force(model_.contact, k.indentation)) * k.indentation_rate;
     ds[2 * m_ + 3] = k.force;

@@ -87,7 +87,15 @@ class Solver {
       coarse_step_ = std::min(kTwoPi / slow_fastest / settings.grid_points_per_period, settings.max_grid_step_s);
       if (coarse_step_ > 2 * grid_step_) {
         coarse_transition_ = flight_.transition(coarse_step_);
+        coarse_sub_ = sub_grid(coarse_step_);
         if (settings.track_energy) coarse_energy_ = flight_.energy_forms(coarse_step_);
+        // the long steps' transitions in closed form, their energy forms by doubling the coarse step's
+        for (int k = 1; k <= settings.long_step_doublings; ++k) {
+          const LongStep& shorter = k == 1 ? LongStep{coarse_transition_, coarse_energy_, {}} : long_steps_.back();
+          LongStep longer{flight_.transition(std::ldexp(coarse_step_, k)), {}, sub_grid(std::ldexp(coarse_step_, k))};
+          if (settings.track_energy) longer.energy = flight_.doubled(shorter.energy, shorter.transition);
+          long_steps_.push_back(std::move(longer));
+        }
       } else {
         coarse_step_ = 0;  // nothing to gain
       }
@@ -95,12 +103,19 @@ class Solver {
   }
 
   void run(const ModalState& initial, double duration);
+  void run_after_contact(const FlightStart& start, double duration);
 
  private:
   void fail(RunStatus status, const std::string& reason) {
     solution_.status = status;
     solution_.reason = reason;
   }
+
+  // The phase machine from t and x in the given phase, to the end of the run.
+  void run_phases(double t, ModalState x, Phase phase, bool after_contact);
+
+  // Keeps a free flight's start as ReferenceSettings::keep_flight_starts_from_s asks.
+  void keep_flight_start(double t, const ModalState& x);
 
   // Stops a run whose contact episodes pile up without time advancing (a guard; physics never needs it).
   bool chatter_guard(double t);
@@ -161,17 +176,34 @@ class Solver {
     return s;
   }
 
+  // What the contact phase's equations need of tip_state: the indentation, its rate and the force, computed as
+  // tip_state computes them (the same bits) without the tips' kinematics and energy; motor: the force at t.
+  struct ContactState {
+    double indentation = 0, indentation_rate = 0, force = 0;
+  };
+  ContactState contact_state(const double* q, const double* v, double motor, Phase phase) const {
+    const double* b = model_.contact_lever.data();
+    const double* p = model_.motor_lever.data();
+    const double* w2 = omega2_.data();
+    const double* c = two_zeta_omega_.data();
+    double delta = -model_.gap_m, rate = 0, lever_driven = 0;
+    for (int m = 0; m < m_; ++m) {
+      delta += b[m] * q[m];
+      rate += b[m] * v[m];
+      lever_driven += b[m] * (p[m] * motor - c[m] * v[m] - w2[m] * q[m]);
+    }
+    ContactState s{delta, rate, 0};
+    if (phase == Phase::compliant) s.force = contact_force_continued(model_.contact, delta, rate);
+    else if (phase == Phase::sticking) s.force = lever_driven / lever_norm2_;
+    return s;
+  }
+
   double mechanical_energy(const double* qp, const double* vp, double indentation) const {
     const Eigen::Map<const Eigen::ArrayXd> q(qp, m_), v(vp, m_);
     return 0.5 * (v.square() + omega2_ * q.square()).sum() + elastic_contact_energy(model_.contact, indentation);
   }
 
-  // Power of the motor on frame 1's tip and of the structural damping [W].
-  double motor_power(const double* vp, double t) const {
-    if (!model_.motor) return 0;
-    const Eigen::Map<const Eigen::VectorXd> v(vp, m_);
-    return model_.motor->at(t) * model_.motor_lever.dot(v);
-  }
+  // Power of the structural damping [W].
   double structural_power(const double* vp) const {
     const Eigen::Map<const Eigen::ArrayXd> v(vp, m_);
     return (two_zeta_omega_ * v.square()).sum();
@@ -180,39 +212,28 @@ class Solver {
   // ---- series and peaks ---------------------------------------------------------------------
   // Feeds the recorder everything of [a, b] in time order: interior extrema of both tip
   // accelerations and of the force, the samples that fall in (a, b], and the value at b.
-  // eval(t) gives the state at any t in [a, b]; sample_at(t) the same at sample times, where the
-  // caller may have a cheaper way.
+  // eval(t) gives the state at any t in [a, b] (a contact phase's dense output).
   template <class Eval>
-  void record_interval(const TipState& sa, const TipState& sb, Eval&& eval) {
-    record_interval(sa, sb, eval, eval);
-  }
-  template <class Eval, class SampleAt>
-  void record_interval(const TipState& sa, const TipState& sb, Eval&& eval, SampleAt&& sample_at) {
-    if (!recorder_.wants(sb.t)) return;
-    std::array<TipState, 3> points;  // at most one extremum each of a1, a2 and F_c
-    int count = 0;
-    for (int f = 0; f < 2; ++f) {
-      if (sa.jerk[f] * sb.jerk[f] < 0) {
-        const double c =
-            find_root([&](double t) { return eval(t).jerk[f]; }, sa.t, sb.t, sa.jerk[f], sb.jerk[f], kExtremumBits);
-        points[count++] = eval(c);
-      }
-    }
-    if (sa.force_rate * sb.force_rate < 0) {
-      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
-                                 sb.force_rate, kExtremumBits);
-      points[count++] = eval(c);
-    }
-    for (int i = 1; i < count; ++i)  // insertion sort by time: at most three points
-      for (int j = i; j > 0 && points[j].t < points[j - 1].t; --j) std::swap(points[j], points[j - 1]);
-    int next = 0;
-    for (double ts = recorder_.next_sample_time(); ts <= sb.t; ts = recorder_.next_sample_time()) {
-      while (next < count && points[next].t <= ts) recorder_.feed(points[next++]);
-      recorder_.sample(ts == sb.t ? sb : sample_at(ts));
-    }
-    while (next < count) recorder_.feed(points[next++]);
-    recorder_.feed(sb);
-  }
+  void record_interval(const TipState& sa, const TipState& sb, Eval&& eval);  // contact_phase.cpp
+
+  // The tip accelerations of free flight about (x, t) as Taylor polynomials in the time from t: the modal
+  // equations give every derivative of q from q, v and the motor's force (a sinusoid), so an extremum
+  // between grid points is located on the polynomial instead of a transition (exp, sin and cos of every
+  // mode) per trial. Over a grid step (omega h <= 2 pi / grid_points_per_period <= pi / 2 for the fastest
+  // mode) the terms past kTaylorDegree are below 1e-16 of that mode's acceleration at 8 points per period,
+  // 1e-13 at the coarsest grid allowed (4).
+  static constexpr int kTaylorDegree = 18;
+  using AccelerationSeries = std::array<std::array<double, kTaylorDegree + 1>, 2>;  // a_f(t + s) = sum c[f][k] s^k
+  // Only the frames asked for (the other's coefficients are left zero).
+  AccelerationSeries acceleration_series(const ModalState& x, double t, std::array<bool, 2> frames) const;
+  static double series_value(const std::array<double, kTaylorDegree + 1>& c, double s);
+  static double series_slope(const std::array<double, kTaylorDegree + 1>& c, double s);
+
+  // record_interval for a free-flight interval that starts at (x, sa.t): its acceleration extrema located on
+  // the Taylor polynomials about its start (free flight has no contact force, so no force extremum).
+  template <class SampleAt>
+  void record_free_interval(const TipState& sa, const TipState& sb, const ModalState& x, SampleAt&& sample_at,
+                            bool extrema);
 
   // ---- free flight ----------------------------------------------------------------------------
   // The indentation and its rate: all that onset detection needs.
@@ -229,9 +250,35 @@ class Solver {
   bool free_flight(double& t, ModalState& x, bool after_contact);
 
   // Takes one coarse step if no contact can start within it: the slow modes' indentation (resolved by
-  // the coarse step, its interior maximum located) plus the bound on the fast modes stays negative.
-  bool coarse_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double* work,
-                                   double* dissipation);
+  // the coarse step, its interior maximum located) plus `fast`, the bound on the fast modes, stays negative.
+  bool coarse_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double fast,
+                                   double* work, double* dissipation);
+  // Takes the longest of the long steps within which no contact can start: the slow modes' indentation at t
+  // plus their speed bound times the step, plus `fast`, stays negative.
+  bool long_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double fast,
+                                 double* work, double* dissipation);
+  // Whether a bounded step may end at t (inside the output window too: it samples along).
+  bool bounded_step_may_end_at(double t) const { return t < end_time_; }
+  // A bounded step's sub-grid for the peaks between samples: `count` equal intervals, none longer than the
+  // fine grid's, so that each tip's jerk changes sign at most once in each.
+  struct SubGrid {
+    int count = 0;
+    FreeFlight::Transition transition;
+  };
+  SubGrid sub_grid(double step_s) const {
+    const int count = static_cast<int>(std::ceil(step_s / grid_step_ * (1 - 1e-12)));
+    return {count, flight_.transition(step_s / count)};
+  }
+  // The output of a bounded step from (t0, x0) to (tb, xb): its samples, the value at its end and, when the
+  // peaks are asked for, the tip accelerations' extrema found on its sub-grid.
+  void record_bounded_step(double t0, const ModalState& x0, const ModalState& xb, double tb, const SubGrid& sub);
+  // Both tips' jerk in free flight.
+  std::array<double, 2> free_jerk(const ModalState& x, const FreeFlight::MotorPhase& phase) const;
+  // The free-flight state's kinematics at a sample time ts: from the previous sample by the sample interval's
+  // transition when ts follows it (anchored afresh at (x_from, t_from) every kSamplesPerAnchor samples, so
+  // that rounding cannot drift), else from (x_from, t_from) in closed form.
+  TipState sample_free(double ts, const ModalState& x_from, double t_from);
+  static constexpr int kSamplesPerAnchor = 256;
 
   // The contact onset in (a, b], or infinity. The grid is fine enough that delta' changes sign at
   // most once per interval, so a crossing is either seen at b or hides behind one interior maximum.
@@ -284,20 +331,7 @@ class Solver {
 
   // Peak force and maximum indentation of a contact episode, exact between steps.
   template <class Eval>
-  void track_event(ContactEvent& event, const TipState& sa, const TipState& sb, Eval&& eval) const {
-    event.peak_force_n = std::max({event.peak_force_n, sa.force, sb.force});
-    event.max_indentation_m = std::max({event.max_indentation_m, sa.indentation, sb.indentation});
-    if (sa.force_rate > 0 && sb.force_rate < 0) {
-      const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
-                                 sb.force_rate, kExtremumBits);
-      event.peak_force_n = std::max(event.peak_force_n, eval(c).force);
-    }
-    if (sa.indentation_rate > 0 && sb.indentation_rate < 0) {
-      const double c = find_root([&](double t) { return eval(t).indentation_rate; }, sa.t, sb.t, sa.indentation_rate,
-                                 sb.indentation_rate, kExtremumBits);
-      event.max_indentation_m = std::max(event.max_indentation_m, eval(c).indentation);
-    }
-  }
+  void track_event(ContactEvent& event, const TipState& sa, const TipState& sb, Eval&& eval) const;  // contact_phase.cpp
 
   const ModalModel& model_;
   const ReferenceSettings& settings_;
@@ -312,6 +346,18 @@ class Solver {
   FreeFlight::Transition grid_transition_, coarse_transition_, sample_transition_;
   FreeFlight::EnergyForms grid_energy_, coarse_energy_;
   double coarse_step_ = 0;                   // 0: no coarse steps
+  struct LongStep {
+    FreeFlight::Transition transition;
+    FreeFlight::EnergyForms energy;
+    SubGrid sub;
+  };
+  SubGrid coarse_sub_;
+  ModalState scan_a_, scan_b_;               // a bounded step's sub-grid scan
+  std::vector<TipState> extrema_;
+  std::vector<LongStep> long_steps_;         // 2, 4, 8, ... coarse steps
+  double last_sample_t_ = -kInf;             // the free-flight sample chain (sample_free)
+  FreeFlight::MotorPhase last_sample_phase_;
+  int chained_samples_ = 0;
   Eigen::VectorXd slow_lever_, fast_lever_;  // the contact lever split into slow and fast modes
   ModalState xb_, xs_, x_onset_, x_sample_;  // free-flight scratch states, kept to avoid allocation
   double stick_impulse_ = 0;

@@ -34,8 +34,13 @@ FreeFlight::FreeFlight(const ModalModel& model) : model_(model) {
 }
 
 FreeFlight::Transition FreeFlight::transition(double tau) const {
-  const int n = model_.mode_count();
   Transition t;
+  transition_into(tau, t);
+  return t;
+}
+
+void FreeFlight::transition_into(double tau, Transition& t) const {
+  const int n = model_.mode_count();
   t.tau_s = tau;
   t.qq.resize(n); t.qv.resize(n); t.vq.resize(n); t.vv.resize(n);
   for (int m = 0; m < n; ++m) {
@@ -61,7 +66,6 @@ FreeFlight::Transition FreeFlight::transition(double tau) const {
     t.vq[m] = -es * w * w;
     t.vv[m] = ec - es * zw;
   }
-  return t;
 }
 
 void FreeFlight::steady_state(double t, ModalState& x) const {
@@ -126,16 +130,15 @@ void FreeFlight::advance(const Transition& tr, const MotorPhase& from, const Mot
   }
 }
 
-FreeFlight::EnergyForms FreeFlight::energy_forms(double tau) const {
+FreeFlight::EnergyForms FreeFlight::energy_forms(double tau, int least_panels) const {
   const int n = model_.mode_count();
   const double w = model_.motor ? model_.motor->omega_rad_s : 0;
   EnergyForms f;
   f.tau_s = tau;
   for (Eigen::ArrayXd* a : {&f.vv_qq, &f.vv_qv, &f.vv_vv, &f.cos_q, &f.cos_v, &f.sin_q, &f.sin_v}) a->setZero(n);
   // 20-point Gauss-Legendre on panels short against the fastest period: exact to rounding.
-  // Panels of at most 1/8 of the fastest period, 16 at least.
   const double fastest_period = 2 * M_PI / model_.omega_rad_s.maxCoeff();
-  const int panels = std::max(16, static_cast<int>(std::ceil(8 * tau / fastest_period)));
+  const int panels = std::max(least_panels, static_cast<int>(std::ceil(8 * tau / fastest_period)));
   const double width = tau / panels;
   const auto& nodes = boost::math::quadrature::gauss<double, 20>::abscissa();
   const auto& weights = boost::math::quadrature::gauss<double, 20>::weights();
@@ -162,6 +165,58 @@ FreeFlight::EnergyForms FreeFlight::energy_forms(double tau) const {
     }
   }
   return f;
+}
+
+FreeFlight::EnergyForms FreeFlight::doubled(const EnergyForms& f, const Transition& tr) const {
+  const double w = model_.motor ? model_.motor->omega_rad_s : 0;
+  const double c = std::cos(w * f.tau_s), s = std::sin(w * f.tau_s);
+  EnergyForms d = f;
+  d.tau_s = 2 * f.tau_s;
+  for (Eigen::Index m = 0; m < f.vv_qq.size(); ++m) {
+    const double qq = tr.qq[m], qv = tr.qv[m], vq = tr.vq[m], vv = tr.vv[m];
+    const double a = f.vv_qq[m], b = f.vv_qv[m], e = f.vv_vv[m];
+    // the quadratic form of the second half: Phi^T M Phi
+    d.vv_qq[m] += a * qq * qq + 2 * b * qq * vq + e * vq * vq;
+    d.vv_qv[m] += a * qq * qv + b * (qq * vv + qv * vq) + e * vq * vv;
+    d.vv_vv[m] += a * qv * qv + 2 * b * qv * vv + e * vv * vv;
+    // the linear forms of the second half on the state at tau, with cos(Omega (tau + u)) = c cos - s sin
+    const double cos_q = f.cos_q[m] * qq + f.cos_v[m] * vq, cos_v = f.cos_q[m] * qv + f.cos_v[m] * vv;
+    const double sin_q = f.sin_q[m] * qq + f.sin_v[m] * vq, sin_v = f.sin_q[m] * qv + f.sin_v[m] * vv;
+    d.cos_q[m] += c * cos_q - s * sin_q;
+    d.cos_v[m] += c * cos_v - s * sin_v;
+    d.sin_q[m] += s * cos_q + c * sin_q;
+    d.sin_v[m] += s * cos_v + c * sin_v;
+  }
+  d.cos_cos += c * c * f.cos_cos - 2 * c * s * f.cos_sin + s * s * f.sin_sin;
+  d.cos_sin += c * s * f.cos_cos + (c * c - s * s) * f.cos_sin - c * s * f.sin_sin;
+  d.sin_sin += s * s * f.cos_cos + 2 * s * c * f.cos_sin + c * c * f.sin_sin;
+  return d;
+}
+
+double FreeFlight::speed_bound(const ModalState& x0, const MotorPhase& phase, const Eigen::VectorXd& lever) const {
+  const double w = model_.motor ? model_.motor->omega_rad_s : 0;
+  double bound = 0;
+  for (int m = 0; m < model_.mode_count(); ++m) {
+    if (lever[m] == 0) continue;
+    const double a = forced_cos_[m], b = forced_sin_[m];
+    const double q0 = x0.q[m] - (a * phase.cos - b * phase.sin);
+    const double v0 = x0.v[m] + w * (a * phase.sin + b * phase.cos);
+    const double sigma = decay_[m], k = oscillation_[m], w_m = model_.omega_rad_s[m];
+    // the free velocity obeys the mode's own equation, from v0 with the slope a0 = 2 sigma v0 - omega^2 q0:
+    // the displacement bound's envelope with (q0, v0) replaced by (v0, a0)
+    const double a0 = 2 * sigma * v0 - w_m * w_m * q0;
+    double envelope;
+    if (regime_[m] < 0) {
+      const double s0 = (a0 - sigma * v0) / k;
+      envelope = std::sqrt(v0 * v0 + s0 * s0);
+    } else {
+      const double s_max = regime_[m] > 0 ? std::min(0.5 / k, 1 / (std::exp(1.0) * std::abs(sigma + k)))
+                                          : 1 / (std::exp(1.0) * std::abs(sigma));
+      envelope = std::abs(v0) + std::abs(a0 - sigma * v0) * s_max;
+    }
+    bound += std::abs(lever[m]) * (w * std::sqrt(a * a + b * b) + envelope);
+  }
+  return bound;
 }
 
 double FreeFlight::displacement_bound(const ModalState& x0, const MotorPhase& phase, const Eigen::VectorXd& lever,

@@ -39,8 +39,10 @@ class FreeFlight {
   void advance(const Transition& transition, const MotorPhase& from, const MotorPhase& to, const ModalState& x0,
                ModalState& x, const EnergyForms* forms = nullptr, double* motor_work_j = nullptr,
                double* structural_dissipation_j = nullptr) const;
+  // The same over any tau (its transition formed in a scratch kept by this object: not for concurrent use).
   void advance(const ModalState& x0, double t0, double tau_s, ModalState& x) const {
-    advance(transition(tau_s), motor_phase(t0), motor_phase(t0 + tau_s), x0, x);
+    transition_into(tau_s, scratch_);
+    advance(scratch_, motor_phase(t0), motor_phase(t0 + tau_s), x0, x);
   }
 
   // Exact energy integrals over a fixed interval [t0, t0 + tau] as forms in the state at t0,
@@ -53,16 +55,28 @@ class FreeFlight {
     Eigen::ArrayXd cos_q, cos_v, sin_q, sin_v;  // integral {cos, sin}(Omega s) v_h(s) ds = _q q~ + _v v~
     double cos_cos = 0, cos_sin = 0, sin_sin = 0;  // integrals of cos^2, cos sin, sin^2 (Omega s)
   };
-  EnergyForms energy_forms(double tau_s) const;
+  // least_panels: the quadrature's panels are at most 1/8 of the fastest period and at least this many (an
+  // interval no longer than the fine grid's needs one: its 20-point rule is exact to rounding there).
+  EnergyForms energy_forms(double tau_s, int least_panels = 16) const;
 
   // An upper bound, valid for all later times of free flight, on |sum_{m in [first, last)} lever_m q_m(t)|
   // from the state at t0: each mode's steady-state amplitude plus the envelope of its decaying
   // free motion. Lets the solver step over stretches where the fast modes cannot close the gap.
   double displacement_bound(const ModalState& x0, const MotorPhase& phase, const Eigen::VectorXd& lever, int first,
                             int last) const;
+  // The same for |sum lever_m v_m(t)|: how fast those modes can move the tips, for all later times of free flight.
+  double speed_bound(const ModalState& x0, const MotorPhase& phase, const Eigen::VectorXd& lever) const;
+
+  // The forms over 2 tau from those over tau (and the transition over tau): [0, tau] and [tau, 2 tau], the
+  // second half's free motion starting from the transition of the first's and the motor tau further on.
+  // Exact to rounding, where a quadrature over a long interval would need panels on every fast period.
+  EnergyForms doubled(const EnergyForms& forms, const Transition& transition) const;
 
  private:
+  void transition_into(double tau_s, Transition& t) const;
+
   const ModalModel& model_;
+  mutable Transition scratch_;
   Eigen::ArrayXd decay_;         // -zeta omega [1/s]
   Eigen::ArrayXd two_zeta_omega_;  // 2 zeta omega [1/s], the structural damping per unit velocity
   Eigen::ArrayXd oscillation_;   // omega sqrt(|1 - zeta^2|) [rad/s]

@@ -1,8 +1,50 @@
-// Free flight (event_solver.h): the closed-form motion between contacts, scanned on a grid for the next
-// onset, which is then located to full precision.
+// Free flight (event_solver.h): the closed-form motion between contacts. Where bounds prove that no contact
+// can start, it takes long or coarse steps; elsewhere it scans the fine grid for the next onset, which is then
+// located to full precision. Inside the output window it samples along, and finds the tip accelerations'
+// extrema between samples (the series' peaks) on Taylor polynomials of the motion.
 #include "reference/event_solver.h"
 
 namespace ib::reference_internal {
+
+// Horner's scheme for the series and its derivative.
+double Solver::series_value(const std::array<double, kTaylorDegree + 1>& c, double s) {
+  double value = 0;
+  for (int k = kTaylorDegree; k >= 0; --k) value = value * s + c[k];
+  return value;
+}
+double Solver::series_slope(const std::array<double, kTaylorDegree + 1>& c, double s) {
+  double slope = 0;
+  for (int k = kTaylorDegree; k >= 1; --k) slope = slope * s + k * c[k];
+  return slope;
+}
+
+template <class SampleAt>
+void Solver::record_free_interval(const TipState& sa, const TipState& sb, const ModalState& x, SampleAt&& sample_at,
+                                  bool extrema) {
+  if (!recorder_.wants(sb.t)) return;
+  std::array<TipState, 2> points;
+  int count = 0;
+  if (extrema && (sa.jerk[0] * sb.jerk[0] < 0 || sa.jerk[1] * sb.jerk[1] < 0)) {
+    const AccelerationSeries series = acceleration_series(x, sa.t, {sa.jerk[0] * sb.jerk[0] < 0, sa.jerk[1] * sb.jerk[1] < 0});
+    const double h = sb.t - sa.t;
+    for (int f = 0; f < 2; ++f) {
+      if (!(sa.jerk[f] * sb.jerk[f] < 0)) continue;
+      const double s = find_root([&](double u) { return series_slope(series[f], u); }, 0.0, h,
+                                 series_slope(series[f], 0.0), series_slope(series[f], h), kExtremumBits);
+      TipState& p = points[count++];
+      p.t = sa.t + s;
+      p.acceleration[f] = series_value(series[f], s);  // the other tip's peaks are its own extrema
+    }
+    if (count == 2 && points[1].t < points[0].t) std::swap(points[0], points[1]);
+  }
+  int next = 0;
+  for (double ts = recorder_.next_sample_time(); ts <= sb.t; ts = recorder_.next_sample_time()) {
+    while (next < count && points[next].t <= ts) recorder_.feed(points[next++]);
+    recorder_.sample(ts == sb.t ? sb : sample_at(ts));
+  }
+  while (next < count) recorder_.feed(points[next++]);
+  recorder_.feed(sb);
+}
 
 // Advances in closed form until a contact onset (returns true, t and x at the onset) or the end
 // of the run (returns false). after_contact: t is where a contact ended, so delta(t) is zero and
@@ -16,26 +58,13 @@ bool Solver::free_flight(double& t, ModalState& x, bool after_contact) {
   double fine_until = after_contact ? t + coarse_step_ : t;  // no coarse step right after a contact
   TipState tips_a;
   bool tips_a_valid = false;
-  // Consecutive samples within one flight follow from the previous one by the precomputed
-  // transition over the sample interval, instead of a fresh transition (exp, sin and cos of every
-  // mode) from the grid point. Sample times are one interval apart up to rounding (~1e-16 s).
-  double last_sample_t = -kInf;
-  FreeFlight::MotorPhase last_sample_phase;
-  auto sample_at = [&](double ts, const ModalState& x_grid, double t_grid) {
-    const FreeFlight::MotorPhase phase = flight_.motor_phase(ts);
-    if (std::abs(ts - last_sample_t - sample_transition_.tau_s) <= 1e-9 * sample_transition_.tau_s) {
-      flight_.advance(sample_transition_, last_sample_phase, phase, x_sample_, xs_);
-      std::swap(x_sample_, xs_);
-    } else {
-      flight_.advance(x_grid, t_grid, ts - t_grid, x_sample_);
-    }
-    last_sample_t = ts;
-    last_sample_phase = phase;
-    return tip_state(x_sample_.q.data(), x_sample_.v.data(), ts, Phase::free);
-  };
+  last_sample_t_ = -kInf;  // a new flight: its samples chain anew
+  auto sample_at = [&](double ts, const ModalState& x_grid, double t_grid) { return sample_free(ts, x_grid, t_grid); };
   while (t < end_time_) {
-    if (coarse_step_ > 0 && t >= fine_until && t + coarse_step_ < end_time_ && !recorder_.wants(t + coarse_step_)) {
-      if (coarse_step_without_contact(t, x, phase_a, work, dissipation)) {
+    if (coarse_step_ > 0 && t >= fine_until && bounded_step_may_end_at(t + coarse_step_)) {
+      const double fast = flight_.displacement_bound(x, phase_a, fast_lever_, 0, m_);
+      if (long_step_without_contact(t, x, phase_a, fast, work, dissipation) ||
+          coarse_step_without_contact(t, x, phase_a, fast, work, dissipation)) {
         ga = gap_of(x, t);
         first = false;
         continue;
@@ -65,14 +94,11 @@ bool Solver::free_flight(double& t, ModalState& x, bool after_contact) {
     ModalState& x_end = onset < kInf ? x_onset_ : xb_;
     if (onset < kInf) flight_.advance(x, t0, onset - t0, x_onset_);
     if (recorder_.wants(t_end)) {
-      auto eval = [&](double ts) {
-        flight_.advance(x, t0, ts - t0, xs_);
-        return tip_state(xs_.q.data(), xs_.v.data(), ts, Phase::free);
-      };
       // the start's kinematics carry over from the previous step when it was recorded too
       if (!(tips_a_valid && tips_a.t == t0)) tips_a = tip_state(x.q.data(), x.v.data(), t0, Phase::free);
       const TipState tips_b = tip_state(x_end.q.data(), x_end.v.data(), t_end, Phase::free);
-      record_interval(tips_a, tips_b, eval, [&](double ts) { return sample_at(ts, x, t0); });
+      record_free_interval(tips_a, tips_b, x, [&](double ts) { return sample_at(ts, x, t0); },
+                           settings_.peaks_between_samples);
       tips_a = tips_b;
       tips_a_valid = true;
     }
@@ -81,7 +107,7 @@ bool Solver::free_flight(double& t, ModalState& x, bool after_contact) {
         *work += step_work;
         *dissipation += step_dissipation;
       } else {  // a cut step: its own integrals (the scratch state receives a discarded copy)
-        const FreeFlight::EnergyForms forms = flight_.energy_forms(t_end - t0);
+        const FreeFlight::EnergyForms forms = flight_.energy_forms(t_end - t0, 1);
         flight_.advance(flight_.transition(t_end - t0), phase_a, flight_.motor_phase(t_end), x, xs_, &forms, work,
                         dissipation);
       }
@@ -97,11 +123,10 @@ bool Solver::free_flight(double& t, ModalState& x, bool after_contact) {
 
 // Takes one coarse step if no contact can start within it: the slow modes' indentation (resolved by
 // the coarse step, its interior maximum located) plus the bound on the fast modes stays negative.
-bool Solver::coarse_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double* work,
-                                 double* dissipation) {
+bool Solver::coarse_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double fast,
+                                         double* work, double* dissipation) {
   const double t0 = t, tb = t + coarse_step_;
   const FreeFlight::MotorPhase phase_b = flight_.motor_phase(tb);
-  const double fast = flight_.displacement_bound(x, phase_a, fast_lever_, 0, m_);
   double step_work = 0, step_dissipation = 0;
   flight_.advance(coarse_transition_, phase_a, phase_b, x, xb_, work ? &coarse_energy_ : nullptr, &step_work,
                   &step_dissipation);
@@ -120,10 +145,152 @@ bool Solver::coarse_step_without_contact(double& t, ModalState& x, FreeFlight::M
   if (highest + fast >= 0) return false;
   ++solution_.coarse_intervals;
   if (work) *work += step_work, *dissipation += step_dissipation;
+  record_bounded_step(t0, x, xb_, tb, coarse_sub_);
   t = tb;
   std::swap(x, xb_);
   phase_a = phase_b;
   return true;
+}
+
+// The slow modes close the gap at most at speed_bound: from an indentation delta_slow(t0) + fast < 0 no contact
+// can start before (-(delta_slow + fast)) / speed has passed.
+bool Solver::long_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double fast,
+                                       double* work, double* dissipation) {
+  if (long_steps_.empty()) return false;
+  const double distance = model_.gap_m - slow_lever_.dot(x.q) - fast;
+  if (!(distance > 0)) return false;
+  const double speed = flight_.speed_bound(x, phase_a, slow_lever_);
+  const double reach_s = speed > 0 ? distance / speed : kInf;
+  const LongStep* step = nullptr;
+  for (const LongStep& longer : long_steps_) {
+    if (!(longer.transition.tau_s < reach_s) || !bounded_step_may_end_at(t + longer.transition.tau_s)) break;
+    step = &longer;
+  }
+  if (!step) return false;
+  const double t0 = t, tb = t + step->transition.tau_s;
+  const FreeFlight::MotorPhase phase_b = flight_.motor_phase(tb);
+  flight_.advance(step->transition, phase_a, phase_b, x, xb_, work ? &step->energy : nullptr, work, dissipation);
+  ++solution_.coarse_intervals;
+  record_bounded_step(t0, x, xb_, tb, step->sub);
+  t = tb;
+  std::swap(x, xb_);
+  phase_a = phase_b;
+  return true;
+}
+
+Solver::AccelerationSeries Solver::acceleration_series(const ModalState& x, double t, std::array<bool, 2> frames) const {
+  // the motor force's derivatives: F cos(Omega t + k pi / 2) Omega^k
+  std::array<double, kTaylorDegree + 1> motor{};
+  if (model_.motor) {
+    const double w = model_.motor->omega_rad_s, c = std::cos(w * t), s = std::sin(w * t);
+    const std::array<double, 4> turn = {c, -s, -c, s};
+    double scale = model_.motor->amplitude_n;
+    for (int k = 0; k <= kTaylorDegree; ++k, scale *= w) motor[k] = scale * turn[k % 4];
+  }
+  AccelerationSeries series{};
+  std::array<double, kTaylorDegree + 1> inverse_factorial{};
+  inverse_factorial[0] = 1;
+  for (int k = 1; k <= kTaylorDegree; ++k) inverse_factorial[k] = inverse_factorial[k - 1] / k;
+  const double* p = model_.motor_lever.data();
+  const double* c = two_zeta_omega_.data();
+  const double* w2 = omega2_.data();
+  for (int m = 0; m < m_; ++m) {
+    const int f = m < n1_ ? 0 : 1;
+    const double tip = model_.frames[f].tip[f == 0 ? m : m - n1_];
+    if (tip == 0 || !frames[f]) continue;
+    // q^(k+2) = p F^(k) - 2 zeta omega q^(k+1) - omega^2 q^(k)
+    double d0 = x.q[m], d1 = x.v[m];
+    for (int k = 0; k <= kTaylorDegree; ++k) {
+      const double d2 = p[m] * motor[k] - c[m] * d1 - w2[m] * d0;
+      series[f][k] += tip * d2 * inverse_factorial[k];
+      d0 = d1;
+      d1 = d2;
+    }
+  }
+  return series;
+}
+
+void Solver::record_bounded_step(double t0, const ModalState& x0, const ModalState& xb, double tb,
+                                 const SubGrid& sub) {
+  if (!recorder_.wants(tb)) return;
+  extrema_.clear();
+  if (settings_.peaks_between_samples) {
+    const double h = (tb - t0) / sub.count;
+    FreeFlight::MotorPhase phase_a = flight_.motor_phase(t0);
+    scan_a_ = x0;
+    std::array<double, 2> jerk_a = free_jerk(scan_a_, phase_a);
+    for (int j = 1; j <= sub.count; ++j) {
+      const double ta = phase_a.t_s;
+      const FreeFlight::MotorPhase phase_b = flight_.motor_phase(j == sub.count ? tb : t0 + j * h);
+      flight_.advance(sub.transition, phase_a, phase_b, scan_a_, scan_b_);
+      const std::array<double, 2> jerk_b = free_jerk(scan_b_, phase_b);
+      if (jerk_a[0] * jerk_b[0] < 0 || jerk_a[1] * jerk_b[1] < 0) {
+        const AccelerationSeries series =
+            acceleration_series(scan_a_, ta, {jerk_a[0] * jerk_b[0] < 0, jerk_a[1] * jerk_b[1] < 0});
+        const std::size_t first = extrema_.size();
+        for (int f = 0; f < 2; ++f) {
+          if (!(jerk_a[f] * jerk_b[f] < 0)) continue;
+          const double length = phase_b.t_s - ta;
+          const double s = find_root([&](double u) { return series_slope(series[f], u); }, 0.0, length,
+                                     series_slope(series[f], 0.0), series_slope(series[f], length), kExtremumBits);
+          TipState point;
+          point.t = ta + s;
+          point.acceleration[f] = series_value(series[f], s);  // the other tip's peaks are its own extrema
+          extrema_.push_back(point);
+        }
+        if (extrema_.size() == first + 2 && extrema_[first + 1].t < extrema_[first].t)
+          std::swap(extrema_[first], extrema_[first + 1]);
+      }
+      std::swap(scan_a_, scan_b_);
+      phase_a = phase_b;
+      jerk_a = jerk_b;
+    }
+  }
+  const TipState sb = tip_state(xb.q.data(), xb.v.data(), tb, Phase::free);
+  std::size_t next = 0;
+  for (double ts = recorder_.next_sample_time(); ts <= tb; ts = recorder_.next_sample_time()) {
+    while (next < extrema_.size() && extrema_[next].t <= ts) recorder_.feed(extrema_[next++]);
+    recorder_.sample(ts == tb ? sb : sample_free(ts, x0, t0));
+  }
+  while (next < extrema_.size()) recorder_.feed(extrema_[next++]);
+  recorder_.feed(sb);
+}
+
+std::array<double, 2> Solver::free_jerk(const ModalState& x, const FreeFlight::MotorPhase& phase) const {
+  const double motor = model_.motor ? model_.motor->amplitude_n * phase.cos : 0;
+  const double motor_rate = model_.motor ? -model_.motor->amplitude_n * model_.motor->omega_rad_s * phase.sin : 0;
+  const double* p = model_.motor_lever.data();
+  const double* c = two_zeta_omega_.data();
+  const double* w2 = omega2_.data();
+  std::array<double, 2> jerk{};
+  for (int f = 0; f < 2; ++f) {
+    const int first = f == 0 ? 0 : n1_, last = f == 0 ? n1_ : m_;
+    const double* tip = model_.frames[f].tip.data();
+    double sum = 0;
+    for (int m = first; m < last; ++m) {
+      const double acc = p[m] * motor - c[m] * x.v[m] - w2[m] * x.q[m];
+      sum += tip[m - first] * (p[m] * motor_rate - c[m] * acc - w2[m] * x.v[m]);
+    }
+    jerk[f] = sum;
+  }
+  return jerk;
+}
+
+TipState Solver::sample_free(double ts, const ModalState& x_from, double t_from) {
+  const FreeFlight::MotorPhase phase = flight_.motor_phase(ts);
+  // Sample times are one interval apart up to rounding (~1e-16 s).
+  const bool follows = std::abs(ts - last_sample_t_ - sample_transition_.tau_s) <= 1e-9 * sample_transition_.tau_s;
+  if (follows && chained_samples_ < kSamplesPerAnchor) {
+    flight_.advance(sample_transition_, last_sample_phase_, phase, x_sample_, xs_);
+    std::swap(x_sample_, xs_);
+    ++chained_samples_;
+  } else {
+    flight_.advance(x_from, t_from, ts - t_from, x_sample_);
+    chained_samples_ = 0;
+  }
+  last_sample_t_ = ts;
+  last_sample_phase_ = phase;
+  return tip_state(x_sample_.q.data(), x_sample_.v.data(), ts, Phase::free);
 }
 
 }  // namespace ib::reference_internal

@@ -7,11 +7,14 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace ib {
 namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"modes", "mode set: beam (continuous beam, default), beam_paper (the paper's eq. 2.5 shapes), chain (the engines' K-link chain)"},
@@ -20,7 +23,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"rtol", "relative tolerance of the contact integrator, > 0 (default 1e-9)"},
     {"atol", "absolute tolerance on modal coordinates, > 0 (default 1e-12)"},
     {"grid", "free-flight scan points per period of the fastest mode, >= 4 (default 8)"},
-    {"slow_modes", "modes per frame resolved by the coarse free-flight step outside the output window, 0 = fine grid only (default 3)"},
+    {"slow_modes", "modes per frame resolved by the coarse free-flight steps, taken where no contact can start, 0 = fine grid only (default 3)"},
     {"accumulation_time", "Newton law: stick when impacts would accumulate within this time [s], >= 0 (default 1e-6)"},
     {"energy", "keep the energy ledger: on (default) or off"},
 };
@@ -69,21 +72,29 @@ ModalState start_state(const Scenario& scenario, const ModalModel& model, const 
   return x;
 }
 
+// The impact zoom's margin before the onset and after the end [s].
+constexpr double kZoomMargin_s = 1e-3;
+
 // The first impact in the series window (the one every simulator's zoom shows: step_recorder.h) sampled at
-// 1 MHz from 1 ms before its onset to 1 ms after its end: the run solved again up to there (the same
-// bits: the solver is deterministic), for the report's zoom. Empty when the window has no impact.
-Trajectory zoom_on_first_impact(const ModalModel& model, const Scenario& scenario,
-                                 const std::vector<ContactEvent>& events, const OutputWindow& window,
-                                 const ReferenceSettings& settings, const ModalState& start) {
+// 1 MHz from 1 ms before its onset to 1 ms after its end, for the report's zoom: the run solved again from
+// the last free flight that began before the zoom (the run kept its state there), or from the start when
+// none did. The solver is deterministic: the same phases, the free flight's steps aside (its own output
+// window decides where it scans finely), so the same motion to rounding. Empty when the window has no impact.
+Trajectory zoom_on_first_impact(const ModalModel& model, const Scenario& scenario, const ReferenceSolution& run,
+                                const OutputWindow& window, const ReferenceSettings& settings, const ModalState& start) {
   const ContactEvent* first = nullptr;
-  for (const ContactEvent& e : events)
+  for (const ContactEvent& e : run.trajectory.events)
     if (e.onset_time_s >= window.start_s && (!first || e.onset_time_s < first->onset_time_s)) first = &e;
   if (!first) return {};
-  const double margin = 1e-3;
-  const OutputWindow zoom{std::max(0.0, first->onset_time_s - margin),
-                          std::min(scenario.duration_s, first->end_time_s + margin), 1e6};
+  const OutputWindow zoom{std::max(0.0, first->onset_time_s - kZoomMargin_s),
+                          std::min(scenario.duration_s, first->end_time_s + kZoomMargin_s), 1e6};
   ReferenceSettings quiet = settings;
   quiet.track_energy = false;
+  quiet.keep_flight_starts_from_s = kInf;
+  const FlightStart* from = nullptr;
+  for (const FlightStart& f : run.flight_starts)
+    if (f.t_s <= zoom.start_s) from = &f;
+  if (from) return solve_reference_after_contact(model, *from, zoom.end_s, zoom, quiet).trajectory;
   return solve_reference(model, start, zoom.end_s, zoom, quiet).trajectory;
 }
 
@@ -126,12 +137,15 @@ class ReferenceSimulator final : public Simulator {
     window.end_s = scenario.duration_s;
     window.rate_hz = run.output_rate_hz;
     const ModalState start = start_state(scenario, model, run, settings.modes);
-    ReferenceSolution solution = solve_reference(model, start, scenario.duration_s, window, settings);
+    ReferenceSettings kept = settings;  // the free flights the impact zoom can start from
+    kept.keep_flight_starts_from_s = window.start_s - kZoomMargin_s;
+    kept.peaks_between_samples = run.peaks_between_samples;
+    ReferenceSolution solution = solve_reference(model, start, scenario.duration_s, window, kept);
     RunResult result;
     clock.stop_into(result.cost);
     result.cost.steps = solution.integrator_steps + solution.grid_intervals + solution.coarse_intervals;
     // after the cost is taken: the zoom is the report's, not the run's
-    result.impact_zoom = zoom_on_first_impact(model, scenario, solution.trajectory.events, window, settings, start);
+    result.impact_zoom = zoom_on_first_impact(model, scenario, solution, window, settings, start);
     if (solution.status == RunStatus::ok) {
       SavedState end{"reference", state_layout(model, settings.modes), {}};
       end.values.assign(solution.final_state.q.data(), solution.final_state.q.data() + model.mode_count());

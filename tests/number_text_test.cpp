@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace ib {
 namespace number_text_test {
@@ -23,6 +26,32 @@ TEST(NumberText, ExactTextReadsBackAsTheSameDouble) {
     EXPECT_EQ(std::stod(text), t) << text;
   }
   EXPECT_EQ(exact_number_text(0.45380000000000004), "0.45380000000000004");
+}
+
+// The text is printf's "%.Ng" with the least N >= 9 that reads back, whatever the value: sample times on a
+// 4096 Hz grid, values at a power of two's edge, tiny and huge ones.
+TEST(NumberText, ExactTextIsTheLeastPrecisionFromNineThatReadsBack) {
+  auto least_precision_text = [](double value) {
+    char text[64];
+    for (int digits = 9; digits < 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*g", digits, value);
+      if (std::strtod(text, nullptr) == value) return std::string(text);
+    }
+    std::snprintf(text, sizeof text, "%.17g", value);
+    return std::string(text);
+  };
+  std::vector<double> values = {0.0, -0.0, 1.0, 0.5, 86.0 + 1.0 / 4096, 1e-300, -2.5e300, 5e-324, 9007199254740993.0};
+  for (int k = 0; k < 20000; ++k) values.push_back(86.0 + k / 4096.0);
+  for (int e = -60; e <= 60; ++e) {
+    const double p = std::ldexp(1.0, e);
+    values.insert(values.end(), {p, std::nextafter(p, 0.0), std::nextafter(p, 1e308), -p / 3});
+  }
+  unsigned state = 12345;
+  for (int k = 0; k < 20000; ++k) {
+    state = state * 1103515245u + 12345u;
+    values.push_back(std::ldexp(1.0 + state / 4294967296.0, static_cast<int>(state % 200) - 100));
+  }
+  for (double v : values) ASSERT_EQ(exact_number_text(v), least_precision_text(v)) << v;
 }
 
 TEST(NumberText, JsonNumbersAreNullIntegerRoundedOrExact) {

@@ -1,5 +1,6 @@
 #include "harness/records/number_text.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -35,8 +36,22 @@ std::string number_text(double value) {
   return std::string(text, written.ptr);
 }
 
+// The digits of the shortest text that reads back as the value (std::to_chars without a precision).
+int shortest_digit_count(double value) {
+  char text[32];
+  const auto written = std::to_chars(text, text + sizeof text, value, std::chars_format::scientific);
+  int digits = 0;
+  for (const char* c = text; c < written.ptr && *c != 'e'; ++c) digits += *c >= '0' && *c <= '9';
+  return digits;
+}
+
 std::string exact_number_text(double value) {
   if (!std::isfinite(value)) return "";
+  // "%.Ng" with the least N >= 9 that reads back: no N below the shortest text's digit count does, and that
+  // count (or 9) does unless the value sits at a binade's edge, where the search below decides. One
+  // formatting instead of a formatting and a reading per digit: a series writes a time per sample.
+  const std::string first = general_text(value, std::max(9, shortest_digit_count(value)));
+  if (read_back(first) == value) return first;
   for (int digits = 9; digits < 17; ++digits) {
     std::string text = general_text(value, digits);
     if (read_back(text) == value) return text;

@@ -114,6 +114,8 @@ std::optional<SavedState> run_sweep_row(const Scenario& base, const SweepRow& ro
   const RowScenario at = row_scenario(base, row, settings);
   JobSpec job = row.job;
   if (!row.first_of_chain) job.settings.initial_state = from;
+  // A row without series reads its samples and events only (sweep.csv, poincare.csv): no peaks between samples.
+  job.settings.peaks_between_samples = settings.measurement.series != SeriesOutput::none;
   Measurement measurement = settings.measurement;
   measurement.window_s.reset();  // the row's window is its scenario's (whole periods), not a --window
   ReferenceData kept;
