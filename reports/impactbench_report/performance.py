@@ -140,7 +140,8 @@ def three_way_table(document):
              f"({s.get('scipy_method', '?')}) at equal accuracy: CPU time per simulated second, each at the loosest "
              f"tolerance whose events match the reference's at rtol {s.get('truth_rtol', '?')} (same count, onsets and "
              f"ends within {s.get('time_tolerance_s', '?')} s, velocities within {s.get('velocity_tolerance', '?')}); "
-             f"* none tried did; load average {load_text} at the start and end")
+             f"a * marks a solver that met it at no tolerance tried (its cost then at the tightest, a lower bound); "
+             f"load average {load_text} at the start and at the end")
     return title, header, rows
 
 

@@ -95,7 +95,7 @@ class PerformanceSection(unittest.TestCase):
                       "| 20 | 600 |", markdown)
         for text in (markdown, page):
             self.assertIn("libsundials-dev 6.4.1+dfsg1-3", text)
-            self.assertIn("load average 1.25 and 1.50", text)
+            self.assertIn("load average 1.25 and 1.50 at the start and at the end", text)
             self.assertIn("within 1e-06 s", text)
 
     def test_unreadable_json_names_its_file(self):
