@@ -14,7 +14,7 @@ echo "compiler=$(c++ --version | head -1 | clean)"
 # the engines' packages from their descriptors (adapters/<engine>/descriptor.json), then the tools'
 engine_packages=$(/usr/bin/python3 -c 'import glob, json
 print(" ".join(dict.fromkeys(p for f in sorted(glob.glob("adapters/*/descriptor.json")) for p in json.load(open(f)).get("packages", []))))')
-for p in $engine_packages libbenchmark-dev python3-scipy; do
+for p in $engine_packages libbenchmark-dev python3-scipy libsundials-dev; do
   echo "$p=$(dpkg-query -W -f='${Version}' "$p" 2>/dev/null || echo none)"
 done
 echo "impactbench_commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD 2>/dev/null || echo '+changes')"

@@ -4,7 +4,7 @@
 #
 #   scripts/install-deps.sh            what the benchmark needs (scripts/benchmark.sh): build tools, the
 #                                      libraries, the engines, the report's Python packages
-#   scripts/install-deps.sh --bench    and Google Benchmark, for the bench/ timings (benchmark.sh --full)
+#   scripts/install-deps.sh --bench    and Google Benchmark and SUNDIALS, for bench/ (benchmark.sh --full)
 #   scripts/install-deps.sh --tests    and what only the tests need (scripts/test.sh)
 #   IMPACTBENCH_EXTRA_PACKAGES="..." scripts/install-deps.sh --only-extra
 #                                      just those (scripts/fuzz.sh: clang; overhead_instructions.sh: valgrind)
@@ -28,6 +28,7 @@ benchmark_packages=(
 )
 bench_packages=(
   libbenchmark-dev               # bench/: speed measurements (benchmark.sh --full, the tests build them too)
+  libsundials-dev                # bench/cvode_reference: CVODE beside SciPy on the reference's equations (its test too)
 )
 test_packages=(
   libgtest-dev libgmock-dev      # the tests (GoogleTest through ctest)

@@ -4,7 +4,9 @@
   Benchmark's JSON (bench/run-benchmarks.sh), machine and versions in its context;
 - scaling.json: the suite on 1, 2, ... workers (bench/suite_scaling.sh);
 - reference_vs_scipy/comparison.json: the reference against SciPy's solve_ivp
-  (bench/reference_vs_scipy.py --out SUITE/performance/reference_vs_scipy).
+  (bench/reference_vs_scipy.py --out SUITE/performance/reference_vs_scipy);
+- reference_cvode_scipy/comparison.json: the reference, SUNDIALS CVODE and SciPy side by side, CPU time per
+  simulated second at equal accuracy (bench/reference_cvode_scipy.py --out SUITE/performance/reference_cvode_scipy).
 
 Every table says what machine and software it was measured with. Nothing here is computed from the
 suite's runs: these are separate, repeated timings."""
@@ -18,7 +20,7 @@ from . import engines, tables
 
 # bench/machine.sh's keys: the machine, then the package versions (the engines' from their descriptors).
 MACHINE_KEYS = ["cpu_model", "cpu_cores", "memory_gib", "os", "compiler", *engines.repository_packages(),
-                "libbenchmark-dev", "python3-scipy", "impactbench_commit"]
+                "libbenchmark-dev", "python3-scipy", "libsundials-dev", "impactbench_commit"]
 
 
 def read_json(folder, name):
@@ -111,11 +113,44 @@ def scipy_table(document):
     return title, header, rows
 
 
+def three_way_cost(summary, key):
+    """'0.0021 (rtol 1e-07)': a solver's CPU time per simulated second at equal accuracy and its tolerance there;
+    ' *' where it met the criterion at no tolerance tried (the cost shown is then at the tightest)."""
+    value = summary.get(f"{key}_cpu_time_per_simulated_s")
+    if value is None:
+        return "–"
+    mark = "" if summary.get(f"{key}_met_criterion") else " *"
+    return f"{tables.fmt(value, 3)} (rtol {tables.fmt(summary.get(f'{key}_rtol'), 2)}){mark}"
+
+
+def three_way_table(document):
+    header = ["case / law", "simulated [s]", "events", "reference: CPU s per simulated s", "CVODE", "SciPy solve_ivp",
+              "CVODE / reference", "SciPy / reference"]
+    rows = []
+    for c in document.get("cases", []):
+        r = c.get("summary", {})
+        rows.append([f"{r.get('case', '?')} / {r.get('law', '?')}", tables.fmt(r.get("duration_s")),
+                     tables.fmt(r.get("truth_events")), three_way_cost(r, "reference"), three_way_cost(r, "cvode"),
+                     three_way_cost(r, "scipy"), tables.fmt(r.get("cvode_over_reference_cpu"), 3),
+                     tables.fmt(r.get("scipy_over_reference_cpu"), 3)])
+    s, m = document.get("settings", {}), document.get("machine", {})
+    load = [m.get("proc_loadavg_at_start"), m.get("proc_loadavg_at_end")]
+    load_text = " and ".join(f"{x[0]:.2f}" for x in load if x) or "?"
+    title = (f"The reference, SUNDIALS CVODE ({s.get('cvode_method', '?')}) and SciPy's solve_ivp "
+             f"({s.get('scipy_method', '?')}) at equal accuracy: CPU time per simulated second, each at the loosest "
+             f"tolerance whose events match the reference's at rtol {s.get('truth_rtol', '?')} (same count, onsets and "
+             f"ends within {s.get('time_tolerance_s', '?')} s, velocities within {s.get('velocity_tolerance', '?')}); "
+             f"a * marks a solver that met it at no tolerance tried (its cost then at the tightest, a lower bound); "
+             f"load average {load_text} at the start and at the end")
+    return title, header, rows
+
+
 READERS = [("reference_benchmark.json", reference_table, lambda d: d.get("context")),
            ("engine_step_benchmark.json", engine_step_table, lambda d: d.get("context")),
            ("harness_overhead_benchmark.json", overhead_table, lambda d: d.get("context")),
            ("scaling.json", scaling_table, lambda d: d.get("machine")),
-           ("reference_vs_scipy/comparison.json", scipy_table, lambda d: d.get("machine"))]
+           ("reference_vs_scipy/comparison.json", scipy_table, lambda d: d.get("machine")),
+           ("reference_cvode_scipy/comparison.json", three_way_table, lambda d: d.get("machine"))]
 
 
 def section(suite_folder):

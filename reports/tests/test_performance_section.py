@@ -77,6 +77,27 @@ class PerformanceSection(unittest.TestCase):
         self.assertIn("Test CPU 9000 x 2 cores", markdown)
         self.assertIn("python3-scipy 1.10.1", markdown)
 
+    def test_the_three_way_comparison_is_shown_from_its_own_record(self):
+        os.makedirs(os.path.join(self.folder, "reference_cvode_scipy"))
+        summary = {"case": "resonance", "law": "hertz", "duration_s": 5.0, "truth_events": 12,
+                   "reference_rtol": 1e-6, "reference_met_criterion": True, "reference_cpu_time_per_simulated_s": 0.0125,
+                   "cvode_rtol": 1e-8, "cvode_met_criterion": True, "cvode_cpu_time_per_simulated_s": 0.25,
+                   "scipy_rtol": 1e-10, "scipy_met_criterion": False, "scipy_cpu_time_per_simulated_s": 7.5,
+                   "cvode_over_reference_cpu": 20.0, "scipy_over_reference_cpu": 600.0}
+        self.write("reference_cvode_scipy/comparison.json", {
+            "machine": dict(MACHINE, **{"libsundials-dev": "6.4.1+dfsg1-3", "proc_loadavg_at_start": [1.25, 1.0, 0.5],
+                                        "proc_loadavg_at_end": [1.5, 1.1, 0.6]}),
+            "settings": {"cvode_method": "adams", "scipy_method": "DOP853", "truth_rtol": 1e-12,
+                         "time_tolerance_s": 1e-6, "velocity_tolerance": 1e-5},
+            "cases": [{"summary": summary}]})
+        markdown, page = performance.section(self.suite)
+        self.assertIn("| resonance / hertz | 5 | 12 | 0.0125 (rtol 1e-06) | 0.25 (rtol 1e-08) | 7.5 (rtol 1e-10) * "
+                      "| 20 | 600 |", markdown)
+        for text in (markdown, page):
+            self.assertIn("libsundials-dev 6.4.1+dfsg1-3", text)
+            self.assertIn("load average 1.25 and 1.50 at the start and at the end", text)
+            self.assertIn("within 1e-06 s", text)
+
     def test_unreadable_json_names_its_file(self):
         with open(os.path.join(self.folder, "scaling.json"), "w") as f:
             f.write("{not json")
