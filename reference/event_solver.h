@@ -73,6 +73,7 @@ class Solver {
     solution.grid_step_s = grid_step_;
     grid_transition_ = flight_.transition(grid_step_);
     if (output.rate_hz > 0) sample_transition_ = flight_.transition(recorder_.sample_interval_s());
+    prepare_scan_jerk();
     if (settings.track_energy) grid_energy_ = flight_.energy_forms(grid_step_);
     // The coarse step resolves the slow modes only; the rest is bounded (see free_flight).
     const int n2 = m_ - n1_, slow = settings.slow_modes_per_frame;
@@ -264,16 +265,36 @@ class Solver {
   struct SubGrid {
     int count = 0;
     FreeFlight::Transition transition;
+    FreeFlight::MotorPhase turn;  // the motor's turn over one interval: its phase advances by rotation
   };
   SubGrid sub_grid(double step_s) const {
     const int count = static_cast<int>(std::ceil(step_s / grid_step_ * (1 - 1e-12)));
-    return {count, flight_.transition(step_s / count)};
+    return {count, flight_.transition(step_s / count), flight_.motor_phase(step_s / count)};
+  }
+  // The scan's motor phase is turned by the sub-interval's rotation and computed afresh this often (and at a
+  // step's end), so that rounding cannot drift.
+  static constexpr int kTurnsPerAnchor = 64;
+  // Both tips' jerk from the free part (q~, v~) of a free-flight state and the motor's phase: linear in each, the
+  // free part's with coefficients per mode (scan_jerk_q_, scan_jerk_v_), the steady state's a sinusoid per tip.
+  std::array<double, 2> scan_jerk(const Eigen::ArrayXd& q_free, const Eigen::ArrayXd& v_free,
+                                  const FreeFlight::MotorPhase& phase) const {
+    std::array<double, 2> jerk{};
+    for (int f = 0; f < 2; ++f) {
+      const int first = f == 0 ? 0 : n1_, count = f == 0 ? n1_ : m_ - n1_;
+      jerk[f] = (scan_jerk_q_.segment(first, count) * q_free.segment(first, count)).sum() +
+                (scan_jerk_v_.segment(first, count) * v_free.segment(first, count)).sum() +
+                steady_jerk_cos_[f] * phase.cos + steady_jerk_sin_[f] * phase.sin;
+    }
+    return jerk;
   }
   // The output of a bounded step from (t0, x0) to (tb, xb): its samples, the value at its end and, when the
   // peaks are asked for, the tip accelerations' extrema found on its sub-grid.
   void record_bounded_step(double t0, const ModalState& x0, const ModalState& xb, double tb, const SubGrid& sub);
   // Both tips' jerk in free flight.
   std::array<double, 2> free_jerk(const ModalState& x, const FreeFlight::MotorPhase& phase) const;
+  // scan_jerk's coefficients, from free_jerk's own sums: the free part's in closed form, the steady state's at
+  // the phases 0 and pi/2.
+  void prepare_scan_jerk();
   // The free-flight state's kinematics at a sample time ts: from the previous sample by the sample interval's
   // transition when ts follows it (anchored afresh at (x_from, t_from) every kSamplesPerAnchor samples, so
   // that rounding cannot drift), else from (x_from, t_from) in closed form.
@@ -352,7 +373,10 @@ class Solver {
     SubGrid sub;
   };
   SubGrid coarse_sub_;
-  ModalState scan_a_, scan_b_;               // a bounded step's sub-grid scan
+  ModalState scan_a_;                        // a bounded step's sub-grid scan: the state where a peak lies ahead
+  Eigen::ArrayXd scan_q_a_, scan_v_a_, scan_q_b_, scan_v_b_;  // and the free parts it steps
+  Eigen::ArrayXd scan_jerk_q_, scan_jerk_v_;  // a tip's jerk per unit free displacement and velocity of each mode
+  std::array<double, 2> steady_jerk_cos_{}, steady_jerk_sin_{};  // the steady state's tip jerk: cos, sin parts
   std::vector<TipState> extrema_;
   std::vector<LongStep> long_steps_;         // 2, 4, 8, ... coarse steps
   double last_sample_t_ = -kInf;             // the free-flight sample chain (sample_free)

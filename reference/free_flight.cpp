@@ -82,6 +82,20 @@ void FreeFlight::steady_state(double t, ModalState& x) const {
   x.v = (-w * (forced_cos_ * s + forced_sin_ * c)).matrix();
 }
 
+void FreeFlight::free_part(const ModalState& x, const MotorPhase& phase, Eigen::ArrayXd& q_free,
+                           Eigen::ArrayXd& v_free) const {
+  const double w = model_.motor ? model_.motor->omega_rad_s : 0;
+  q_free = x.q.array() - (forced_cos_ * phase.cos - forced_sin_ * phase.sin);
+  v_free = x.v.array() + w * (forced_cos_ * phase.sin + forced_sin_ * phase.cos);
+}
+
+void FreeFlight::with_steady_state(const Eigen::ArrayXd& q_free, const Eigen::ArrayXd& v_free, const MotorPhase& phase,
+                                   ModalState& x) const {
+  const double w = model_.motor ? model_.motor->omega_rad_s : 0;
+  x.q = (q_free + forced_cos_ * phase.cos - forced_sin_ * phase.sin).matrix();
+  x.v = (v_free - w * (forced_cos_ * phase.sin + forced_sin_ * phase.cos)).matrix();
+}
+
 FreeFlight::MotorPhase FreeFlight::motor_phase(double t) const {
   if (!model_.motor) return {t, 1, 0};
   const double angle = model_.motor->omega_rad_s * t;

@@ -33,6 +33,13 @@ class FreeFlight {
   };
   MotorPhase motor_phase(double t_s) const;
 
+  // The free part of a state, x - x_p at the motor's phase: what a transition alone carries forward, so that a
+  // scan over equal steps needs no trigonometry per step (the steady state is one sinusoid for every mode).
+  void free_part(const ModalState& x, const MotorPhase& phase, Eigen::ArrayXd& q_free, Eigen::ArrayXd& v_free) const;
+  // The state from its free part and the steady state at the phase.
+  void with_steady_state(const Eigen::ArrayXd& q_free, const Eigen::ArrayXd& v_free, const MotorPhase& phase,
+                         ModalState& x) const;
+
   struct EnergyForms;
   // x at to.t_s = from.t_s + transition.tau_s from x0 at from.t_s (x may not be x0). With forms
   // (made for the same tau), also adds the motor work and structural dissipation over the step [J].

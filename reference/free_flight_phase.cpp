@@ -215,16 +215,29 @@ void Solver::record_bounded_step(double t0, const ModalState& x0, const ModalSta
   if (!recorder_.wants(tb)) return;
   extrema_.clear();
   if (settings_.peaks_between_samples) {
+    // The scan steps the free part alone (a 2x2 transition per mode) and turns the motor's phase; the full state
+    // is formed only where a tip's jerk changes sign, for the Taylor polynomials about that sub-interval's start.
     const double h = (tb - t0) / sub.count;
     FreeFlight::MotorPhase phase_a = flight_.motor_phase(t0);
-    scan_a_ = x0;
-    std::array<double, 2> jerk_a = free_jerk(scan_a_, phase_a);
+    flight_.free_part(x0, phase_a, scan_q_a_, scan_v_a_);
+    std::array<double, 2> jerk_a = scan_jerk(scan_q_a_, scan_v_a_, phase_a);
+    const FreeFlight::Transition& tr = sub.transition;
     for (int j = 1; j <= sub.count; ++j) {
       const double ta = phase_a.t_s;
-      const FreeFlight::MotorPhase phase_b = flight_.motor_phase(j == sub.count ? tb : t0 + j * h);
-      flight_.advance(sub.transition, phase_a, phase_b, scan_a_, scan_b_);
-      const std::array<double, 2> jerk_b = free_jerk(scan_b_, phase_b);
+      FreeFlight::MotorPhase phase_b;
+      if (j == sub.count) {
+        phase_b = flight_.motor_phase(tb);
+      } else if (j % kTurnsPerAnchor == 0) {
+        phase_b = flight_.motor_phase(t0 + j * h);
+      } else {
+        phase_b = {t0 + j * h, phase_a.cos * sub.turn.cos - phase_a.sin * sub.turn.sin,
+                   phase_a.sin * sub.turn.cos + phase_a.cos * sub.turn.sin};
+      }
+      scan_q_b_ = tr.qq * scan_q_a_ + tr.qv * scan_v_a_;
+      scan_v_b_ = tr.vq * scan_q_a_ + tr.vv * scan_v_a_;
+      const std::array<double, 2> jerk_b = scan_jerk(scan_q_b_, scan_v_b_, phase_b);
       if (jerk_a[0] * jerk_b[0] < 0 || jerk_a[1] * jerk_b[1] < 0) {
+        flight_.with_steady_state(scan_q_a_, scan_v_a_, phase_a, scan_a_);
         const AccelerationSeries series =
             acceleration_series(scan_a_, ta, {jerk_a[0] * jerk_b[0] < 0, jerk_a[1] * jerk_b[1] < 0});
         const std::size_t first = extrema_.size();
@@ -241,7 +254,8 @@ void Solver::record_bounded_step(double t0, const ModalState& x0, const ModalSta
         if (extrema_.size() == first + 2 && extrema_[first + 1].t < extrema_[first].t)
           std::swap(extrema_[first], extrema_[first + 1]);
       }
-      std::swap(scan_a_, scan_b_);
+      std::swap(scan_q_a_, scan_q_b_);
+      std::swap(scan_v_a_, scan_v_b_);
       phase_a = phase_b;
       jerk_a = jerk_b;
     }
@@ -274,6 +288,27 @@ std::array<double, 2> Solver::free_jerk(const ModalState& x, const FreeFlight::M
     jerk[f] = sum;
   }
   return jerk;
+}
+
+void Solver::prepare_scan_jerk() {
+  // the free part's jerk: a~ = -c v~ - w^2 q~, j~ = -c a~ - w^2 v~ = c w^2 q~ + (c^2 - w^2) v~
+  scan_jerk_q_.setZero(m_);
+  scan_jerk_v_.setZero(m_);
+  for (int m = 0; m < m_; ++m) {
+    const int f = m < n1_ ? 0 : 1;
+    const double tip = model_.frames[f].tip[f == 0 ? m : m - n1_];
+    scan_jerk_q_[m] = tip * two_zeta_omega_[m] * omega2_[m];
+    scan_jerk_v_[m] = tip * (two_zeta_omega_[m] * two_zeta_omega_[m] - omega2_[m]);
+  }
+  // the steady state's: free_jerk is linear in the state and the motor's cos and sin
+  const Eigen::ArrayXd zero = Eigen::ArrayXd::Zero(m_);
+  ModalState steady;
+  for (const bool sine : {false, true}) {
+    const FreeFlight::MotorPhase phase{0, sine ? 0.0 : 1.0, sine ? 1.0 : 0.0};
+    flight_.with_steady_state(zero, zero, phase, steady);
+    const std::array<double, 2> jerk = free_jerk(steady, phase);
+    (sine ? steady_jerk_sin_ : steady_jerk_cos_) = jerk;
+  }
 }
 
 TipState Solver::sample_free(double ts, const ModalState& x_from, double t_from) {
