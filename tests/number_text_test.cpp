@@ -54,6 +54,39 @@ TEST(NumberText, ExactTextIsTheLeastPrecisionFromNineThatReadsBack) {
   for (double v : values) ASSERT_EQ(exact_number_text(v), least_precision_text(v)) << v;
 }
 
+// A measured value's text is printf's "%.9g", whatever the value: ties in the tenth digit, roundings that carry
+// into a new digit, every exponent where %g switches between fixed and scientific.
+TEST(NumberText, MeasuredTextIsPrintfsNineDigits) {
+  auto printf_text = [](double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.9g", value);
+    return std::string(text);
+  };
+  std::vector<double> values = {0.5, -0.25, 1.0000000005, 1.0000000015, 0.99999999951, 9.9999999951, 999999999.5,
+                                1.23456789012345e-5, 1.23456789e-4, 9.999999995e-5, 123456789.4, 5e-324, 1.5e300};
+  for (int e = -320; e <= 300; ++e) {
+    const double p = std::pow(10.0, e);
+    values.insert(values.end(), {p, std::nextafter(p, 0.0), std::nextafter(p, 1e308), 0.99999999951 * p,
+                                 1.0000000005 * p, -p / 3});
+  }
+  for (int k = 0; k < 2000; ++k) {  // ties in the shortest text: ten digits, the last a 5
+    char tie[32];
+    std::snprintf(tie, sizeof tie, "%d.%08d5e%d", 1 + k % 9, k * 4999 % 100000000, k % 40 - 20);
+    values.push_back(std::strtod(tie, nullptr));
+  }
+  unsigned state = 2468;
+  for (int k = 0; k < 200000; ++k) {
+    state = state * 1103515245u + 12345u;
+    const double mantissa = 1.0 + state / 4294967296.0;
+    state = state * 1103515245u + 12345u;
+    values.push_back((state & 1 ? -1 : 1) * std::ldexp(mantissa, static_cast<int>(state % 140) - 70));
+  }
+  for (double v : values) {
+    if (v == std::floor(v) && std::abs(v) < 9007199254740992.0) continue;  // counts: written whole
+    ASSERT_EQ(number_text(v), printf_text(v)) << std::hexfloat << v;
+  }
+}
+
 TEST(NumberText, JsonNumbersAreNullIntegerRoundedOrExact) {
   EXPECT_TRUE(json_number(std::nan("")).is_null());
   EXPECT_TRUE(json_number(35).is_number_integer());
