@@ -4,7 +4,6 @@
 #include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
 #include <cstdint>
-#include <limits>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -163,11 +162,11 @@ ContactOutcome run_controlled(const ContactPhaseSystem& system, const StepperTol
       double s = ta + find_root([&](double u) { return gap.value(u); }, 0, h, ka.indentation, kb.indentation);
       ContactKinematics ks = retake(ta, s);
       for (int i = 0; i < 20; ++i) {  // Newton: delta' of the retaken step is exact to the step's accuracy
-        const double next = std::clamp(s - ks.indentation / ks.indentation_rate, ta, tb);
-        const bool converged = std::abs(next - s) <= 4 * std::numeric_limits<double>::epsilon() * std::abs(s);
-        s = next;
+        const double correction = ks.indentation / ks.indentation_rate;
+        s = std::clamp(s - correction, ta, tb);
         ks = retake(ta, s);
-        if (converged) break;
+        // converging quadratically: after a correction this small the next one would be below rounding
+        if (std::abs(correction) <= 1e-7 * h) break;
       }
       return finish(system, s, ys, peak, steps);
     }
