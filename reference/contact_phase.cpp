@@ -12,12 +12,12 @@ void Solver::record_interval(const TipState& sa, const TipState& sb, Eval&& eval
   for (int f = 0; f < 2; ++f) {
     if (sa.jerk[f] * sb.jerk[f] < 0) {
       const double c =
-          find_root([&](double t) { return eval(t).jerk[f]; }, sa.t, sb.t, sa.jerk[f], sb.jerk[f], kExtremumBits);
+          find_root_after([&](double t) { return eval(t).jerk[f]; }, sa.t, sb.t, sa.jerk[f], sb.jerk[f], kExtremumBits);
       points[count++] = eval(c);
     }
   }
   if (sa.force_rate * sb.force_rate < 0) {
-    const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
+    const double c = find_root_after([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
                                sb.force_rate, kExtremumBits);
     points[count++] = eval(c);
   }
@@ -38,12 +38,12 @@ void Solver::track_event(ContactEvent& event, const TipState& sa, const TipState
   event.peak_force_n = std::max({event.peak_force_n, sa.force, sb.force});
   event.max_indentation_m = std::max({event.max_indentation_m, sa.indentation, sb.indentation});
   if (sa.force_rate > 0 && sb.force_rate < 0) {
-    const double c = find_root([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
+    const double c = find_root_after([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
                                sb.force_rate, kExtremumBits);
     event.peak_force_n = std::max(event.peak_force_n, eval(c).force);
   }
   if (sa.indentation_rate > 0 && sb.indentation_rate < 0) {
-    const double c = find_root([&](double t) { return eval(t).indentation_rate; }, sa.t, sb.t, sa.indentation_rate,
+    const double c = find_root_after([&](double t) { return eval(t).indentation_rate; }, sa.t, sb.t, sa.indentation_rate,
                                sb.indentation_rate, kExtremumBits);
     event.max_indentation_m = std::max(event.max_indentation_m, eval(c).indentation);
   }

@@ -138,7 +138,7 @@ bool Solver::coarse_step_without_contact(double& t, ModalState& x, FreeFlight::M
       flight_.advance(x, t0, ts - t0, xs_);
       return slow_lever_.dot(xs_.v);
     };
-    const double c = find_root(rate_at, t0, tb, rate_a, rate_b, kExtremumBits);
+    const double c = find_root_after(rate_at, t0, tb, rate_a, rate_b, kExtremumBits);
     flight_.advance(x, t0, c - t0, xs_);
     highest = std::max(highest, slow_delta(xs_));
   }
