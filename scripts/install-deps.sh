@@ -17,7 +17,8 @@ benchmark_packages=(
   libtomlplusplus-dev            # scenario files
   nlohmann-json3-dev             # summary.json, runs.jsonl
   libcli11-dev                   # command line
-  zlib1g-dev                     # gzip: series.csv.gz written and read
+  zlib1g-dev                     # gzip: series.csv.gz read back
+  libdeflate-dev                 # gzip: the .gz tables written, whole-buffer (faster than zlib)
   libmujoco-dev libqhull-dev      # MuJoCo 2.2.2 (its CMake config names qhull's headers)
   libode-dev                     # ODE 0.16.2, double precision
   libbullet-dev                  # Bullet 3.24, linked as bullet-float64 (double precision)
