@@ -124,5 +124,19 @@ TEST_F(RunFilesGzip, ASeriesOfSeveralMegabytesReadsBackEqualInEveryReader) {
   EXPECT_TRUE(from_gzip.mechanical_energy_j == from_plain.mechanical_energy_j);
 }
 
+// A series cut short (a run stopped while writing it) is refused with its path, not read as a shorter series: a
+// resumed study must not take it for a whole one. zlib's gzread alone would hand back what it could decode.
+TEST_F(RunFilesGzip, ASeriesCutShortIsRefusedNotReadShort) {
+  write_series_csv(path("series.csv.gz"), varying_series(4000));
+  fs::resize_file(path("series.csv.gz"), fs::file_size(path("series.csv.gz")) - 9);  // the trailer's CRC and size
+  Trajectory read_back;
+  try {
+    read_series_csv(path("series.csv.gz"), read_back);
+    ADD_FAILURE() << "a series cut short was read as " << read_back.size() << " samples";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find(path("series.csv.gz")), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace run_files_gzip_test
 }  // namespace ib

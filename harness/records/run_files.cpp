@@ -167,10 +167,13 @@ std::string read_table_text(const std::string& path) {
   char buffer[1 << 16];
   int n = 0;
   while ((n = gzread(f, buffer, sizeof buffer)) > 0) text.append(buffer, static_cast<std::size_t>(n));
+  // A file cut short (a run stopped while writing it, a full disk) ends without error from gzread: zlib says so
+  // only through gzerror's Z_BUF_ERROR, and a resumed study must not take such a file for a whole one.
   int code = Z_OK;
-  const std::string reason = n < 0 ? gzerror(f, &code) : "";
+  const std::string reason = gzerror(f, &code);
   gzclose(f);
-  if (n < 0) throw std::runtime_error(path + ": cannot read: " + (reason.empty() ? "not a valid gzip file" : reason));
+  if (n < 0 || code == Z_BUF_ERROR)
+    throw std::runtime_error(path + ": cannot read: " + (reason.empty() ? "not a valid gzip file" : reason));
   return text;
 }
 
