@@ -39,8 +39,11 @@ std::vector<double> values_that_need_17_digits() {
 }
 
 // The values a state can hold at the edges of the doubles: the sign of a zero (a velocity that reached 0 from
-// below), the largest and smallest normal magnitudes.
-std::vector<double> edge_values() { return {0.0, -0.0, DBL_MAX, -DBL_MAX, DBL_MIN, -DBL_MIN}; }
+// below), the largest and smallest normal magnitudes, and subnormals (a damped mode's coordinate far down its
+// decay), which strtod reads exactly but flags as an underflow.
+std::vector<double> edge_values() {
+  return {0.0, -0.0, DBL_MAX, -DBL_MAX, DBL_MIN, -DBL_MIN, std::nextafter(DBL_MIN, 0.0), -DBL_TRUE_MIN, 1e-310};
+}
 
 // The value written with `digits` significant digits and read back.
 double read_back_with_digits(double value, int digits) {
