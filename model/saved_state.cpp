@@ -36,7 +36,10 @@ SavedState parse_saved_state(const std::string& text, const std::string& where) 
     errno = 0;
     char* end = nullptr;
     const double v = std::strtod(line.c_str(), &end);
-    if (end == line.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+    // strtod flags a subnormal result as a range error too, but the 17 digits the writer keeps name a
+    // subnormal exactly: only an overflow (not finite) or an underflow to zero is out of range
+    const bool out_of_range = errno == ERANGE && std::fpclassify(v) != FP_SUBNORMAL;
+    if (end == line.c_str() || *end != '\0' || out_of_range || !std::isfinite(v))
       throw std::invalid_argument(where + " line " + std::to_string(number) + ": '" + line +
                                   "' is not a finite number (a saved state holds one value per line)");
     state.values.push_back(v);

@@ -1,9 +1,13 @@
-// Stroboscopic samples against a closed form, and the regime read from them.
+// Stroboscopic samples against a closed form, and the regime read from them, just inside and just outside the
+// tolerance that tells a repeating orbit from a moving one.
 #include "harness/scoring/poincare.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace ib {
 namespace poincare_test {
@@ -83,6 +87,61 @@ TEST(Regime, NoImpactWhateverTheSamplesAndTooFewSamplesAreIrregular) {
   EXPECT_EQ(classify_regime(orbit(1, 40, 0), kScale, 0, 40).label(), "no impact");
   EXPECT_EQ(classify_regime(orbit(1, 10, 0), kScale, 10, 10).kind, RegimeKind::irregular);  // < 2 x 8 samples
   EXPECT_EQ(classify_regime(orbit(1, 16, 0), kScale, 16, 16).period, 1);
+}
+
+// ---- the tolerance's edge -------------------------------------------------------------------------------
+
+// A sweep labels each ratio's regime with the default settings (sweep_row.cpp), whose tolerance poincare.h
+// documents as 1 % of each quantity's orbit scale: written out here rather than read from RegimeSettings, so
+// that a changed default is a failing test, not a silently moved edge.
+constexpr double kDocumentedRelativeTolerance = 0.01;
+
+// The scale of each coordinate (frame 1 u, v, frame 2 u, v), powers of two, so that the tolerance's absolute
+// size, 0.01 x scale, is the same double here as in the classifier.
+const std::array<double, 4> kPowerOfTwoScale = {0x1p-10, 0x1p-4, 0x1p-11, 0x1p-6};
+
+// A settled orbit whose samples alternate: the even ones at the resting state below, the odd ones moved by
+// `offset` in coordinate `coordinate` alone. That coordinate is 0 on the even samples (the tip at its rest
+// position, or at a turning point, at motor phase 0), so the difference the classifier sees is `offset` exactly.
+// Within the tolerance the orbit is one point, period-1; beyond it the samples repeat only every two periods.
+std::vector<PoincareSample> alternating_orbit(int coordinate, double offset) {
+  std::vector<PoincareSample> samples;
+  for (int k = 0; k < 24; ++k) {  // 3 x max_period: enough to tell period 1 and 2 apart
+    std::array<double, 4> state = {0.3e-3, -0.02, 0.1e-3, 0.004};
+    state[coordinate] = k % 2 == 0 ? 0.0 : offset;
+    PoincareSample p;
+    p.period_index = k;
+    p.displacement_m = {state[0], state[2]};
+    p.velocity_m_s = {state[1], state[3]};
+    samples.push_back(p);
+  }
+  return samples;
+}
+
+// One impact per motor period over the 24 periods: period-1 has 1 impact per period, period-2 has 2.
+Regime regime_of(const std::vector<PoincareSample>& samples) {
+  return classify_regime(samples, kPowerOfTwoScale, 24, 24.0);
+}
+
+// A deviation a millionth inside the tolerance, or exactly on it ("within the tolerance": the edge is inside),
+// leaves the orbit period-1; a millionth beyond it makes it period-2. In each of the four coordinates, each
+// measured against its own scale.
+TEST(Regime, ADeviationJustInsideTheToleranceIsPeriodOneAndJustOutsideIsPeriodTwo) {
+  const double eps = 1e-6;
+  for (int j = 0; j < 4; ++j) {
+    const double edge = kDocumentedRelativeTolerance * kPowerOfTwoScale[j];
+    SCOPED_TRACE("coordinate " + std::to_string(j) + " (frame 1 u, v, frame 2 u, v)");
+    const Regime inside = regime_of(alternating_orbit(j, edge * (1 - eps)));
+    EXPECT_EQ(inside.label(), "period-1");
+    EXPECT_DOUBLE_EQ(inside.impacts_per_period, 1.0);
+    EXPECT_EQ(regime_of(alternating_orbit(j, edge)).label(), "period-1");
+    const Regime outside = regime_of(alternating_orbit(j, edge * (1 + eps)));
+    EXPECT_EQ(outside.label(), "period-2");
+    EXPECT_DOUBLE_EQ(outside.impacts_per_period, 2.0);
+    // the same deviation the other way round (the odd samples below the even ones)
+    EXPECT_EQ(regime_of(alternating_orbit(j, -edge * (1 - eps))).label(), "period-1");
+    EXPECT_EQ(regime_of(alternating_orbit(j, -edge * (1 + eps))).label(), "period-2");
+  }
 }
 
 }  // namespace poincare_test

@@ -1,5 +1,6 @@
 // The accelerometer's reading (rig.md section 5: the velocity change over each 1/f_s window) on signals
-// whose readings are known in closed form: a velocity jump on and off the sensor grid, a sine.
+// whose readings are known in closed form: a velocity jump on and off the sensor grid, a sine, and two
+// frames moving differently, each read from its own motion.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -97,6 +98,54 @@ TEST(Metrics, SensorWindowsStayInsideTheWindowAndTheSeries) {
   const SensorSeries early = sensor_acceleration(late, 0, 0, 1, 2048);
   EXPECT_EQ(early.time_s.size(), 1024u);
   EXPECT_NEAR(early.time_s.front(), 0.5 + 0.5 / 2048, 1e-12);
+}
+
+// ---- 9. two frames, two motions ---------------------------------------------------------------------
+
+// a = A cos(w (t - t_crest)), v = (A / w) sin(w (t - t_crest)): the sensor window's average of a is
+// A cos(w (t - t_crest)) sinc(w T / 2), and with t_crest a sensor sample time the reading's peak is
+// A sinc(w T / 2) exactly there.
+struct Tone {
+  double amplitude_m_s2, frequency_hz, crest_s;
+  double omega() const { return 2 * kPi * frequency_hz; }
+  Motion motion() const {
+    Motion m;
+    const double A = amplitude_m_s2, w = omega(), t_crest = crest_s;
+    m.u = [=](double t) { return -A / (w * w) * std::cos(w * (t - t_crest)); };
+    m.v = [=](double t) { return A / w * std::sin(w * (t - t_crest)); };
+    m.a = [=](double t) { return A * std::cos(w * (t - t_crest)); };
+    return m;
+  }
+  double window_average_factor(double sensor_rate_hz) const {
+    const double half_window_phase = omega() / sensor_rate_hz / 2;
+    return std::sin(half_window_phase) / half_window_phase;
+  }
+  double reading(double t, double sensor_rate_hz) const {
+    return amplitude_m_s2 * std::cos(omega() * (t - crest_s)) * window_average_factor(sensor_rate_hz);
+  }
+  double sensor_peak(double sensor_rate_hz) const { return amplitude_m_s2 * window_average_factor(sensor_rate_hz); }
+};
+
+// The two frames carry one accelerometer each (rig.md section 5): frame 1's tip rings softly at 150 Hz and
+// frame 2's hard at 400 Hz, crests at different sensor samples. Each frame's reading must follow its own
+// tip, sample by sample, and each frame's sensor peak must be its own tone's (about 4.0 g and 28.7 g): a
+// reading taken from the other frame's velocity series would be off by a factor of seven.
+TEST(Metrics, EachFramesSensorReadsItsOwnTipsMotion) {
+  const double fs = 2048;
+  const Tone frame1{40, 150, 300.5 / fs}, frame2{300, 400, 1000.5 / fs};
+  // 8192 Hz from 0: every sensor window edge k / 2048 s is a series sample, no interpolation
+  const Trajectory t = sampled(8192, 0, 8193, frame1.motion(), frame2.motion());
+  const Tone tones[2] = {frame1, frame2};
+  for (int f = 0; f < 2; ++f) {
+    const SensorSeries sensor = sensor_acceleration(t, f, 0, 1, fs);
+    ASSERT_EQ(sensor.acceleration_m_s2.size(), 2048u);
+    for (std::size_t k = 0; k < sensor.acceleration_m_s2.size(); ++k)
+      ASSERT_NEAR(sensor.acceleration_m_s2[k], tones[f].reading(sensor.time_s[k], fs), 1e-9)
+          << "frame " << f + 1 << " sensor sample " << k;
+  }
+  const Metrics m = compute_metrics(t, window(0, 1));
+  EXPECT_NEAR(m.frames[0].sensor_peak_acceleration_g, frame1.sensor_peak(fs) / g, 1e-9);
+  EXPECT_NEAR(m.frames[1].sensor_peak_acceleration_g, frame2.sensor_peak(fs) / g, 1e-9);
 }
 
 }  // namespace sensor_reading_test
