@@ -75,7 +75,7 @@ ContactOutcome finish(const ContactPhaseSystem& system, double t_end, const Stat
 // A stepper with dense output, stepped as reference/contact_phase.cpp steps Dormand-Prince. retake(y_prev,
 // ta, t_stop, eval) gives the state at t_stop < tb from the step's start (or from the dense output).
 template <class State, class Dense, class System, class Retake>
-ContactOutcome run_dense(const ContactPhaseSystem& system, Dense& dense, System&& ode, double max_step_s,
+ContactOutcome run_dense(const ContactPhaseSystem& system, Dense& dense, System&& equations, double max_step_s,
                          const ContactOnset& onset, Retake&& retake) {
   State y = start_state<State>(system, onset), ys(system.size()), y_prev(system.size());
   dense.initialize(y, 0.0, std::min(max_step_s, kFirstStep_s));
@@ -88,7 +88,7 @@ ContactOutcome run_dense(const ContactPhaseSystem& system, Dense& dense, System&
   };
   while (true) {
     y_prev = dense.current_state();
-    dense.do_step(ode);
+    dense.do_step(equations);
     ++steps;
     const double ta = dense.previous_time(), tb = dense.current_time();
     const State& yb = dense.current_state();
@@ -127,20 +127,20 @@ ContactOutcome run_controlled(const ContactPhaseSystem& system, const StepperTol
                               const ContactOnset& onset) {
   auto controlled = odeint::make_controlled(tolerance.absolute, tolerance.relative, max_step_s, ErrorStepper());
   ErrorStepper plain;
-  auto ode = [&](const VectorState& s, VectorState& ds, double ts) { system.rhs(s, ds, ts); };
+  auto equations = [&](const VectorState& s, VectorState& ds, double ts) { system.rhs(s, ds, ts); };
   VectorState y = start_state<VectorState>(system, onset), y_prev(y.size()), ys(y.size());
   double t = 0, dt = std::min(max_step_s, kFirstStep_s);
   ContactKinematics ka = kinematics_of(system, y, t);
   double peak = ka.force;
   long long steps = 0;
   auto retake = [&](double ta, double s) {
-    plain.do_step(ode, y_prev, ta, ys, s - ta);
+    plain.do_step(equations, y_prev, ta, ys, s - ta);
     return kinematics_of(system, ys, s);
   };
   while (true) {
     y_prev = y;
     const double ta = t;
-    for (int tries = 0; controlled.try_step(ode, y, t, dt) == odeint::fail; ++tries)
+    for (int tries = 0; controlled.try_step(equations, y, t, dt) == odeint::fail; ++tries)
       if (tries > 500) throw std::runtime_error("step size control failed in a contact phase");
     ++steps;
     const double tb = t, h = tb - ta;
@@ -224,12 +224,12 @@ ContactOutcome integrate_contact_phase(const ContactPhaseSystem& system, Contact
       auto jacobian = [&](const UblasState& s, boost::numeric::ublas::matrix<double>& J, double ts, UblasState& dfdt) {
         system.jacobian(s, J, ts, dfdt);
       };
-      auto ode = std::make_pair(rhs, jacobian);
+      auto equations = std::make_pair(rhs, jacobian);
       auto dense = odeint::make_dense_output(tolerance.absolute, tolerance.relative, max_step_s,
                                              odeint::rosenbrock4<double>());
-      out = run_dense<UblasState>(system, dense, ode, max_step_s, onset,
+      out = run_dense<UblasState>(system, dense, equations, max_step_s, onset,
                                   [&](const UblasState& y0, double ta, double ts, UblasState& y) {
-                                    odeint::rosenbrock4<double>().do_step(ode, y0, ta, y, ts - ta);
+                                    odeint::rosenbrock4<double>().do_step(equations, y0, ta, y, ts - ta);
                                   });
       break;
     }
