@@ -300,8 +300,22 @@ class Solver {
   // Both tips' jerk in free flight.
   std::array<double, 2> free_jerk(const ModalState& x, const FreeFlight::MotorPhase& phase) const;
   // scan_jerk's coefficients, from free_jerk's own sums: the free part's in closed form, the steady state's at
-  // the phases 0 and pi/2.
+  // the phases 0 and pi/2; and jerk_curvature_lever_.
   void prepare_scan_jerk();
+  // A bound on |d^2 jerk / dt^2| of each tip for all later times of free flight from (x, t): every mode's
+  // motion is at most its envelope times its rate |lambda| to the power of the derivative (q's fifth).
+  std::array<double, 2> jerk_curvature_bound(const ModalState& x, const FreeFlight::MotorPhase& phase) const;
+  // Appends to extrema_ the extrema of tip f's acceleration on [ta, ta + length] from its Taylor polynomial c about
+  // ta, given the jerk at both ends: where it changes sign, the root; where it does not but could, with the
+  // curvature bound, cross zero twice in between (a fast mode's wiggle at the top of a slow peak), the halves
+  // searched in turn.
+  void extrema_between(const std::array<double, kTaylorDegree + 1>& c, int f, double ta, double s0, double s1,
+                       double jerk0, double jerk1, double curvature_bound, int depth);
+  // Whether tip f's jerk may vanish inside an interval of this length though it has one sign at both ends.
+  static bool may_turn_inside(double jerk0, double jerk1, double length, double curvature_bound) {
+    return jerk0 * jerk1 >= 0 && std::min(std::abs(jerk0), std::abs(jerk1)) <= curvature_bound * length * length / 8;
+  }
+  static constexpr int kExtremumSearchDepth = 8;  // halvings of a sub-interval at most
   // The free-flight state's kinematics at a sample time ts: from the previous sample by the sample interval's
   // transition when ts follows it (anchored afresh at (x_from, t_from) every kSamplesPerAnchor samples, so
   // that rounding cannot drift), else from (x_from, t_from) in closed form.
@@ -384,6 +398,7 @@ class Solver {
   Eigen::ArrayXd scan_q_a_, scan_v_a_, scan_q_b_, scan_v_b_;  // and the free parts it steps
   Eigen::ArrayXd scan_jerk_q_, scan_jerk_v_;  // a tip's jerk per unit free displacement and velocity of each mode
   std::array<double, 2> steady_jerk_cos_{}, steady_jerk_sin_{};  // the steady state's tip jerk: cos, sin parts
+  Eigen::VectorXd jerk_curvature_lever_;  // |tip_m| max(|lambda_m|, Omega)^5: each mode's share of the bound
   std::vector<TipState> extrema_;
   std::vector<LongStep> long_steps_;         // 2, 4, 8, ... coarse steps
   double last_sample_t_ = -kInf;             // the free-flight sample chain (sample_free)

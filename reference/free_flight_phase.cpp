@@ -22,28 +22,50 @@ template <class SampleAt>
 void Solver::record_free_interval(const TipState& sa, const TipState& sb, const ModalState& x, SampleAt&& sample_at,
                                   bool extrema) {
   if (!recorder_.wants(sb.t)) return;
-  std::array<TipState, 2> points;
-  int count = 0;
-  if (extrema && (sa.jerk[0] * sb.jerk[0] < 0 || sa.jerk[1] * sb.jerk[1] < 0)) {
-    const AccelerationSeries series = acceleration_series(x, sa.t, {sa.jerk[0] * sb.jerk[0] < 0, sa.jerk[1] * sb.jerk[1] < 0});
+  extrema_.clear();
+  if (extrema) {
     const double h = sb.t - sa.t;
-    for (int f = 0; f < 2; ++f) {
-      if (!(sa.jerk[f] * sb.jerk[f] < 0)) continue;
-      const double s = find_root([&](double u) { return series_slope(series[f], u); }, 0.0, h,
-                                 series_slope(series[f], 0.0), series_slope(series[f], h), kExtremumBits);
-      TipState& p = points[count++];
-      p.t = sa.t + s;
-      p.acceleration[f] = series_value(series[f], s);  // the other tip's peaks are its own extrema
+    const std::array<double, 2> bound = jerk_curvature_bound(x, flight_.motor_phase(sa.t));
+    std::array<bool, 2> search{};
+    for (int f = 0; f < 2; ++f)
+      search[f] = sa.jerk[f] * sb.jerk[f] < 0 || may_turn_inside(sa.jerk[f], sb.jerk[f], h, bound[f]);
+    if (search[0] || search[1]) {
+      const AccelerationSeries series = acceleration_series(x, sa.t, search);
+      for (int f = 0; f < 2; ++f)
+        if (search[f])
+          extrema_between(series[f], f, sa.t, 0.0, h, series_slope(series[f], 0.0), series_slope(series[f], h),
+                          bound[f], kExtremumSearchDepth);
+      std::sort(extrema_.begin(), extrema_.end(), [](const TipState& p, const TipState& q) { return p.t < q.t; });
     }
-    if (count == 2 && points[1].t < points[0].t) std::swap(points[0], points[1]);
   }
-  int next = 0;
+  std::size_t next = 0;
   for (double ts = recorder_.next_sample_time(); ts <= sb.t; ts = recorder_.next_sample_time()) {
-    while (next < count && points[next].t <= ts) recorder_.feed(points[next++]);
+    while (next < extrema_.size() && extrema_[next].t <= ts) recorder_.feed(extrema_[next++]);
     recorder_.sample(ts == sb.t ? sb : sample_at(ts));
   }
-  while (next < count) recorder_.feed(points[next++]);
+  while (next < extrema_.size()) recorder_.feed(extrema_[next++]);
   recorder_.feed(sb);
+}
+
+void Solver::extrema_between(const std::array<double, kTaylorDegree + 1>& c, int f, double ta, double s0, double s1,
+                             double jerk0, double jerk1, double curvature_bound, int depth) {
+  if (jerk0 * jerk1 < 0) {
+    const double s = find_root([&](double u) { return series_slope(c, u); }, s0, s1, jerk0, jerk1, kExtremumBits);
+    TipState point;
+    point.t = ta + s;
+    point.acceleration[f] = series_value(c, s);  // the other tip's peaks are its own extrema
+    extrema_.push_back(point);
+    return;
+  }
+  if (depth == 0 || !may_turn_inside(jerk0, jerk1, s1 - s0, curvature_bound)) return;
+  const double mid = 0.5 * (s0 + s1), jerk_mid = series_slope(c, mid);
+  extrema_between(c, f, ta, s0, mid, jerk0, jerk_mid, curvature_bound, depth - 1);
+  extrema_between(c, f, ta, mid, s1, jerk_mid, jerk1, curvature_bound, depth - 1);
+}
+
+std::array<double, 2> Solver::jerk_curvature_bound(const ModalState& x, const FreeFlight::MotorPhase& phase) const {
+  return {flight_.displacement_bound(x, phase, jerk_curvature_lever_, 0, n1_),
+          flight_.displacement_bound(x, phase, jerk_curvature_lever_, n1_, m_)};
 }
 
 // Advances in closed form until a contact onset (returns true, t and x at the onset) or the end
@@ -221,6 +243,7 @@ void Solver::record_bounded_step(double t0, const ModalState& x0, const ModalSta
     FreeFlight::MotorPhase phase_a = flight_.motor_phase(t0);
     flight_.free_part(x0, phase_a, scan_q_a_, scan_v_a_);
     std::array<double, 2> jerk_a = scan_jerk(scan_q_a_, scan_v_a_, phase_a);
+    const std::array<double, 2> bound = jerk_curvature_bound(x0, phase_a);  // holds over the whole step
     const FreeFlight::Transition& tr = sub.transition;
     for (int j = 1; j <= sub.count; ++j) {
       const double ta = phase_a.t_s;
@@ -236,23 +259,20 @@ void Solver::record_bounded_step(double t0, const ModalState& x0, const ModalSta
       scan_q_b_ = tr.qq * scan_q_a_ + tr.qv * scan_v_a_;
       scan_v_b_ = tr.vq * scan_q_a_ + tr.vv * scan_v_a_;
       const std::array<double, 2> jerk_b = scan_jerk(scan_q_b_, scan_v_b_, phase_b);
-      if (jerk_a[0] * jerk_b[0] < 0 || jerk_a[1] * jerk_b[1] < 0) {
+      const double length = phase_b.t_s - ta;
+      std::array<bool, 2> search{};
+      for (int f = 0; f < 2; ++f)
+        search[f] = jerk_a[f] * jerk_b[f] < 0 || may_turn_inside(jerk_a[f], jerk_b[f], length, bound[f]);
+      if (search[0] || search[1]) {
         flight_.with_steady_state(scan_q_a_, scan_v_a_, phase_a, scan_a_);
-        const AccelerationSeries series =
-            acceleration_series(scan_a_, ta, {jerk_a[0] * jerk_b[0] < 0, jerk_a[1] * jerk_b[1] < 0});
+        const AccelerationSeries series = acceleration_series(scan_a_, ta, search);
         const std::size_t first = extrema_.size();
-        for (int f = 0; f < 2; ++f) {
-          if (!(jerk_a[f] * jerk_b[f] < 0)) continue;
-          const double length = phase_b.t_s - ta;
-          const double s = find_root([&](double u) { return series_slope(series[f], u); }, 0.0, length,
-                                     series_slope(series[f], 0.0), series_slope(series[f], length), kExtremumBits);
-          TipState point;
-          point.t = ta + s;
-          point.acceleration[f] = series_value(series[f], s);  // the other tip's peaks are its own extrema
-          extrema_.push_back(point);
-        }
-        if (extrema_.size() == first + 2 && extrema_[first + 1].t < extrema_[first].t)
-          std::swap(extrema_[first], extrema_[first + 1]);
+        for (int f = 0; f < 2; ++f)
+          if (search[f])
+            extrema_between(series[f], f, ta, 0.0, length, series_slope(series[f], 0.0),
+                            series_slope(series[f], length), bound[f], kExtremumSearchDepth);
+        std::sort(extrema_.begin() + static_cast<std::ptrdiff_t>(first), extrema_.end(),
+                  [](const TipState& p, const TipState& q) { return p.t < q.t; });
       }
       std::swap(scan_q_a_, scan_q_b_);
       std::swap(scan_v_a_, scan_v_b_);
@@ -299,6 +319,17 @@ void Solver::prepare_scan_jerk() {
     const double tip = model_.frames[f].tip[f == 0 ? m : m - n1_];
     scan_jerk_q_[m] = tip * two_zeta_omega_[m] * omega2_[m];
     scan_jerk_v_[m] = tip * (two_zeta_omega_[m] * two_zeta_omega_[m] - omega2_[m]);
+  }
+  // the curvature bound's lever: each mode's rate |lambda| (omega underdamped, the fast root overdamped) or the
+  // motor's, whichever is faster, to the fifth power (the jerk's second derivative is q's fifth)
+  jerk_curvature_lever_.setZero(m_);
+  const double motor_rate = model_.motor ? model_.motor->omega_rad_s : 0;
+  for (int m = 0; m < m_; ++m) {
+    const int f = m < n1_ ? 0 : 1;
+    const double tip = model_.frames[f].tip[f == 0 ? m : m - n1_];
+    const double omega = model_.omega_rad_s[m], zeta = model_.zeta[m];
+    const double rate = std::max(omega * (zeta > 1 ? zeta + std::sqrt(zeta * zeta - 1) : 1.0), motor_rate);
+    jerk_curvature_lever_[m] = std::abs(tip) * std::pow(rate, 5);
   }
   // the steady state's: free_jerk is linear in the state and the motor's cos and sin
   const Eigen::ArrayXd zero = Eigen::ArrayXd::Zero(m_);
