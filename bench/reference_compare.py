@@ -26,7 +26,7 @@ LAWS = ("hertz", "viscoelastic", "newton")
 NOT_METRICS = {"wall_time_s", "cpu_time_s", "steps", "wall_time_per_simulated_s", "cpu_time_per_simulated_s",
                "load_average", "timed_runs", "wall_time_min_s", "wall_time_max_s", "cpu_time_min_s", "cpu_time_max_s",
                "logged_wall_time_s", "logged_cpu_time_s"}
-WORK_COUNTERS = {"integrator_steps", "grid_intervals", "coarse_intervals", "grid_step_s", "solve_cpu_time_s"}
+WORK_COUNTERS = {"integrator_steps", "grid_intervals", "coarse_intervals", "grid_step_s"}
 
 
 def scenario_files():

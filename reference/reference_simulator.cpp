@@ -140,11 +140,8 @@ class ReferenceSimulator final : public Simulator {
     ReferenceSettings kept = settings;  // the free flights the impact zoom can start from
     kept.keep_flight_starts_from_s = window.start_s - kZoomMargin_s;
     kept.peaks_between_samples = run.peaks_between_samples;
-    const RunClock solve_clock;
     ReferenceSolution solution = solve_reference(model, start, scenario.duration_s, window, kept);
     RunResult result;
-    RunCost solve_cost;
-    solve_clock.stop_into(solve_cost);
     clock.stop_into(result.cost);
     result.cost.steps = solution.integrator_steps + solution.grid_intervals + solution.coarse_intervals;
     // after the cost is taken: the zoom is the report's, not the run's
@@ -169,9 +166,6 @@ class ReferenceSimulator final : public Simulator {
     d.emplace_back("grid_intervals", static_cast<double>(solution.grid_intervals));
     d.emplace_back("coarse_intervals", static_cast<double>(solution.coarse_intervals));
     d.emplace_back("sticking_phases", static_cast<double>(solution.sticking_phases));
-    // the run's CPU time without the modal model's construction: the integration alone, what another solver of
-    // the exported model is timed on (bench/reference_cvode_scipy.py)
-    d.emplace_back("solve_cpu_time_s", solve_cost.cpu_time_s);
     if (settings.track_energy) {
       const EnergyLedger& e = solution.energy;
       d.emplace_back("energy_initial_j", e.initial_energy_j);
