@@ -26,7 +26,7 @@ struct TipState {
 };
 
 // Samples the output series and keeps the exact maximum of |acceleration| and of the force over
-// each output interval (t_{k-1}, t_k] from every value it is fed in time order.
+// each output interval [t_{k-1}, t_k] (the sample that opens it included) from every value it is fed in time order.
 class SeriesRecorder {
  public:
   SeriesRecorder(const OutputWindow& window, Trajectory& out) : window_(window), out_(out) {
