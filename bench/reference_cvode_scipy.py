@@ -19,9 +19,11 @@ as such, with its errors at the tightest.
 Cases are cut to --duration (the published ones run 14 to 100 s; SciPy needs seconds per simulated second)
 and their scoring window to --window, so that recording the output series, which the reference does
 exactly and CVODE not at all, costs next to nothing: what is timed is the integration and its events.
-The reference's CPU time is its integration's, as CVODE's and SciPy's are theirs: summary.json's cpu_time_s
-less that of the same case cut to its scoring window alone (the modal model built, which the other two read
-from the exported file, and the window recorded); reading the model and writing files are not timed.
+The reference's CPU time is summary.json's cpu_time_s: its model built, the run integrated and its window
+recorded, an upper bound on its integration's (CVODE's and SciPy's are their integrations', reading the exported
+model and writing files not timed). Beside it, comparison.json keeps the same case cut to its window alone
+(setup_cpu_time_s) and the difference (integration_estimate_cpu_time_s), which the two runs' scatter of a few
+ms swamps for the cheapest cases.
 
 Writes DIR/comparison.json (everything, with bench/machine.sh's record, the load average from
 /proc/loadavg at the start and the end, the versions), DIR/timings.csv (one row per case and law) and
@@ -112,8 +114,11 @@ class Case:
             return read_json(os.path.join(out, "summary.json"), f"{self.name}: the reference's summary")
         summary = cpu_of(self.scenario, folder)
         setup = cpu_of(self.setup_scenario, folder + "_window_only")
-        return {"cpu_time_s": max(summary["cpu_time_s"] - setup["cpu_time_s"], 0.0), "wall_time_s": summary["wall_time_s"],
-                "run_cpu_time_s": summary["cpu_time_s"], "setup_cpu_time_s": setup["cpu_time_s"]}
+        # the whole run is the cost compared (an upper bound on the integration's); the difference is kept beside it,
+        # since for the cheapest cases it lies within the two runs' own scatter (a few ms each)
+        return {"cpu_time_s": summary["cpu_time_s"], "wall_time_s": summary["wall_time_s"],
+                "setup_cpu_time_s": setup["cpu_time_s"],
+                "integration_estimate_cpu_time_s": summary["cpu_time_s"] - setup["cpu_time_s"]}
 
     def cvode(self, folder, rtol, atol, repeat):
         run([self.args.cvode, self.model, "--out", folder, "--method", self.args.cvode_method, "--rtol", repr(rtol),
