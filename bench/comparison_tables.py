@@ -146,7 +146,8 @@ def markdown(record):
     return "\n".join(lines) + "\n"
 
 
-def write_outputs(record, out):
+def write_record(record, out):
+    """OUT/comparison.json (everything) and OUT/timings.csv (each case's summary row): what every comparator writes."""
     with open(os.path.join(out, "comparison.json"), "w", encoding="utf-8") as f:
         json.dump(record, f, indent=2)
         f.write("\n")
@@ -155,6 +156,10 @@ def write_outputs(record, out):
         writer = csv.DictWriter(f, fieldnames=list(summaries[0]))
         writer.writeheader()
         writer.writerows(summaries)
+
+
+def write_outputs(record, out):
+    write_record(record, out)
     with open(os.path.join(out, "metrics.csv"), "w", newline="", encoding="utf-8") as f:
         fields = ["case", "law"] + list(record["cases"][0]["metrics"][0])
         writer = csv.DictWriter(f, fieldnames=fields)

@@ -2,9 +2,9 @@
 at equal accuracy (the loosest tolerance tried at which its events meet the criterion against the truth)
 and the ratios; per solver, the tolerances tried and the errors of its events. Files: comparison.json,
 timings.csv, comparison.md."""
-import csv
-import json
 import os
+
+from comparison_tables import write_record
 
 SOLVERS = (("reference", "reference"), ("cvode", "CVODE"), ("scipy", "SciPy"))
 
@@ -93,13 +93,6 @@ def markdown(record):
 
 
 def write_outputs(record, out):
-    with open(os.path.join(out, "comparison.json"), "w", encoding="utf-8") as f:
-        json.dump(record, f, indent=2)
-        f.write("\n")
-    summaries = [c["summary"] for c in record["cases"]]
-    with open(os.path.join(out, "timings.csv"), "w", newline="", encoding="utf-8") as f:
-        writer = csv.DictWriter(f, fieldnames=list(summaries[0]))
-        writer.writeheader()
-        writer.writerows(summaries)
+    write_record(record, out)
     with open(os.path.join(out, "comparison.md"), "w", encoding="utf-8") as f:
         f.write(markdown(record))
