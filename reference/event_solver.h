@@ -316,6 +316,13 @@ class Solver {
     return jerk0 * jerk1 >= 0 && std::min(std::abs(jerk0), std::abs(jerk1)) <= curvature_bound * length * length / 8;
   }
   static constexpr int kExtremumSearchDepth = 8;  // halvings of a sub-interval at most
+  // Which tips' accelerations may have an extremum on an interval of this length, from the jerk at its ends.
+  static std::array<bool, 2> extremum_search(const std::array<double, 2>& jerk_a, const std::array<double, 2>& jerk_b,
+                                             double length, const std::array<double, 2>& curvature_bound);
+  // Appends to extrema_, in time order, the extrema of the tips asked for on [ta, ta + length], from the free-flight
+  // state x at ta through the Taylor polynomials about it.
+  void append_extrema(const ModalState& x, double ta, double length, std::array<bool, 2> search,
+                      const std::array<double, 2>& curvature_bound);
   // The free-flight state's kinematics at a sample time ts: from the previous sample by the sample interval's
   // transition when ts follows it (anchored afresh at (x_from, t_from) every kSamplesPerAnchor samples, so
   // that rounding cannot drift), else from (x_from, t_from) in closed form.

@@ -26,17 +26,8 @@ void Solver::record_free_interval(const TipState& sa, const TipState& sb, const 
   if (extrema) {
     const double h = sb.t - sa.t;
     const std::array<double, 2> bound = jerk_curvature_bound(x, flight_.motor_phase(sa.t));
-    std::array<bool, 2> search{};
-    for (int f = 0; f < 2; ++f)
-      search[f] = sa.jerk[f] * sb.jerk[f] < 0 || may_turn_inside(sa.jerk[f], sb.jerk[f], h, bound[f]);
-    if (search[0] || search[1]) {
-      const AccelerationSeries series = acceleration_series(x, sa.t, search);
-      for (int f = 0; f < 2; ++f)
-        if (search[f])
-          extrema_between(series[f], f, sa.t, 0.0, h, series_slope(series[f], 0.0), series_slope(series[f], h),
-                          bound[f], kExtremumSearchDepth);
-      std::sort(extrema_.begin(), extrema_.end(), [](const TipState& p, const TipState& q) { return p.t < q.t; });
-    }
+    const std::array<bool, 2> search = extremum_search(sa.jerk, sb.jerk, h, bound);
+    if (search[0] || search[1]) append_extrema(x, sa.t, h, search, bound);
   }
   std::size_t next = 0;
   for (double ts = recorder_.next_sample_time(); ts <= sb.t; ts = recorder_.next_sample_time()) {
@@ -45,6 +36,26 @@ void Solver::record_free_interval(const TipState& sa, const TipState& sb, const 
   }
   while (next < extrema_.size()) recorder_.feed(extrema_[next++]);
   recorder_.feed(sb);
+}
+
+std::array<bool, 2> Solver::extremum_search(const std::array<double, 2>& jerk_a, const std::array<double, 2>& jerk_b,
+                                            double length, const std::array<double, 2>& curvature_bound) {
+  std::array<bool, 2> search{};
+  for (int f = 0; f < 2; ++f)
+    search[f] = jerk_a[f] * jerk_b[f] < 0 || may_turn_inside(jerk_a[f], jerk_b[f], length, curvature_bound[f]);
+  return search;
+}
+
+void Solver::append_extrema(const ModalState& x, double ta, double length, std::array<bool, 2> search,
+                            const std::array<double, 2>& curvature_bound) {
+  const AccelerationSeries series = acceleration_series(x, ta, search);
+  const std::size_t first = extrema_.size();
+  for (int f = 0; f < 2; ++f)
+    if (search[f])
+      extrema_between(series[f], f, ta, 0.0, length, series_slope(series[f], 0.0), series_slope(series[f], length),
+                      curvature_bound[f], kExtremumSearchDepth);
+  std::sort(extrema_.begin() + static_cast<std::ptrdiff_t>(first), extrema_.end(),
+            [](const TipState& p, const TipState& q) { return p.t < q.t; });
 }
 
 void Solver::extrema_between(const std::array<double, kTaylorDegree + 1>& c, int f, double ta, double s0, double s1,
@@ -260,19 +271,10 @@ void Solver::record_bounded_step(double t0, const ModalState& x0, const ModalSta
       scan_v_b_ = tr.vq * scan_q_a_ + tr.vv * scan_v_a_;
       const std::array<double, 2> jerk_b = scan_jerk(scan_q_b_, scan_v_b_, phase_b);
       const double length = phase_b.t_s - ta;
-      std::array<bool, 2> search{};
-      for (int f = 0; f < 2; ++f)
-        search[f] = jerk_a[f] * jerk_b[f] < 0 || may_turn_inside(jerk_a[f], jerk_b[f], length, bound[f]);
+      const std::array<bool, 2> search = extremum_search(jerk_a, jerk_b, length, bound);
       if (search[0] || search[1]) {
         flight_.with_steady_state(scan_q_a_, scan_v_a_, phase_a, scan_a_);
-        const AccelerationSeries series = acceleration_series(scan_a_, ta, search);
-        const std::size_t first = extrema_.size();
-        for (int f = 0; f < 2; ++f)
-          if (search[f])
-            extrema_between(series[f], f, ta, 0.0, length, series_slope(series[f], 0.0),
-                            series_slope(series[f], length), bound[f], kExtremumSearchDepth);
-        std::sort(extrema_.begin() + static_cast<std::ptrdiff_t>(first), extrema_.end(),
-                  [](const TipState& p, const TipState& q) { return p.t < q.t; });
+        append_extrema(scan_a_, ta, length, search, bound);
       }
       std::swap(scan_q_a_, scan_q_b_);
       std::swap(scan_v_a_, scan_v_b_);
@@ -314,19 +316,15 @@ void Solver::prepare_scan_jerk() {
   // the free part's jerk: a~ = -c v~ - w^2 q~, j~ = -c a~ - w^2 v~ = c w^2 q~ + (c^2 - w^2) v~
   scan_jerk_q_.setZero(m_);
   scan_jerk_v_.setZero(m_);
-  for (int m = 0; m < m_; ++m) {
-    const int f = m < n1_ ? 0 : 1;
-    const double tip = model_.frames[f].tip[f == 0 ? m : m - n1_];
-    scan_jerk_q_[m] = tip * two_zeta_omega_[m] * omega2_[m];
-    scan_jerk_v_[m] = tip * (two_zeta_omega_[m] * two_zeta_omega_[m] - omega2_[m]);
-  }
-  // the curvature bound's lever: each mode's rate |lambda| (omega underdamped, the fast root overdamped) or the
-  // motor's, whichever is faster, to the fifth power (the jerk's second derivative is q's fifth)
   jerk_curvature_lever_.setZero(m_);
   const double motor_rate = model_.motor ? model_.motor->omega_rad_s : 0;
   for (int m = 0; m < m_; ++m) {
     const int f = m < n1_ ? 0 : 1;
     const double tip = model_.frames[f].tip[f == 0 ? m : m - n1_];
+    scan_jerk_q_[m] = tip * two_zeta_omega_[m] * omega2_[m];
+    scan_jerk_v_[m] = tip * (two_zeta_omega_[m] * two_zeta_omega_[m] - omega2_[m]);
+    // the curvature bound's lever: the mode's rate |lambda| (omega underdamped, the fast root overdamped) or the
+    // motor's, whichever is faster, to the fifth power (the jerk's second derivative is q's fifth)
     const double omega = model_.omega_rad_s[m], zeta = model_.zeta[m];
     const double rate = std::max(omega * (zeta > 1 ? zeta + std::sqrt(zeta * zeta - 1) : 1.0), motor_rate);
     jerk_curvature_lever_[m] = std::abs(tip) * std::pow(rate, 5);
