@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "harness/scoring/plausibility.h"
+#include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
 #include "harness/suite/suite.h"
 
@@ -82,6 +83,32 @@ ib::StepSearchSettings parse_step_search(const SuiteOptions& o, ib::VerdictSetti
   return s;
 }
 
+// The ensemble's options (suite.h, SuiteSettings::ensemble), each range with its why.
+ib::SuiteSettings::Ensemble ensemble_from(const SuiteOptions& o) {
+  // A thousand starts of one configuration is past any confidence interval's need; more is a typo.
+  constexpr int kMaxStarts = 1000;
+  // The starts must differ by far less than anything physical: all of them within 1 % of the rig's 1 mm gap.
+  constexpr double kMaxSpread_m = 1e-5;
+  ib::SuiteSettings::Ensemble e;
+  e.engine_starts = o.ensemble_starts;
+  e.reference_starts = o.reference_ensemble_starts == 0 ? o.ensemble_starts : o.reference_ensemble_starts;
+  e.displacement_step_m = o.ensemble_step_m;
+  if (e.engine_starts < 1 || e.engine_starts > kMaxStarts)
+    throw std::invalid_argument("--ensemble " + std::to_string(e.engine_starts) + ": allowed: 1 to " + std::to_string(kMaxStarts));
+  if (o.reference_ensemble_starts != 0 && (e.reference_starts < e.engine_starts || e.reference_starts > kMaxStarts))
+    throw std::invalid_argument("--reference-ensemble " + std::to_string(e.reference_starts) + ": allowed: 0 (--ensemble's), or " +
+                                std::to_string(e.engine_starts) + " (--ensemble) to " + std::to_string(kMaxStarts) +
+                                ": every engine start is compared with the reference's of the same start");
+  if (!(e.displacement_step_m > 0) || !(e.displacement_step_m * (e.reference_starts - 1) <= kMaxSpread_m))
+    throw std::invalid_argument("--ensemble-step " + ib::exact_number_text(e.displacement_step_m) +
+                                ": allowed: above 0 m, with the " + std::to_string(e.reference_starts) +
+                                " starts spread over at most " + ib::exact_number_text(kMaxSpread_m) +
+                                " m (1 % of the rig's 1 mm gap: far below anything physical)");
+  if (o.find_steps && e.reference_starts > 1)
+    throw std::invalid_argument("--ensemble and --reference-ensemble cannot be combined with --find-steps (a search's probes are single runs)");
+  return e;
+}
+
 }  // namespace
 
 ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
@@ -91,6 +118,7 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
   s.max_duration_s = o.max_duration_s;  // --duration: checked as read (option_rules.h)
   s.extend = o.extend;
   s.reference_cache = o.reference_cache;
+  s.ensemble = ensemble_from(o);
   if (o.find_steps) {
     if (!s.time_steps_s.empty()) throw std::invalid_argument("--dt cannot be combined with --find-steps (the search chooses the steps)");
     s.step_search = parse_step_search(o, s.measurement.verdicts);

@@ -24,6 +24,9 @@ struct SuiteOptions : MatrixOptions {
   int steps_per_octave = 4;
   std::string step_range = "1e-6,1e-3", tolerances;
   std::string reference_cache;  // a folder sharing reference runs between output folders
+  int ensemble_starts = 1;            // --ensemble: starts of every configuration
+  int reference_ensemble_starts = 0;  // --reference-ensemble: the references' starts; 0: --ensemble's
+  double ensemble_step_m = 1e-7;      // --ensemble-step: frame 1's tip displacement between starts [m]
 };
 
 // `sweep`'s options: the shared ones (MatrixOptions, arguments.h) and its own.

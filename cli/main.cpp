@@ -75,6 +75,17 @@ int main(int argc, char** argv) {
   suite->add_option("--reference-cache", suite_options.reference_cache,
                     "a folder that shares reference runs between output folders: a reference it holds (same scenario "
                     "content, settings and executable) is copied, not solved; one solved is stored there");
+  suite->add_option("--ensemble", suite_options.ensemble_starts,
+                    "N: run every configuration from N starts, start K with frame 1's tip displaced by K x "
+                    "--ensemble-step; the report gives each metric and error with its confidence interval")
+      ->capture_default_str();
+  suite->add_option("--reference-ensemble", suite_options.reference_ensemble_starts,
+                    "N: the references' starts (at least --ensemble; 0: --ensemble's): their spread says whether a "
+                    "case needs an ensemble")
+      ->capture_default_str();
+  suite->add_option("--ensemble-step", suite_options.ensemble_step_m,
+                    "frame 1's initial tip displacement between two starts of an ensemble [m]")
+      ->capture_default_str();
   suite_measurement.add_to(suite, /*with_timing=*/true);
   suite->add_flag("--find-steps", suite_options.find_steps,
                   "per scenario, law, engine and options: search the largest stable step and the largest step at "

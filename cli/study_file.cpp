@@ -60,6 +60,9 @@ const std::vector<KeySpec> kCommonKeys = {
 };
 const std::vector<KeySpec> kSuiteKeys = {
     {"scenarios", Type::texts, "scenarios", "scenario files or folders"},
+    {"ensemble_starts", Type::integer, "--ensemble", "every configuration from N starts (1: single runs)"},
+    {"reference_ensemble_starts", Type::integer, "--reference-ensemble", "the references' starts (at least ensemble_starts)"},
+    {"ensemble_step_m", Type::number, "--ensemble-step", "frame 1's initial tip displacement between two starts [m]"},
 };
 const std::vector<KeySpec> kSearchKeys = {
     {"scenarios", Type::texts, "scenarios", "scenario files or folders"},
@@ -259,6 +262,9 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
     m.window_s = std::stod(given["window_s"]);
     m.window_given = true;
   }
+  if (given.count("ensemble_starts")) s.ensemble_starts = std::stoi(given["ensemble_starts"]);
+  if (given.count("reference_ensemble_starts")) s.reference_ensemble_starts = std::stoi(given["reference_ensemble_starts"]);
+  if (given.count("ensemble_step_m")) s.ensemble_step_m = std::stod(given["ensemble_step_m"]);
   if (kind == StudyPart::Kind::search) {
     s.find_steps = true;
     if (given.count("steps_per_octave")) s.steps_per_octave = std::stoi(given["steps_per_octave"]);

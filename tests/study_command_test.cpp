@@ -41,6 +41,7 @@ TEST(StudyFile, TheShippedStudiesAreValidAndAllMeansEveryEngineOfTheBuild) {
     for (const std::string& engine : ib::simulator_names()) every_engine += (every_engine.empty() ? "" : ",") + engine;
     EXPECT_NE(out.text.find("engines " + every_engine + ";"), std::string::npos) << name << ": " << out.text;
     EXPECT_NE(out.text.find("laws hertz,viscoelastic,newton;"), std::string::npos) << out.text;
+    EXPECT_NE(out.text.find("; starts "), std::string::npos) << name << " runs the resonance as an ensemble: " << out.text;
   }
 }
 
@@ -115,6 +116,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "[[sweep]]\nname = \"a\"\nscenario = \"scenarios/paper/resonance.toml\"\n"
                  "[[sweep]]\nname = \"a\"\nscenario = \"scenarios/paper/resonance.toml\"\n",
                  {":4:", "already the name of the sweep at line 1"}},
+        BadStudy{"reference_ensemble_below_the_engines",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\nensemble_starts = 4\nreference_ensemble_starts = 2\n",
+                 {":4:", "reference_ensemble_starts", "--reference-ensemble 2", "allowed: 0 (--ensemble's), or 4"}},
+        BadStudy{"ensemble_spread_beyond_a_hundredth_of_the_gap",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\nensemble_starts = 200\nensemble_step_m = 1e-6\n",
+                 {":4:", "ensemble_step_m", "--ensemble-step 1e-06", "allowed"}},
         BadStudy{"syntax", "[[suite]\nscenarios = [\"scenarios/paper\"]\n", {":1:", "TOML syntax error"}}),
     [](const ::testing::TestParamInfo<BadStudy>& info) { return std::string(info.param.name); });
 

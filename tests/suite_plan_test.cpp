@@ -123,5 +123,32 @@ TEST_F(SuitePlan, WhatCannotRunIsPlannedAsSuch) {
   EXPECT_TRUE(units.front().after.empty());
 }
 
+// An ensemble plans each start as a run of its own: start 0 is the single run (its id unchanged), start K
+// adds /start=K, and every engine start waits for the references of the same start; the references may run
+// more starts than the engines (their spread decides whether a case needs an ensemble).
+TEST_F(SuitePlan, AnEnsemblePlansEveryStartAgainstTheReferencesOfTheSameStart) {
+  const std::vector<PlannedUnit> single = plan_suites({settings_});
+  settings_.ensemble.engine_starts = 2;
+  settings_.ensemble.reference_starts = 3;
+  const std::vector<PlannedUnit> units = plan_suites({settings_});
+  EXPECT_EQ(count(units, PlannedUnit::Kind::engine), 2 * count(single, PlannedUnit::Kind::engine));
+  EXPECT_EQ(count(units, PlannedUnit::Kind::beam_reference), 3 * count(single, PlannedUnit::Kind::beam_reference));
+  EXPECT_EQ(count(units, PlannedUnit::Kind::chain_reference), 2 * count(single, PlannedUnit::Kind::chain_reference));
+  const auto plan = by_id(units);
+  for (const PlannedUnit& u : single) EXPECT_TRUE(plan.count(u.id)) << "start 0 is the single run: " << u.id;
+  const auto start_of = [](const std::string& id) {
+    const std::size_t at = id.rfind("/start=");
+    return at == std::string::npos ? 0 : std::stoi(id.substr(at + 7));
+  };
+  int third_reference_starts = 0;
+  for (const PlannedUnit& u : units) {
+    if (u.kind == PlannedUnit::Kind::engine) EXPECT_LT(start_of(u.id), 2) << u.id;
+    if (start_of(u.id) == 2) ++third_reference_starts;
+    for (const std::string& before : u.after) EXPECT_EQ(start_of(before), start_of(u.id)) << u.id << " waits for " << before;
+    if (!u.same_run_as.empty()) EXPECT_EQ(start_of(u.same_run_as), start_of(u.id)) << u.id << " <- " << u.same_run_as;
+  }
+  EXPECT_EQ(third_reference_starts, 2) << "the third start: the beam reference of each law alone";
+}
+
 }  // namespace suite_plan_test
 }  // namespace ib

@@ -55,6 +55,8 @@ nlohmann::ordered_json reference_cache_key(const Scenario& scenario, const JobSp
   key["options"] = options_text(spec.settings.options);
   key["output_rate_hz"] = spec.settings.output_rate_hz;
   key["time_step_s"] = spec.settings.time_step_s;
+  if (spec.start.initial_displacement_offset_m != 0)  // an ensemble's start: a different run of the same scenario
+    key["initial_displacement_offset_m"] = spec.start.initial_displacement_offset_m;
   key["window_s"] = m.window_s ? nlohmann::ordered_json(*m.window_s) : nlohmann::ordered_json(nullptr);
   key["sensor_rate_hz"] = m.sensor_rate_hz;
   key["merge_window_s"] = m.merge_window_s;

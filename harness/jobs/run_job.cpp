@@ -29,6 +29,7 @@ std::string job_id(const std::string& scenario_name, const JobSpec& job) {
   if (job.settings.time_step_s > 0) id << "/dt=" << job.settings.time_step_s;
   const std::string options = options_text(job.settings.options);
   if (!options.empty()) id << "/" << options;
+  if (job.start.index > 0) id << "/start=" << job.start.index;
   return id.str();
 }
 
@@ -141,9 +142,35 @@ static void write_sensor_over_series(const std::string& path, const Trajectory& 
   write_sensor_csv(path, frame1.time_s, {frame1.acceleration_m_s2, frame2.acceleration_m_s2});
 }
 
-RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measurement& measurement,
+void check_scoring_window(const Scenario& scenario, const Measurement& measurement) {
+  const ScoringWindow window = scoring_window(scenario, measurement.window_s);
+  const double length_s = window.end_s - window.start_s;
+  const double sensor_period_s = 1.0 / measurement.sensor_rate_hz;
+  const double motor_period_s = scenario.motor ? 1.0 / motor_frequency_hz(scenario) : 0.0;
+  const double shortest_s = std::max(sensor_period_s, motor_period_s);
+  if (length_s >= shortest_s) return;
+  const std::string where = scenario.source_path.empty() ? scenario.name : scenario.source_path;
+  const std::string given = measurement.window_s ? "--window " + number_text(*measurement.window_s)
+                                                 : where + ": [scenario] scoring_window_s = " +
+                                                       number_text(scenario.scoring_window_s);
+  const std::string what = motor_period_s > sensor_period_s
+                               ? "one motor period of " + where + " (" + number_text(motor_period_s) +
+                                     " s): impacts per cycle are not measured over less"
+                               : "one sensor sample (1 / " + number_text(measurement.sensor_rate_hz) + " Hz)";
+  throw std::invalid_argument(given + ": scores " + number_text(length_s) + " s; allowed: at least " + what);
+}
+
+Scenario started_as(const Scenario& scenario, const EnsembleStart& start) {
+  Scenario started = scenario;
+  started.initial.frame1_tip_displacement_m += start.initial_displacement_offset_m;
+  return started;
+}
+
+RunRecord run_job(const Scenario& scenario_as_written, const JobSpec& job, const Measurement& measurement,
                   const ReferenceData* beam_reference, const ReferenceData* chain_reference,
                   const std::string& run_folder, ReferenceData* keep, const SimulatorFactory& factory) {
+  const Scenario scenario = started_as(scenario_as_written, job.start);
+  check_scoring_window(scenario, measurement);
   auto simulator = factory(job.engine);
   if (!simulator) throw std::invalid_argument("engine '" + job.engine + "' is not in this build");
   const MetricSettings metrics_settings = metric_settings(scenario, measurement);
@@ -166,6 +193,7 @@ RunRecord run_job(const Scenario& scenario, const JobSpec& job, const Measuremen
   record.window = metrics_settings.window;
   record.output_rate_hz = settings.output_rate_hz;
   record.warnings = job.warnings;
+  record.start = job.start;
   // A window the caller chose (--window) on a start from rest: `impactbench run`'s case. A suite's or a
   // sweep's plan has put it in job.warnings already (a suite's also for a cut --duration): not twice.
   if (measurement.window_s && !settings.initial_state)

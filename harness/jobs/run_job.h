@@ -26,6 +26,10 @@ struct JobSpec {
   // What the plan warns about this run (warn_if_window_in_transient): copied into its record, so that a
   // warning stays with the results it is about (docs/results.md) rather than on stderr alone.
   std::vector<std::string> warnings;
+  // A member of an ensemble (docs/results.md, "Ensembles"): start K of N, run with frame 1's tip displaced by
+  // initial_displacement_offset_m (K x the ensemble's step) beyond the scenario's initial displacement. Start 0
+  // is the scenario as written, the run a single job is; its job id has no start.
+  EnsembleStart start;
 };
 
 // Which part of a run's series its folder keeps (series.csv.gz). The metrics need only the scoring window,
@@ -70,6 +74,14 @@ MetricSettings metric_settings(const Scenario& scenario, const Measurement& meas
 std::string warn_if_window_in_transient(const Scenario& scenario, const Measurement& measurement);
 // The same warning's text alone, nothing printed ("" when the window starts after the transient).
 std::string window_in_transient_warning(const Scenario& scenario, const Measurement& measurement);
+
+// A window too short to measure what a run reports is refused before anything runs (std::invalid_argument naming
+// --window or the scenario file's scoring_window_s, its value and what is allowed): one that holds no sensor
+// sample (shorter than 1 / sensor_rate_hz), or, with a motor, less than one motor period (impacts per cycle).
+void check_scoring_window(const Scenario& scenario, const Measurement& measurement);
+
+// The scenario as an ensemble's start runs it: frame 1's initial tip displacement offset.
+Scenario started_as(const Scenario& scenario, const EnsembleStart& start);
 
 // Runs one job and returns its record; with run_folder, writes summary.json, series.csv and events.csv
 // there. Throws ScenarioError / std::invalid_argument for bad input (nothing was run).

@@ -76,6 +76,9 @@ std::vector<Field> fields(const RunRecord& r) {
   out.push_back({"output_rate_hz", r.output_rate_hz, true});
   out.push_back({"scenario_file", r.scenario_file});
   out.push_back({"engine_version", r.engine_version});
+  out.push_back({"ensemble_start", static_cast<double>(r.start.index)});
+  out.push_back({"ensemble_starts", static_cast<double>(r.start.count)});
+  out.push_back({"initial_displacement_offset_m", r.start.initial_displacement_offset_m, true});
   return out;
 }
 

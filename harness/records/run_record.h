@@ -17,6 +17,14 @@
 
 namespace ib {
 
+// Which start of an ensemble a run is (docs/results.md, "Ensembles"): runs.csv's columns ensemble_start,
+// ensemble_starts and initial_displacement_offset_m.
+struct EnsembleStart {
+  int index = 0;                              // K, 0 .. count - 1
+  int count = 1;                              // N; 1: the run is no ensemble's member
+  double initial_displacement_offset_m = 0;   // added to frame 1's initial tip displacement [m]
+};
+
 struct RunRecord {
   std::string job_id;                  // unique within a suite; names the run's folder
   std::string scenario, scenario_file, engine, engine_version, law;
@@ -50,6 +58,7 @@ struct RunRecord {
   // What the plan warned about this run (a scoring window inside the start-up transient): kept with its
   // results (runs.jsonl and summary.json "warnings", the report's list), not on stderr alone.
   std::vector<std::string> warnings;
+  EnsembleStart start;                 // which start of an ensemble the run is (the last columns)
 };
 
 // runs.csv's contact_path: an engine's option "contact" (matched when not given, simulator_options.h);

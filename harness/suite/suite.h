@@ -34,6 +34,15 @@ struct SuiteSettings : MatrixSettings {
   // Set: reference runs are shared with other output folders through this one (harness/jobs/reference_cache.h):
   // a reference whose key is there is copied, not solved; one solved here is stored there.
   std::string reference_cache;
+  // An ensemble (docs/results.md, "Ensembles"): every engine configuration runs from engine_starts starts and
+  // every reference from reference_starts (at least engine_starts: the references' spread measures whether a
+  // case needs an ensemble at all); start K displaces frame 1's tip by K x displacement_step_m beyond the
+  // scenario's initial displacement, far below anything physical. 1 and 1: single runs, as before.
+  struct Ensemble {
+    int engine_starts = 1;
+    int reference_starts = 1;
+    double displacement_step_m = 1e-7;
+  } ensemble;
   // shard (set): its plan is recorded in DIR/shard.jsonl; a --resume of a folder holding another shard, or a
   // whole suite, is refused.
 };

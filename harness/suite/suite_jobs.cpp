@@ -127,6 +127,7 @@ static std::string missing_reference(const PlannedJob& job, const ReferenceData*
     record.time_step_s = job.spec.settings.time_step_s;
     record.options = options_text(job.spec.settings.options);
     record.warnings = job.spec.warnings;
+    record.start = job.spec.start;
   }
   record.job_id = job.id;
   record.chain_links = job.chain_links;

@@ -249,49 +249,52 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
                                   "the scenario has no [contact." + std::string(to_string(law)) + "] table"));
         continue;
       }
-      PlannedJob beam = make_job(index, JobKind::beam_reference, "reference", law, 0, part.reference_options);
-      beam.spec.warnings = warnings;
-      add_job(beam);
-      for (const std::string& engine : part.engines) {
-        if (engine == "reference") continue;
-        const auto engine_options = part.engine_options.count(engine) ? part.engine_options.at(engine)
-                                                                      : std::map<std::string, std::string>{};
-        const std::vector<double> steps = part.time_steps_s.empty() || part.step_search
-                                              ? std::vector<double>{0}
-                                              : part.time_steps_s;
-        const std::vector<std::string> paths =
-            part.contact_paths.empty() ? std::vector<std::string>{""} : part.contact_paths;
-        for (const std::string& path : paths)
-        for (double dt : steps) {
-          auto options = engine_options;
-          if (!path.empty()) options["contact"] = path;
-          PlannedJob job = make_job(index, JobKind::engine, engine, law, dt, options);
-          job.spec.warnings = warnings;
-          job.beam_reference = beam.id;
-          if (auto simulator = settings_.simulators.make(engine)) {
-            if (const auto links = simulator->chain_links(s, job.spec.settings)) {
-              auto chain_options = part.reference_options;
-              for (const auto& [name, value] : settings_.simulators.chain_reference_options(*links)) chain_options[name] = value;
-              PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options);
-              chain.spec.warnings = warnings;
-              chain.beam_reference = beam.id;
-              chain.chain_links = *links;
-              job.chain_reference = chain.id;
-              job.chain_links = *links;
-              add_job(chain);
+      // Each start of an ensemble is planned as a run of its own, compared with the references of its start.
+      for (int start = 0; start < part.ensemble.reference_starts; ++start) {
+        PlannedJob beam = make_job(index, JobKind::beam_reference, "reference", law, 0, part.reference_options, start);
+        beam.spec.warnings = warnings;
+        add_job(beam);
+        for (const std::string& engine : part.engines) {
+          if (engine == "reference" || start >= part.ensemble.engine_starts) continue;
+          const auto engine_options = part.engine_options.count(engine) ? part.engine_options.at(engine)
+                                                                        : std::map<std::string, std::string>{};
+          const std::vector<double> steps = part.time_steps_s.empty() || part.step_search
+                                                ? std::vector<double>{0}
+                                                : part.time_steps_s;
+          const std::vector<std::string> paths =
+              part.contact_paths.empty() ? std::vector<std::string>{""} : part.contact_paths;
+          for (const std::string& path : paths)
+          for (double dt : steps) {
+            auto options = engine_options;
+            if (!path.empty()) options["contact"] = path;
+            PlannedJob job = make_job(index, JobKind::engine, engine, law, dt, options, start);
+            job.spec.warnings = warnings;
+            job.beam_reference = beam.id;
+            if (auto simulator = settings_.simulators.make(engine)) {
+              if (const auto links = simulator->chain_links(s, job.spec.settings)) {
+                auto chain_options = part.reference_options;
+                for (const auto& [name, value] : settings_.simulators.chain_reference_options(*links)) chain_options[name] = value;
+                PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options, start);
+                chain.spec.warnings = warnings;
+                chain.beam_reference = beam.id;
+                chain.chain_links = *links;
+                job.chain_reference = chain.id;
+                job.chain_links = *links;
+                add_job(chain);
+              }
             }
+            if (part.step_search) {
+              RunSettings coarsest = job.spec.settings;  // the search's largest step on this scenario
+              coarsest.time_step_s = part.step_search->max_step_s;
+              check_run_size(s, coarsest);
+              if (planned.insert(job.id).second) step_groups_.push_back(job);  // its probes are planned by the search
+              continue;
+            }
+            const auto contact = options.find("contact");
+            if (contact != options.end() && contact->second == "native" && law != *first_law)
+              job.same_run_as = make_job(index, JobKind::engine, engine, *first_law, dt, options, start).id;
+            add_job(job);
           }
-          if (part.step_search) {
-            RunSettings coarsest = job.spec.settings;  // the search's largest step on this scenario
-            coarsest.time_step_s = part.step_search->max_step_s;
-            check_run_size(s, coarsest);
-            if (planned.insert(job.id).second) step_groups_.push_back(job);  // its probes are planned by the search
-            continue;
-          }
-          const auto contact = options.find("contact");
-          if (contact != options.end() && contact->second == "native" && law != *first_law)
-            job.same_run_as = make_job(index, JobKind::engine, engine, *first_law, dt, options).id;
-          add_job(job);
         }
       }
     }
@@ -299,8 +302,12 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
 }
 
 PlannedJob SuiteRunner::make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,
-                    const std::map<std::string, std::string>& options) const {
+                    const std::map<std::string, std::string>& options, int start) const {
   PlannedJob job;
+  const SuiteSettings::Ensemble& ensemble = parts_[scenario_part_[scenario]].ensemble;
+  if (start > 0 || ensemble.reference_starts > 1)
+    job.spec.start = {start, kind == JobKind::beam_reference ? ensemble.reference_starts : ensemble.engine_starts,
+                      start * ensemble.displacement_step_m};
   job.kind = kind;
   job.scenario = scenario;
   job.spec.scenario_path = scenarios_[scenario].source_path;
@@ -393,6 +400,7 @@ void SuiteRunner::describe_plan(int to_run) const {
 
 void SuiteRunner::add(const PlannedJob& job, std::set<std::string>& planned) {
   check_run_size(scenarios_[job.scenario], job.spec.settings);  // before anything runs: exit 2, not hours later
+  check_scoring_window(scenarios_[job.scenario], part_of(job).measurement);
   if (planned.insert(job.id).second) jobs_.push_back(job);
 }
 

@@ -139,7 +139,7 @@ class SuiteRunner : public SuiteSource {
   void plan_part(std::size_t part, std::set<std::string>& planned);
 
   PlannedJob make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,
-                      const std::map<std::string, std::string>& options) const;
+                      const std::map<std::string, std::string>& options, int start = 0) const;
 
   // Before a step search starts (its references run first), its probes to come: about a bisection of
   // the whole grid, each costing what a probe at the grid's steps costs on average. The search itself

@@ -107,6 +107,10 @@ nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
   s["stability_bounds"] = {m.verdicts.stability.displacement_bound_fraction_of_length,
                            m.verdicts.stability.penetration_bound_gaps, m.verdicts.stability.penetration_bound_floor_m,
                            m.verdicts.stability.energy_growth_tolerance};
+  if (settings.ensemble.reference_starts > 1)  // absent for single runs: older folders resume
+    s["ensemble"] = {{"engine_starts", settings.ensemble.engine_starts},
+                     {"reference_starts", settings.ensemble.reference_starts},
+                     {"displacement_step_m", settings.ensemble.displacement_step_m}};
   if (settings.step_search)
     s["step_search"] = {settings.step_search->min_step_s, settings.step_search->max_step_s,
                         settings.step_search->points_per_octave};
