@@ -60,8 +60,10 @@ def largest_error_interval(run, tolerances, need, against):
     such a single run)."""
     scored = significance.score_interval(run, tolerances, need, against)
     error = scored[2] if scored else None
-    return {"half_width": None if error is None else error.half_width,
+    interval = error is not None and error.n > 1
+    return {"half_width": error.half_width if interval else None,
             "interval_method": None if error is None else error.method,
+            "single_run_noise": error.half_width if error is not None and not interval else None,
             "verdict": significance.verdict(run, tolerances, need, against)}
 
 
@@ -263,11 +265,20 @@ def warning_lines(entries, most=10, unit="runs"):
 
 
 def error_text(largest):
-    """'frame 1 sensor peak -6.5 %' or 'impacts per cycle +0.12'."""
+    """'frame 1 sensor peak -6.5 %' or 'impacts per cycle +0.12'; with an ensemble's interval,
+    'frame 1 sensor peak -6.5 % ± 1.2 %'."""
     if not largest:
         return "no error defined"
     kind = next(k for name, _, _, k, _ in analysis.SCORED if name == largest["metric"])
-    return f"{largest['metric']} " + (percent(largest["error"]) if kind == "relative" else f"{largest['error']:+.3g}")
+    text = f"{largest['metric']} " + (percent(largest["error"]) if kind == "relative" else f"{largest['error']:+.3g}")
+    if largest.get("half_width") is not None:
+        text += " " + half_width_text(largest["half_width"], kind)
+    return text
+
+
+def half_width_text(half_width, kind):
+    """'± 1.2 %' (a relative error's) or '± 0.031'."""
+    return f"± {100 * half_width:.2g} %" if kind == "relative" else f"± {half_width:.2g}"
 
 
 def standing_line(s):

@@ -53,12 +53,13 @@ class Interval:
         out = {"mean": none_if_nan(self.mean), "half_width": self.half_width, "n": self.n, "method": self.method}
         if self.half_width is not None:
             out["standard_error"] = self.standard_error
-            out["degrees_of_freedom"] = self.dof
+            out["degrees_of_freedom"] = none_if_nan(self.dof)  # null: infinite (no scatter on either side)
         return out
 
 
 def none_if_nan(x):
-    return None if x is None or (isinstance(x, float) and math.isnan(x)) else x
+    """JSON's null for NaN and infinity (summary.json holds finite numbers only)."""
+    return None if x is None or (isinstance(x, float) and not math.isfinite(x)) else x
 
 
 def t_quantile(dof):

@@ -55,9 +55,11 @@ def case_need(suite, scenario, law, tolerances):
 
 
 def single_runs_note(need):
-    """'single runs: differences below ±X are not significant', X per metric that needed the ensemble."""
-    parts = [f"{name.replace('_acceleration_g', '').replace('_', ' ')} ±{metric_text(s['kind'], s['single_run_half_width'])}"
-             for name, s in need["spread"].items() if s["exceeds"]]
+    """'single runs: differences below ±6 % (frame 1 sensor peak) are not significant', per metric that
+    needed the ensemble."""
+    labels = {column: label for label, column, _, _, _ in analysis.SCORED}
+    parts = [f"±{metric_text(s['kind'], s['single_run_half_width'])} ({labels[column]})"
+             for column, s in need["spread"].items() if s["exceeds"]]
     return "single runs: differences below " + ", ".join(parts) + " are not significant"
 
 
