@@ -90,8 +90,10 @@ def attach(suite, members):
         run.ensemble = None
     for run in suite.runs:
         ensemble = ensembles_by_id[run["job_id"]]
-        references = {} if run["engine"] == "reference" else \
-            {against: reference_of(suite.runs, run, against) for against in analysis.AGAINST}
+        if run["engine"] != "reference":
+            references = {against: reference_of(suite.runs, run, against) for against in analysis.AGAINST}
+        else:  # the reference on a chain is measured against the beam; the beam's reference is itself
+            references = {"beam": reference_of(suite.runs, run, "beam")} if "modes=chain" in run["options"] else {}
         if ensemble.n <= 1 and all(r is None or ensembles_by_id[r["job_id"]].n <= 1 for r in references.values()):
             continue
         for _, column, _, _, _ in analysis.SCORED:

@@ -75,7 +75,8 @@ def t_interval(values, job_ids=()):
     mean = sum(values) / n
     if n == 1:
         return Interval(mean, 1, "single run", job_ids=tuple(job_ids))
-    variance = sum((v - mean) ** 2 for v in values) / (n - 1)
+    # equal values (a metric the starts do not change) have no scatter, not a rounding error's
+    variance = 0.0 if max(values) == min(values) else sum((v - mean) ** 2 for v in values) / (n - 1)
     se = math.sqrt(variance / n)
     return Interval(mean, n, f"Student t, {100 * CONFIDENCE:g} %", se, n - 1, t_quantile(n - 1) * se, tuple(job_ids))
 

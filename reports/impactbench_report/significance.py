@@ -36,7 +36,8 @@ def case_need(suite, scenario, law, tolerances):
         noise[error_column] = [half, interval.dof]
         if half > threshold:
             above.append(f"{label}: one start scatters ±{metric_text(kind, half)} (95 %, {interval.n} starts), above "
-                         f"{metric_text(kind, threshold)}, {ENSEMBLE_NEED_FRACTION_OF_TOLERANCE:g} of its tolerance")
+                         f"{metric_text(kind, threshold)} ({ENSEMBLE_NEED_FRACTION_OF_TOLERANCE:g} of its tolerance, "
+                         f"{metric_text(kind, tolerances[key])})")
     engine_runs = [r for r in suite.runs_of(scenario, law) if r["engine"] not in ("reference", "")]
     ran_once = bool(engine_runs) and all(len(suite.members.get(r["job_id"], [r])) <= 1 for r in engine_runs)
     need = {"needed": bool(above), "reference_starts": ensemble.n, "reference_job_ids": ensemble.job_ids,
