@@ -48,6 +48,7 @@ class Interval:
     dof: float = math.nan
     half_width: float = None
     job_ids: tuple = ()
+    engine_side: "Interval" = None  # an error against a single reference run: the engine ensemble's part alone
 
     def json(self):
         out = {"mean": none_if_nan(self.mean), "half_width": self.half_width, "n": self.n, "method": self.method}
@@ -123,8 +124,13 @@ def ensemble_error(engine, reference, kind):
             _, se, dof, half = combine(parts, value, "")
             interval = Interval(value, min(engine.n, reference.n), "", se, dof, half)
     if interval is None:
-        return Interval(value, min(engine.n, reference.n), f"single run ({n} starts)",
-                        job_ids=engine.job_ids + reference.job_ids)
+        error = Interval(value, min(engine.n, reference.n), f"single run ({n} starts)",
+                         job_ids=engine.job_ids + reference.job_ids)
+        if engine.half_width is not None:  # what two engines compared against the same reference run share
+            scale = 1 / abs(reference.mean) if kind == "relative" else 1.0
+            error.engine_side = Interval(value, engine.n, "the engine ensemble's alone (the reference ran once)",
+                                         engine.standard_error * scale, engine.dof, engine.half_width * scale)
+        return error
     method = ("Welch-Satterthwaite, delta method for the reference mean" if kind == "relative"
               else "Welch-Satterthwaite") + f", {100 * CONFIDENCE:g} % ({n} starts)"
     return Interval(value, interval.n, method, interval.standard_error, interval.dof, interval.half_width,
@@ -147,6 +153,8 @@ def compare(a, b):
     """Whether score a (an Interval of tolerance multiples) is below score b beyond the intervals:
     "better", "worse" or "tie" (Welch's interval of a - b contains 0); "single runs" when either has no
     interval (then the plain order decides, as for single runs it always has)."""
+    if a.half_width is None and b.half_width is None and a.engine_side and b.engine_side:
+        a, b = a.engine_side, b.engine_side  # both against one reference run, its value common to both
     difference = welch_difference(a, b)
     if difference is None:
         return "single runs"

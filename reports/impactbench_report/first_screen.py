@@ -51,7 +51,7 @@ def answer_rows(document):
             name = engines.display_name(run["engine"])
             if kind == "tuned":
                 name += " " + run["contact_path"]
-            cell = error_text(run["largest_error_vs_beam"]) + verdict_mark(run)
+            cell = error_text(run["largest_error_vs_beam"]) + single_run_mark(case, run) + verdict_mark(run)
             note = own_chain_note(run)
             if note:
                 notes.append(f"[{len(notes) + 1}] {case['scenario']}, {case['law']}, {name}: {note}")
@@ -105,6 +105,15 @@ def own_chain_note(run):
     if beam and own["metric"] == beam["metric"] and abs(own["error"] - beam["error"]) <= 0.1 * abs(beam["error"]) + 0.02:
         return ""
     return f"vs its own chain {error_text(own)} ✗ (the engine's contact and stepping alone)"
+
+
+def single_run_mark(case, run):
+    """' (single run (1 vs 12 starts))' where the error has no interval in a case where intervals exist."""
+    largest = run["largest_error_vs_beam"]
+    measured = (case.get("ensemble_need") or {}).get("needed") is not None or run.get("ensemble")
+    if not largest or largest.get("half_width") is not None or not measured:
+        return ""
+    return " (" + largest["interval_method"].split(";")[0] + ")"
 
 
 def verdict_mark(run):

@@ -83,7 +83,7 @@ def error_with_interval(run, column, against, noise):
         half, dof = noise[column]
         return Interval(value, 1, "single run; noise: the reference's single-start scatter", half / ensembles.t_quantile(dof),
                         dof, half)
-    return Interval(value, 1, "single run")
+    return interval if interval is not None else Interval(value, 1, "single run")
 
 
 def score_interval(run, tolerances, need=None, against="beam"):
@@ -96,7 +96,12 @@ def score_interval(run, tolerances, need=None, against="beam"):
     error = error_with_interval(run, column, against, noise_of(run, need))
     tolerance = tolerances[key]
     if error.half_width is None:
-        return Interval(multiple, 1, error.method), label, error
+        score = Interval(multiple, 1, error.method)
+        if error.engine_side is not None:
+            side = error.engine_side
+            score.engine_side = Interval(multiple, side.n, side.method, side.standard_error / tolerance, side.dof,
+                                         side.half_width / tolerance)
+        return score, label, error
     return (Interval(multiple, error.n, error.method, error.standard_error / tolerance, error.dof,
                      error.half_width / tolerance), label, error)
 
@@ -118,6 +123,14 @@ TEST = ("Welch's 95 % interval of the difference of the two configurations' scor
         "tolerance multiples) excludes 0")
 
 
+def like_with_like(a, b):
+    """Two engine ensembles scored against one single reference run compare on their own intervals only
+    where the reference's value cancels: the same metric, errors of the same sign."""
+    if a[0].half_width is not None or b[0].half_width is not None:
+        return True
+    return a[1] == b[1] and math.copysign(1, a[2].mean) == math.copysign(1, b[2].mean)
+
+
 def ties(best_run, others, tolerances, need):
     """(configurations [(name, run)] whose score is not distinguishable from best_run's, whether the best
     is significant: True, False, or None when no comparison had intervals)."""
@@ -128,6 +141,9 @@ def ties(best_run, others, tolerances, need):
     for name, run in others:
         other = score_interval(run, tolerances, need)
         if other is None:
+            continue
+        if not like_with_like(best, other):
+            decided.append(False)
             continue
         result = ensembles.compare(best[0], other[0])
         if result == "tie":

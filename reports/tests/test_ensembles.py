@@ -192,6 +192,20 @@ class Folders(unittest.TestCase):
         best = next(c for c in document["cases"][0]["configurations"] if c["configuration"] == "mujoco [contact=matched]")
         self.assertIsNone(best["best_run"]["largest_error_vs_beam"]["half_width"])  # a single run: no interval
 
+    def test_engine_ensembles_against_one_reference_run_compare_on_their_own_intervals(self):
+        """The reference ran once: no error gets an interval (its scatter is unmeasured), but two engines'
+        errors of one sign in one metric differ by their means alone (the reference's value cancels)."""
+        engines = {MUJOCO: 12, ODE: 12}
+        _, document, page = self.summary(starts=engines, spread={MUJOCO: 0.04, ODE: 0.04})
+        best = document["cases"][0]["best_tuned"]
+        self.assertEqual(best["tied_with"], ["ode [contact=matched]"])
+        largest = document["cases"][0]["configurations"][0]["best_run"]["largest_error_vs_beam"]
+        self.assertIsNone(largest["half_width"])
+        self.assertIn("(single run (12 vs 1 starts))", page)
+        _, document, _ = self.summary(starts=engines, spread={MUJOCO: 0.002, ODE: 0.002})
+        self.assertEqual((document["cases"][0]["best_tuned"]["tied_with"], document["cases"][0]["best_tuned"]["significant"]),
+                         ([], True))
+
     def test_single_runs_without_the_columns_give_the_report_of_single_runs(self):
         """A folder older than ensembles, and one whose every run has ensemble_starts 1: the same answer,
         each number its row's, no interval anywhere."""
