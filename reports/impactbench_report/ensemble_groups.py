@@ -69,31 +69,38 @@ def metric_interval(ensemble, column):
     return ensembles.t_interval([r.number(column) for r in runs], [r["job_id"] for r in runs])
 
 
-def reference_of(runs, run, against):
-    """The representative of the reference ensemble a run's errors `against` ("beam", "own chain") are
-    measured against, or None."""
+def reference_index(runs):
+    """{(scenario, law, chain links or "beam"): the reference run}: what reference_of looks up."""
+    index = {}
     for r in runs:
-        if r["engine"] != "reference" or r["scenario"] != run["scenario"] or r["law"] != run["law"]:
+        if r["engine"] != "reference":
             continue
-        if against == "beam" and r["options"] == "":
-            return r
-        if against == "own chain" and "modes=chain" in r["options"] and r.number("chain_links") == run.number("chain_links"):
-            return r
-    return None
+        if r["options"] == "":
+            index.setdefault((r["scenario"], r["law"], "beam"), r)
+        elif "modes=chain" in r["options"]:
+            index.setdefault((r["scenario"], r["law"], r.number("chain_links")), r)
+    return index
+
+
+def reference_of(index, run, against):
+    """The representative of the reference ensemble a run's errors `against` ("beam", "own chain") are
+    measured against (the beam's, or the chain's with the run's links), or None."""
+    return index.get((run["scenario"], run["law"], "beam" if against == "beam" else run.number("chain_links")))
 
 
 def attach(suite, members):
     """Every configuration's Ensemble on its representative (run.ensemble), where it or a reference it is
     measured against has more than one member; None elsewhere (single runs: the rows' own values)."""
     ensembles_by_id = {job_id: Ensemble(group) for job_id, group in members.items()}
+    index = reference_index(suite.runs)
     for run in suite.runs:
         run.ensemble = None
     for run in suite.runs:
         ensemble = ensembles_by_id[run["job_id"]]
         if run["engine"] != "reference":
-            references = {against: reference_of(suite.runs, run, against) for against in analysis.AGAINST}
+            references = {against: reference_of(index, run, against) for against in analysis.AGAINST}
         else:  # the reference on a chain is measured against the beam; the beam's reference is itself
-            references = {"beam": reference_of(suite.runs, run, "beam")} if "modes=chain" in run["options"] else {}
+            references = {"beam": reference_of(index, run, "beam")} if "modes=chain" in run["options"] else {}
         if ensemble.n <= 1 and all(r is None or ensembles_by_id[r["job_id"]].n <= 1 for r in references.values()):
             continue
         for _, column, _, _, _ in analysis.SCORED:

@@ -64,7 +64,13 @@ def verdict_cell(run):
     if run["engine"] == "reference":
         return "reference (beam)" if run.is_beam_reference else "reference (chain: no verdict)"
     judged = "own chain" if not math.isnan(run.number("vs_chain_reference_frame1_sensor_peak_relative_error")) else "beam"
-    return run["verdict"] + (f" (vs {judged})" if run.stable else "")
+    text = run["verdict"] + (f" (vs {judged})" if run.stable else "")
+    ensemble = run.ensemble
+    if ensemble is not None and ensemble.n > 1:  # member 0's verdict; the others' where they differ
+        unstable = ensemble.n - len(ensemble.stable_members)
+        if unstable:
+            text += f"; {unstable} of {ensemble.n} starts unstable"
+    return text
 
 
 def case_table(suite, scenario, law, experiment):
