@@ -35,22 +35,24 @@ def case_need(suite, scenario, law, tolerances):
                           "threshold": threshold, "exceeds": half > threshold}
         noise[error_column] = [half, interval.dof]
         if half > threshold:
-            above.append(f"{label}: one start scatters ±{metric_text(kind, half)} (95 %, {interval.n} starts), above "
-                         f"{metric_text(kind, threshold)} ({ENSEMBLE_NEED_FRACTION_OF_TOLERANCE:g} of its tolerance, "
-                         f"{metric_text(kind, tolerances[key])})")
+            above.append((f"±{metric_text(kind, half)} in {label}", metric_text(kind, threshold)))
     engine_runs = [r for r in suite.runs_of(scenario, law) if r["engine"] not in ("reference", "")]
     ran_once = bool(engine_runs) and all(len(suite.members.get(r["job_id"], [r])) <= 1 for r in engine_runs)
     need = {"needed": bool(above), "reference_starts": ensemble.n, "reference_job_ids": ensemble.job_ids,
             "rule": f"a single reference start's 95 % scatter in a verdict metric above "
                     f"{ENSEMBLE_NEED_FRACTION_OF_TOLERANCE:g} of that metric's tolerance",
             "spread": spread, "engines_ran_once": ran_once, "single_run_noise": noise}
+    labels = {column: label for label, column, _, _, _ in analysis.SCORED}
     if above:
-        need["why"] = "; ".join(above)
+        thresholds = ", ".join(dict.fromkeys(t for _, t in above))
+        need["why"] = (f"one reference start scatters {', '.join(a for a, _ in above)} (95 %, {ensemble.n} starts), "
+                       f"above {ENSEMBLE_NEED_FRACTION_OF_TOLERANCE:g} of the verdict tolerance: {thresholds}")
     else:
         largest = max(spread.items(), key=lambda kv: kv[1]["single_run_half_width"] / kv[1]["tolerance"], default=None)
-        need["why"] = ("every verdict metric's single-start scatter is below its threshold" +
-                       (f" (largest: {largest[0]} ±{metric_text(largest[1]['kind'], largest[1]['single_run_half_width'])})"
-                        if largest else ""))
+        need["why"] = ("one reference start scatters less than " f"{ENSEMBLE_NEED_FRACTION_OF_TOLERANCE:g} of the verdict "
+                       "tolerance in every verdict metric" +
+                       (f" (most: ±{metric_text(largest[1]['kind'], largest[1]['single_run_half_width'])} in "
+                        f"{labels[largest[0]]}, {ensemble.n} starts)" if largest else ""))
     need["note"] = single_runs_note(need) if above and ran_once else ""
     return need
 
