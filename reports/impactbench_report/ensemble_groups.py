@@ -22,11 +22,19 @@ def starts_of(run):
     return 1 if math.isnan(value) else int(value)
 
 
+def base_job_id(run):
+    """The job id of member 0: member K >= 1 is it + '/start=K'."""
+    job_id = run["job_id"]
+    suffix = f"/start={start_of(run)}"
+    return job_id[:-len(suffix)] if start_of(run) and job_id.endswith(suffix) else job_id
+
+
 def configuration_key(run):
-    """What an ensemble's members share; a run outside an ensemble is its own configuration."""
+    """What an ensemble's members share (with member 0's job id: two suite parts that ran the same
+    configuration stay two); a run outside an ensemble is its own configuration."""
     if starts_of(run) <= 1:
         return ("single", run["job_id"])
-    return (run["scenario"], run["law"], run["engine"], run.number("time_step_s"), run["options"])
+    return (run["scenario"], run["law"], run["engine"], run.number("time_step_s"), run["options"], base_job_id(run))
 
 
 @dataclass

@@ -111,6 +111,24 @@ class Intervals(unittest.TestCase):
         self.assertIn("delta method", error.method)
 
 
+    def test_the_relative_error_interval_covers_the_true_error_95_times_in_100(self):
+        """Twelve starts a side, each scattering 3 % about its true mean (frame 1 peaks near 8.1 and 8.8 g):
+        over 1000 seeded draws, the interval of engine mean / reference mean - 1 holds the true value in
+        95 % of them (binomial 99.9 % band: 92.7 to 97.3 %). Leaving out the reference's share (the delta
+        method's second term) covers about 83 %."""
+        import numpy as np
+        generator = np.random.default_rng(20261126)
+        true_engine, true_reference, n, draws = 8.1, 8.8, 12, 1000
+        covered = 0
+        for _ in range(draws):
+            engine = ensembles.t_interval(list(generator.normal(true_engine, 0.03 * true_engine, n)))
+            reference = ensembles.t_interval(list(generator.normal(true_reference, 0.03 * true_reference, n)))
+            error = ensembles.ensemble_error(engine, reference, "relative")
+            covered += abs(error.mean - (true_engine / true_reference - 1)) <= error.half_width
+        self.assertGreater(covered / draws, 0.927)
+        self.assertLess(covered / draws, 0.973)
+
+
 class Folders(unittest.TestCase):
     def setUp(self):
         self.folder = tempfile.mkdtemp(prefix="impactbench_ensembles_test_")
