@@ -329,6 +329,7 @@ h1 { font-size: 1.35em; margin: 0.3em 0; } .lede { font-size: 0.85em; margin: 0.
 #answer { font-size: 0.8em; } #answer td { white-space: nowrap; padding: 0.15em 0.4em; }
 #answer td:nth-child(3), #answer td:nth-child(7) { white-space: normal; }
 #answer td:nth-child(2), #answer td:nth-child(6) { text-align: left; } #answer th { font-size: 0.9em; }
+#answer td:nth-child(2), #answer td:nth-child(6) { white-space: normal; min-width: 9em; }  /* ties wrap */
 .notes { font-size: 0.75em; color: #444; margin: 0.2em 0; } .engines { font-size: 0.8em; margin: 0.4em 0; } .convention { font-size: 0.8em; color: #444; }
 p + table { display: block; overflow-x: auto; max-width: 100%; }
 p.case + table td { white-space: nowrap; } p.case + table td:last-child { white-space: normal; min-width: 30em; }

@@ -53,8 +53,19 @@ def contact_path(run):
 
 def signed_error(run, column, against="beam"):
     """A signed error of a run against the beam or its own chain (NaN where not defined); `against` may
-    also be the column prefix itself (vs_reference_, vs_chain_reference_)."""
-    return run.number(AGAINST.get(against, against) + column)
+    also be the column prefix itself (vs_reference_, vs_chain_reference_). Where the run stands for an
+    ensemble (or its reference does), the difference of the two ensembles' means (ensembles.py)."""
+    name = AGAINST.get(against, against) + column
+    ensemble = getattr(run, "ensemble", None)
+    if ensemble is not None and name in ensemble.errors:
+        return ensemble.errors[name].mean
+    return run.number(name)
+
+
+def error_interval(run, column, against="beam"):
+    """The ensembles.Interval of a signed error where the run has an ensemble statistic for it, else None."""
+    ensemble = getattr(run, "ensemble", None)
+    return None if ensemble is None else ensemble.errors.get(AGAINST.get(against, against) + column)
 
 
 def error(run, column, against="vs_reference_"):

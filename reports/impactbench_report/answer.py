@@ -5,14 +5,16 @@ one standing per engine; the settings behind every configuration; what ran, wher
 
 It is report/summary.json (schema: docs/summary-json.md). Every number of a run is copied from its row of
 runs.csv under the same column name beside the row's job_id; the few derived numbers (the score, the
-error against the experiment) are computed from such numbers by the formulas the schema states."""
+error against the experiment) are computed from such numbers by the formulas the schema states. Where a
+configuration ran from several starts (an ensemble), its run object is member 0's row and carries the
+ensemble's intervals beside it, each naming the job ids of the members it was computed from."""
 
 import math
 
-from . import analysis, data, engines, settings
+from . import analysis, data, engines, settings, significance
 from .tables import percent
 
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
 
 RUN_COLUMNS = ["time_step_s", "verdict", "reason", "same_run_as", "chain_links", "duration_s", "window_start_s",
                "window_end_s", "frame1_sensor_peak_acceleration_g", "frame2_sensor_peak_acceleration_g",
@@ -28,9 +30,10 @@ def value(run, column):
     return cell
 
 
-def run_entry(run, tolerances, experiment_peak_g=None):
+def run_entry(run, tolerances, experiment_peak_g=None, need=None):
     """One run as the summary names it: its job_id, its runs.csv values, its errors against each
-    reference, its score and (where the experiment measured one) its error against the measured peak."""
+    reference, its score and (where the experiment measured one) its error against the measured peak;
+    with an ensemble, its intervals (`ensemble`); `need`: the case's ensemble_need."""
     entry = {"job_id": run["job_id"], "configuration": run.config, "engine": run["engine"], "options": run["options"]}
     if run["engine"] != "reference":
         entry["contact_path"] = analysis.contact_path(run)
@@ -42,10 +45,42 @@ def run_entry(run, tolerances, experiment_peak_g=None):
     for against in analysis.AGAINST:
         multiple, label, error = analysis.score(run, tolerances, against)
         entry["largest_error_vs_" + against.replace(" ", "_")] = None if label is None else {
-            "metric": label, "error": error, "tolerance": tolerance_of(label, tolerances), "tolerance_multiple": multiple}
+            "metric": label, "error": error, "tolerance": tolerance_of(label, tolerances), "tolerance_multiple": multiple,
+            **largest_error_interval(run, tolerances, need, against)}
+    entry["ensemble"] = ensemble_entry(run)
     peak = run.number("frame1_sensor_peak_acceleration_g")
     if experiment_peak_g and not math.isnan(peak):
         entry["vs_experiment_frame1_peak_relative_error"] = (peak - experiment_peak_g) / experiment_peak_g
+    return entry
+
+
+def largest_error_interval(run, tolerances, need, against):
+    """The largest error's interval: half_width (null for a single run without a measured noise), method,
+    and the verdict against the tolerances over every scored error (within / beyond / undecided, null for
+    such a single run)."""
+    scored = significance.score_interval(run, tolerances, need, against)
+    error = scored[2] if scored else None
+    interval = error is not None and error.n > 1
+    return {"half_width": error.half_width if interval else None,
+            "interval_method": None if error is None else error.method,
+            "single_run_noise": error.half_width if error is not None and not interval else None,
+            "verdict": significance.verdict(run, tolerances, need, against)}
+
+
+def ensemble_entry(run):
+    """A run's ensemble: its members' job ids and starts, each metric's and each error's interval; null
+    when neither it nor its references ran from more than one start."""
+    ensemble = run.ensemble
+    if ensemble is None:
+        return None
+    entry = {"starts": ensemble.n, "job_ids": ensemble.job_ids,
+             "initial_displacement_offsets_m": [value(m, "initial_displacement_offset_m") for m in ensemble.members],
+             "unstable_members": [m["job_id"] for m in ensemble.members if m not in ensemble.stable_members],
+             "metrics": {c: i.json() | {"job_ids": list(i.job_ids)} for c, i in ensemble.metrics.items()
+                         if i.n > 0}}
+    for name, prefix in analysis.AGAINST.items():
+        entry["errors_vs_" + name.replace(" ", "_")] = {
+            c: i.json() | {"job_ids": list(i.job_ids)} for c, i in ensemble.errors.items() if c.startswith(prefix)}
     return entry
 
 
@@ -81,6 +116,7 @@ def case_answer(suite, steps, scenario, law, experiment, tolerances):
     runs = suite.runs_of(scenario, law)
     measured = experiment.get(scenario, {}).get("frame1_peak_acceleration_g")
     reference = suite.beam_reference(scenario, law)
+    need = significance.case_need(suite, scenario, law, tolerances)
     any_run = reference or next((r for r in runs if r["engine"]), None)
     case = {"scenario": scenario, "law": law,
             "duration_s": value(any_run, "duration_s") if any_run else None,
@@ -90,15 +126,15 @@ def case_answer(suite, steps, scenario, law, experiment, tolerances):
             "restitution": restitution(any_run, law),
             "experiment_frame1_peak_acceleration_g": measured,
             "reference": run_entry(reference, tolerances, measured) if reference else None,
-            "configurations": []}
-    best = {}
+            "ensemble_need": need, "configurations": []}
+    best, chosen_runs = {}, {}
     for config in analysis.configurations(runs):
         config_runs = analysis.runs_of_config(runs, config)
         chosen = analysis.best_run(config_runs, tolerances)
         entry = {"configuration": config, "runs": len(config_runs),
                  "unstable_runs": sum(r["verdict"] == "unstable" for r in config_runs),
                  "failed_runs": sum(r["verdict"] == "failed" for r in config_runs),
-                 "best_run": run_entry(chosen, tolerances, measured) if chosen else None,
+                 "best_run": run_entry(chosen, tolerances, measured, need) if chosen else None,
                  "step_limit": step_limit(suite, steps, scenario, law, config)}
         case["configurations"].append(entry)
         if chosen:
@@ -106,9 +142,16 @@ def case_answer(suite, steps, scenario, law, experiment, tolerances):
             incumbent = best.get(kind)
             if incumbent is None or ranking(chosen, tolerances) < ranking(incumbent[0], tolerances):
                 best[kind] = (chosen, entry)
+        if chosen:
+            chosen_runs[config] = chosen
     for kind in ("out_of_box", "tuned"):
         if kind in best:
-            case["best_" + kind] = {"configuration": best[kind][1]["configuration"], "job_id": best[kind][0]["job_id"]}
+            run, entry = best[kind]
+            others = [(c, r) for c, r in chosen_runs.items() if c != entry["configuration"]
+                      and (analysis.contact_path(r) == analysis.NATIVE) == (kind == "out_of_box")]
+            tied, significant = significance.ties(run, others, tolerances, need)
+            case["best_" + kind] = {"configuration": entry["configuration"], "job_id": run["job_id"],
+                                    "tied_with": tied, "significant": significant, "test": significance.TEST}
         else:
             ran = any((analysis.contact_path(r) == analysis.NATIVE) == (kind == "out_of_box")
                       for r in runs if r["engine"] not in ("reference", ""))
@@ -222,11 +265,20 @@ def warning_lines(entries, most=10, unit="runs"):
 
 
 def error_text(largest):
-    """'frame 1 sensor peak -6.5 %' or 'impacts per cycle +0.12'."""
+    """'frame 1 sensor peak -6.5 %' or 'impacts per cycle +0.12'; with an ensemble's interval,
+    'frame 1 sensor peak -6.5 % ± 1.2 %'."""
     if not largest:
         return "no error defined"
     kind = next(k for name, _, _, k, _ in analysis.SCORED if name == largest["metric"])
-    return f"{largest['metric']} " + (percent(largest["error"]) if kind == "relative" else f"{largest['error']:+.3g}")
+    text = f"{largest['metric']} " + (percent(largest["error"]) if kind == "relative" else f"{largest['error']:+.3g}")
+    if largest.get("half_width") is not None:
+        text += " " + half_width_text(largest["half_width"], kind)
+    return text
+
+
+def half_width_text(half_width, kind):
+    """'± 1.2 %' (a relative error's) or '± 0.031'."""
+    return f"± {100 * half_width:.2g} %" if kind == "relative" else f"± {half_width:.2g}"
 
 
 def standing_line(s):

@@ -40,7 +40,8 @@ class Record:
 
 
 class Run(Record):
-    """One row of runs.csv."""
+    """One row of runs.csv; `ensemble` (ensemble_groups.Ensemble) where it stands for an ensemble's members."""
+    ensemble = None
 
     @property
     def is_beam_reference(self):
@@ -54,7 +55,8 @@ class Run(Record):
 @dataclass
 class Suite:
     folder: str
-    runs: list = field(default_factory=list)
+    runs: list = field(default_factory=list)  # one run per configuration: an ensemble's member 0
+    members: dict = field(default_factory=dict)  # a run's job id -> its ensemble's members, by start
     _records: dict = None  # runs.jsonl by job id, read on first use
 
     def record(self, run):
@@ -164,7 +166,10 @@ def read_runs(folder):
                                    "too): one record per job (`impactbench suite ... --resume` repairs the folder)")
             seen[values["job_id"]] = line
             suite.runs.append(Run(values))
+    from . import ensemble_groups
+    suite.runs, suite.members = ensemble_groups.split(suite.runs)
     suite.runs.sort(key=lambda r: r["job_id"])
+    ensemble_groups.attach(suite, suite.members)
     return suite
 
 

@@ -51,15 +51,47 @@ def answer_rows(document):
             name = engines.display_name(run["engine"])
             if kind == "tuned":
                 name += " " + run["contact_path"]
-            cell = error_text(run["largest_error_vs_beam"]) + verdict_mark(run)
+            cell = error_text(run["largest_error_vs_beam"]) + single_run_mark(case, run) + verdict_mark(run)
             note = own_chain_note(run)
             if note:
                 notes.append(f"[{len(notes) + 1}] {case['scenario']}, {case['law']}, {name}: {note}")
                 cell += f" [{len(notes)}]"
-            row += [f"{name}, {step_text(run['runs_csv']['time_step_s'])}", cell, limit_text(entry["step_limit"]),
-                    "–" if cost is None else f"{cost:.3g}"]
+            row += [f"{name}, {step_text(run['runs_csv']['time_step_s'])}" + tie_text(case["best_" + kind], name),
+                    cell, limit_text(entry["step_limit"]), "–" if cost is None else f"{cost:.3g}"]
         rows.append(row)
+        line = ensemble_line(case)
+        if line:
+            notes.append(f"[{len(notes) + 1}] {case['scenario']}, {case['law']}: {line}")
+            rows[-1][0] += f" [{len(notes)}]"
     return rows, notes
+
+
+def configuration_name(configuration):
+    """'MuJoCo matched' for 'mujoco [contact=matched]' (the tuned column's words)."""
+    engine, _, options = configuration.partition(" [")
+    path = next((o.split("=", 1)[1] for o in options.rstrip("]").split(";") if o.startswith("contact=")), "matched")
+    return f"{engines.display_name(engine)} {path}"
+
+
+def tie_text(best, name):
+    """' = ODE matched (within intervals)' where the best is not distinguishable from others."""
+    tied = best.get("tied_with") or []
+    if not tied:
+        return ""
+    return " = " + " = ".join(configuration_name(c) for c in tied) + " (within intervals)"
+
+
+def ensemble_line(case):
+    """Whether the case needed an ensemble and why (its reference's scatter over its starts); '' when the
+    reference ran once (nothing measured: the report of single runs as it always was)."""
+    need = case.get("ensemble_need") or {}
+    if need.get("needed") is None:
+        return ""
+    text = (f"needed an ensemble ({need['why']})" if need["needed"]
+            else f"no ensemble needed over {need['reference_starts']} reference starts ({need['why']})")
+    if need.get("note"):
+        text += f"; the engines ran once: {need['note']}"
+    return text
 
 
 def own_chain_note(run):
@@ -75,9 +107,24 @@ def own_chain_note(run):
     return f"vs its own chain {error_text(own)} ✗ (the engine's contact and stepping alone)"
 
 
-def verdict_mark(run):
+def single_run_mark(case, run):
+    """' (single run (1 vs 12 starts))' where the error has no interval in a case where intervals exist."""
     largest = run["largest_error_vs_beam"]
-    return "" if not largest or largest["tolerance_multiple"] <= 1 else " ✗"
+    measured = (case.get("ensemble_need") or {}).get("needed") is not None or run.get("ensemble")
+    if not largest or largest.get("half_width") is not None or not measured:
+        return ""
+    return " (" + largest["interval_method"].split(";")[0] + ")"
+
+
+def verdict_mark(run):
+    """✗ beyond the tolerances; with intervals, ? where one straddles its tolerance (undecided)."""
+    largest = run["largest_error_vs_beam"]
+    if not largest:
+        return ""
+    decided = largest.get("verdict")
+    if decided is not None:
+        return {"beyond": " ✗", "undecided": " ?"}.get(decided, "")
+    return "" if largest["tolerance_multiple"] <= 1 else " ✗"
 
 
 def html_page_top(document, facts):
@@ -85,7 +132,7 @@ def html_page_top(document, facts):
              "<p class='lede'>For each case and contact law: the configuration that comes closest to the "
              "continuous-beam reference out of the box (the engine's own contact and defaults) and once tuned "
              "(the law matched in or injected into the engine), its largest headline error against the beam "
-             "(✗: beyond the verdict's tolerance), its largest stable time step and its CPU cost per simulated "
+             "(✗: beyond the verdict's tolerance; ?: an interval straddles it), its largest stable time step and its CPU cost per simulated "
              "second (CPU [s/s]). ≥: the largest step tried was stable. The configurations' settings and every run are below; report/summary.json holds the "
              "same, each number with the runs.csv row it came from.</p>",
              table(ANSWER_HEADER, answer_rows(document)[0], "answer"),
@@ -104,8 +151,23 @@ def html_page_top(document, facts):
                  f"{tolerances['impacts_per_cycle_difference']:g} in impacts per cycle or "
                  f"{100 * tolerances['log_decrement_relative_error']:g} % in the free decay's log decrement. "
                  "The best configuration is the one with the smallest largest error vs beam, measured in "
-                 "multiples of these tolerances, then the cheaper. References carry no accuracy verdict.</p>")
+                 "multiples of these tolerances, then the cheaper. References carry no accuracy verdict."
+                 + (ENSEMBLES_NOTE if has_ensembles(document) else "") + "</p>")
+
     return "\n".join(parts)
+
+
+ENSEMBLES_NOTE = (" Where a configuration ran from several starts (an ensemble), an error is the difference of the "
+                  "engine's and the reference's means ± its 95 % half-width (Welch-Satterthwaite; a metric's: Student "
+                  "t), and a configuration is best only where Welch's interval of the difference of its score and "
+                  "another's excludes 0; otherwise the row names the ties.")
+
+
+def has_ensembles(document):
+    """Whether any case's reference or best run ran from more than one start."""
+    return any((c.get("ensemble_need") or {}).get("needed") is not None or
+               any(e["best_run"] and e["best_run"].get("ensemble") for e in c["configurations"])
+               for c in document["cases"])
 
 
 def warnings_html(entries, unit="runs"):

@@ -35,17 +35,42 @@ CASE_METRICS = [(f"{label} [{unit}]", column, error, kind) for (label, column, e
 
 
 def error_cell(run, column, kind, against):
+    """A signed error: the row's, or with an ensemble the difference of the means ± its 95 % half-width."""
     value = analysis.signed_error(run, column, against)
     if math.isnan(value):
         return "–"
-    return percent(value) if kind == "relative" else f"{value:+.3g}"
+    text = percent(value) if kind == "relative" else f"{value:+.3g}"
+    interval = analysis.error_interval(run, column, against)
+    if interval is not None and interval.half_width is not None:
+        text += f" ± {100 * interval.half_width:.2g} %" if kind == "relative" else f" ± {interval.half_width:.2g}"
+    return text
+
+
+def metric_cell(run, column):
+    """A metric: the row's, or with an ensemble its mean ± its 95 % half-width (Student t)."""
+    ensemble = run.ensemble
+    interval = ensemble.metrics.get(column) if ensemble is not None else None
+    if interval is None or interval.n <= 1:
+        return fmt(run.number(column))
+    return f"{fmt(interval.mean)} ± {interval.half_width:.2g}"
+
+
+def starts(run):
+    """How many starts a configuration ran from (1 for a single run)."""
+    return 1 if run.ensemble is None else run.ensemble.n
 
 
 def verdict_cell(run):
     if run["engine"] == "reference":
         return "reference (beam)" if run.is_beam_reference else "reference (chain: no verdict)"
     judged = "own chain" if not math.isnan(run.number("vs_chain_reference_frame1_sensor_peak_relative_error")) else "beam"
-    return run["verdict"] + (f" (vs {judged})" if run.stable else "")
+    text = run["verdict"] + (f" (vs {judged})" if run.stable else "")
+    ensemble = run.ensemble
+    if ensemble is not None and ensemble.n > 1:  # member 0's verdict; the others' where they differ
+        unstable = ensemble.n - len(ensemble.stable_members)
+        if unstable:
+            text += f"; {unstable} of {ensemble.n} starts unstable"
+    return text
 
 
 def case_table(suite, scenario, law, experiment):
@@ -58,6 +83,9 @@ def case_table(suite, scenario, law, experiment):
                                                                    r.config, r.number("time_step_s")))
     metrics = [m for m in CASE_METRICS if any(not math.isnan(r.number(m[1])) for r in runs)]
     header = ["configuration", "time step [s]"]
+    with_starts = any(starts(r) > 1 for r in runs)  # a column only where an ensemble ran
+    if with_starts:
+        header.append("starts")
     for label, _, _, _ in metrics:
         header += [label, "vs beam", "vs own chain"]
     header += ["CPU [s per simulated s]", "verdict", "reason"]
@@ -66,12 +94,12 @@ def case_table(suite, scenario, law, experiment):
     if measured is not None:
         cells = sum(([fmt(measured), "", ""] if m[1] == "frame1_sensor_peak_acceleration_g" else ["", "", ""]
                      for m in metrics), [])
-        rows.append([EXPERIMENT_NOTE, ""] + cells + ["", "data, not a target", ""])
+        rows.append([EXPERIMENT_NOTE, ""] + ([""] if with_starts else []) + cells + ["", "data, not a target", ""])
     for run in runs:
         step = "adaptive" if run["engine"] == "reference" else fmt(run.number("time_step_s"))
-        row = [run.config, step]
+        row = [run.config, step] + ([str(starts(run))] if with_starts else [])
         for _, column, error_column, kind in metrics:
-            row += [fmt(run.number(column)), error_cell(run, error_column, kind, "beam"),
+            row += [metric_cell(run, column), error_cell(run, error_column, kind, "beam"),
                     error_cell(run, error_column, kind, "own chain")]
         row += [fmt(run.number("cpu_time_per_simulated_s"), 3), verdict_cell(run), run["reason"]]
         rows.append(row)
