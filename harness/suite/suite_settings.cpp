@@ -30,11 +30,18 @@ constexpr const char* kSettingsFile = "/suite.jsonl";
 // The keys of a settings record that choose which jobs a suite has (they are in the job ids), how a result
 // is judged rather than measured (the accuracy tolerances: a step search under other tolerances reuses the
 // probes it shares), or which files a run keeps (the series: a reference keeps its window whatever it says,
-// and a study's 1e-4 s runs keep none), as opposed to how every job is run and measured (the
-// result-deciding ones).
+// and a study's 1e-4 s runs keep none), or how many starts an ensemble has (a start is the same run in any
+// ensemble of the same step), as opposed to how every job is run and measured (the result-deciding ones).
 const std::set<std::string> kMatrixKeys = {"scenario_files", "engines",     "laws",               "time_steps_s",
                                            "contact_paths",  "engine_options", "step_search", "verdict_tolerances",
-                                           "series", "series_rate_hz"};
+                                           "series", "series_rate_hz", "ensemble"};
+
+// An ensemble's starts K >= 1 are the same runs in two parts only with the same displacement step (their job ids
+// name K, not the step); start 0, the scenario as written, is the same run whatever the ensemble.
+std::string differing_ensemble_step(const nlohmann::ordered_json& a, const nlohmann::ordered_json& b) {
+  if (!a.contains("ensemble") || !b.contains("ensemble")) return "";
+  return a["ensemble"]["displacement_step_m"] == b["ensemble"]["displacement_step_m"] ? "" : "ensemble displacement_step_m";
+}
 
 std::string file_digest(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -156,7 +163,8 @@ void SuiteRunner::check_and_record_settings(std::size_t this_part) {
     const std::set<std::string> theirs(part_jobs_[earlier].begin(), part_jobs_[earlier].end());
     for (const std::string& id : planned) {
       if (!theirs.count(id)) continue;
-      const std::string keys = differing_keys(settings_record(earlier), current, kMatrixKeys);
+      std::string keys = differing_keys(settings_record(earlier), current, kMatrixKeys);
+      if (keys.empty()) keys = differing_ensemble_step(settings_record(earlier), current);
       if (!keys.empty())
         throw std::invalid_argument("job " + id + " is planned by two parts with other settings (" + keys +
                                     " differ): give them other scenarios, laws or steps, or the same settings");
@@ -211,6 +219,7 @@ void SuiteRunner::check_and_record_settings(std::size_t this_part) {
     for (const SuitePart& part : parts) {
       if (!part.jobs.count(id)) continue;
       std::string keys = differing_keys(part.settings, current, kMatrixKeys);
+      if (keys.empty()) keys = differing_ensemble_step(part.settings, current);
       const auto s = scenario_of.find(id);
       if (s != scenario_of.end()) {
         const std::string& file = scenarios_[s->second].source_path;
