@@ -111,6 +111,28 @@ TEST_F(SuiteParts, PartsThatWouldDecideASharedJobDifferentlyAreRefusedBeforeAnyt
   EXPECT_EQ(test::line_count(root_ / "out" / "runs.jsonl"), 0u);
 }
 
+// An ensemble's start is the same run in any part of the same displacement step: start 0 is the single run of
+// a part without an ensemble; two ensembles of other steps would give one job id two runs.
+TEST_F(SuiteParts, AnEnsembleSharesItsStartsWithOtherPartsOfTheSameStepOnly) {
+  first_.out = second_.out = (root_ / "out").string();
+  first_.ensemble.engine_starts = 2;
+  first_.ensemble.reference_starts = 3;
+  SuiteSettings other_step = first_;
+  other_step.laws = {ContactLaw::newton, ContactLaw::hertz};
+  other_step.ensemble.displacement_step_m = 2e-7;
+  try {
+    run_suites({first_, other_step});
+    FAIL() << "two ensembles of other steps sharing their starts were accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("ensemble displacement_step_m"), std::string::npos) << error.what();
+  }
+  EXPECT_EQ(test::line_count(root_ / "out" / "runs.jsonl"), 0u);
+  const SuiteOutcome outcome = run_suites({first_, second_});
+  // hertz: 3 beam starts, 2 chain and 2 mirror starts; newton (the second part's alone): beam, chain, mirror
+  EXPECT_EQ(outcome.jobs_total, 10);
+  EXPECT_EQ(outcome.not_ok_recorded, 0);
+}
+
 TEST_F(SuiteParts, ResumingThePartsRunsNothingTwice) {
   first_.out = second_.out = (root_ / "out").string();
   run_suites({first_, second_});
