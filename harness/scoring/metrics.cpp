@@ -262,14 +262,19 @@ SensorSeries sensor_acceleration(const Trajectory& trajectory, int frame, double
   const std::vector<double>& velocity = trajectory.velocity_m_s[frame];
   // windows [start + k T, start + (k+1) T] that end by `end`, to a rounding error
   const auto windows = static_cast<long long>(std::floor((end_s - start_s) * sensor_rate_hz + kSampleTolerance));
+  if (windows <= 0) return out;
+  out.time_s.reserve(static_cast<std::size_t>(windows));
+  out.acceleration_m_s2.reserve(static_cast<std::size_t>(windows));
+  // each edge from k directly, so that no rounding accumulates over a long window; a window's end is the
+  // next one's start, the same number, read once
+  std::optional<double> v_lo = value_at(trajectory, velocity, start_s);
   for (long long k = 0; k < windows; ++k) {
-    // each edge from k directly, so that no rounding accumulates over a long window
-    const double lo = start_s + static_cast<double>(k) * T, hi = start_s + static_cast<double>(k + 1) * T;
-    const std::optional<double> v_lo = value_at(trajectory, velocity, lo);
-    const std::optional<double> v_hi = value_at(trajectory, velocity, hi);
-    if (!v_lo || !v_hi) continue;  // the series does not reach this window
-    out.time_s.push_back(start_s + (static_cast<double>(k) + 0.5) * T);
-    out.acceleration_m_s2.push_back((*v_hi - *v_lo) / T);
+    const std::optional<double> v_hi = value_at(trajectory, velocity, start_s + static_cast<double>(k + 1) * T);
+    if (v_lo && v_hi) {  // else the series does not reach this window
+      out.time_s.push_back(start_s + (static_cast<double>(k) + 0.5) * T);
+      out.acceleration_m_s2.push_back((*v_hi - *v_lo) / T);
+    }
+    v_lo = v_hi;
   }
   return out;
 }
