@@ -290,15 +290,16 @@ TEST(Metrics, FlattenNamesEveryFigureOnceWithItsUnit) {
   const std::set<std::string> dimensionless = {"impacts", "raw_onsets", "excitation_cycles",
                                                "impacts_per_cycle", "impacts_per_beat", "mean_restitution",
                                                "energy_change_relative", "frame1_log_decrement",
-                                               "frame2_log_decrement", "restitution_p50", "restitution_p95"};
+                                               "frame2_log_decrement", "restitution_p50", "restitution_p95",
+                                               "sensor_peak_phases_read"};
   std::set<std::string> names;
   for (const auto& [name, value] : flat) {
     EXPECT_TRUE(names.insert(name).second) << "duplicate " << name;
     EXPECT_TRUE(has_unit_suffix(name) || dimensionless.count(name)) << name;
   }
   // 24 figures, then the statistics beside the maxima (impact_statistics.h): 3 grid-phase figures per
-  // frame and two percentiles of each per-impact distribution
-  ASSERT_EQ(flat.size(), 24u + 6u + 2u * kImpactDistributions);
+  // frame, the phases read, and two percentiles of each per-impact distribution
+  ASSERT_EQ(flat.size(), 24u + 7u + 2u * kImpactDistributions);
 
   auto value = [&](const std::string& name) {
     for (const auto& [n, v] : flat)

@@ -63,6 +63,32 @@ TEST(SensorGridPhase, OnePhaseIsTheExperimentsGrid) {
   EXPECT_GE(phased.sensor_peak_over_grid_phases[0].max_g, m.frames[0].sensor_peak_acceleration_g);
 }
 
+// A grid whose edges fall between samples would read the velocity linearly across a contact: it is not
+// read. At 4096 Hz, two samples per window, phases 0 and 1/2 are read; a rate that is no multiple of f_s
+// reads the experiment's grid alone.
+TEST(SensorGridPhase, OnlyGridsWhoseEdgesAreSamplesAreRead) {
+  const Trajectory fine = pulse(32);
+  EXPECT_EQ(sensor_peak_over_grid_phases(fine, 0, 0, 0.1, kSensorRate, kPhases).phases_read, kPhases);
+
+  const double rate = 2 * kSensorRate, onset_s = 0.05 + 0.3 / rate, end_s = onset_s + 0.5 / kSensorRate;
+  Motion m;
+  m.v = [=](double t) { return kA * std::clamp(t - onset_s, 0.0, end_s - onset_s); };
+  const Trajectory coarse = sampled(rate, 0, static_cast<std::size_t>(0.1 * rate) + 1, m);
+  const GridPhaseSpread spread = sensor_peak_over_grid_phases(coarse, 0, 0, 0.1, kSensorRate, kPhases);
+  EXPECT_EQ(spread.phases_read, 2);
+  auto peak_g = [&](double phase) {
+    double peak = 0;
+    for (double a : sensor_acceleration(coarse, 0, 0, 0.1, kSensorRate, phase).acceleration_m_s2)
+      peak = std::max(peak, std::abs(a));
+    return peak / g;
+  };
+  EXPECT_NEAR(spread.mean_g, 0.5 * (peak_g(0) + peak_g(0.5)), 1e-12 * spread.max_g);
+  EXPECT_NE(peak_g(0), peak_g(0.5));
+
+  const Trajectory off_grid = sampled(3000, 0, 301, m);
+  EXPECT_EQ(sensor_peak_over_grid_phases(off_grid, 0, 0, 0.1, kSensorRate, kPhases).phases_read, 1);
+}
+
 // The shifted grids stay inside the window: one window fewer where the shift pushes the last past its end.
 TEST(SensorGridPhase, AShiftedGridEndsByTheWindowsEnd) {
   const Trajectory t = pulse(32);

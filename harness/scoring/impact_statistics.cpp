@@ -47,6 +47,15 @@ double true_peak_near(const Trajectory& t, int frame, std::size_t first, std::si
   return peak;
 }
 
+// Whether every edge start + k T of a sensor grid is a sample of the series (to a rounding error): then
+// its readings need no velocity between samples. Linear velocity across a contact that one sample interval
+// spans under-reads a window that cuts it, by several percent (docs/statistics.md): such grids are not read.
+bool edges_on_samples(const Trajectory& t, double grid_start_s, double sensor_rate_hz) {
+  if (t.output_rate_hz <= 0) return false;
+  const auto whole = [](double x) { return std::abs(x - std::round(x)) < 1e-6; };
+  return whole(t.output_rate_hz / sensor_rate_hz) && whole((grid_start_s - t.start_time_s) * t.output_rate_hz);
+}
+
 double peak_of(const SensorSeries& sensor) {
   if (sensor.acceleration_m_s2.empty()) return kNoImpactFigure;
   double peak = 0;
@@ -93,18 +102,22 @@ ImpactSamples impact_samples(const Trajectory& trajectory, const std::vector<Imp
 GridPhaseSpread sensor_peak_over_grid_phases(const Trajectory& trajectory, int frame, double start_s, double end_s,
                                              double sensor_rate_hz, int phases) {
   GridPhaseSpread spread;
-  if (phases < 1) return spread;
+  if (phases < 1 || sensor_rate_hz <= 0) return spread;
   double sum = 0;
+  int read = 0;
   for (int j = 0; j < phases; ++j) {
-    const double peak_g = peak_of(sensor_acceleration(trajectory, frame, start_s, end_s, sensor_rate_hz,
-                                                      static_cast<double>(j) / phases)) /
-                          kStandardGravity_m_s2;
+    const double phase = static_cast<double>(j) / phases;
+    if (j > 0 && !edges_on_samples(trajectory, start_s + phase / sensor_rate_hz, sensor_rate_hz)) continue;
+    const double peak_g =
+        peak_of(sensor_acceleration(trajectory, frame, start_s, end_s, sensor_rate_hz, phase)) / kStandardGravity_m_s2;
     if (std::isnan(peak_g)) return GridPhaseSpread{};  // a grid the series does not reach: no spread to speak of
     sum += peak_g;
-    spread.min_g = j == 0 ? peak_g : std::min(spread.min_g, peak_g);
-    spread.max_g = j == 0 ? peak_g : std::max(spread.max_g, peak_g);
+    spread.min_g = read == 0 ? peak_g : std::min(spread.min_g, peak_g);
+    spread.max_g = read == 0 ? peak_g : std::max(spread.max_g, peak_g);
+    ++read;
   }
-  spread.mean_g = sum / phases;
+  spread.mean_g = sum / read;
+  spread.phases_read = read;
   return spread;
 }
 

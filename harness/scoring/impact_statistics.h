@@ -48,13 +48,16 @@ ImpactSamples impact_samples(const Trajectory& trajectory, const std::vector<Imp
                              const std::array<SensorSeries, 2>& sensor, double sensor_rate_hz, double start_s,
                              double end_s);
 
-// The sensor peak of one frame read on P grids shifted by j T / P (j = 0 .. P-1, T = 1 / f_s) from the
-// experiment's: their mean, smallest and largest [g]. Phase 0 is runs.csv's frameF_sensor_peak_acceleration_g.
+// The sensor peak of one frame read on the grids shifted by j T / P (j = 0 .. P-1, T = 1 / f_s) from the
+// experiment's whose edges are all samples of the series: their mean, smallest and largest [g]. Phase 0,
+// always read, is runs.csv's frameF_sensor_peak_acceleration_g; the others where the series has a sample
+// every T / P or a divisor of it (at the default 4096 Hz: phases 0 and 1/2; from 8 x 2048 Hz: all 8).
 struct GridPhaseSpread {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   double mean_g = kNaN;
   double min_g = kNaN;
   double max_g = kNaN;
+  int phases_read = 0;
 };
 GridPhaseSpread sensor_peak_over_grid_phases(const Trajectory& trajectory, int frame, double start_s, double end_s,
                                              double sensor_rate_hz, int phases);

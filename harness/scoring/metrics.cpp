@@ -372,6 +372,7 @@ std::vector<std::pair<std::string, double>> flatten(const Metrics& m) {
     out.emplace_back(frame + "sensor_peak_phase_min_g", m.sensor_peak_over_grid_phases[f].min_g);
     out.emplace_back(frame + "sensor_peak_phase_max_g", m.sensor_peak_over_grid_phases[f].max_g);
   }
+  out.emplace_back("sensor_peak_phases_read", m.sensor_peak_over_grid_phases[0].phases_read);
   for (auto& figure : flatten_percentiles(m.impact_samples)) out.push_back(std::move(figure));
   return out;
 }

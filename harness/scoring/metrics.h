@@ -22,7 +22,8 @@ struct MetricSettings {
   double natural_frequency_hz = 0;      // frame 1's f_1; with the excitation, defines the beat period
   double sensor_rate_hz = 2048;         // accelerometer sample rate f_s [Hz]
   double merge_window_s = 0.002;        // onsets closer than this belong to one impact [s]
-  // the sensor peak is also read on this many grids shifted by fractions of 1/f_s (impact_statistics.h)
+  // the sensor peak is also read on grids shifted by j / P of 1/f_s, j = 0 .. P-1, those whose edges are
+  // samples of the series (impact_statistics.h)
   int sensor_grid_phases = 8;
 };
 
