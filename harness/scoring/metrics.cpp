@@ -96,10 +96,9 @@ double true_peak_acceleration(const Trajectory& trajectory, int frame, SampleRan
   return peak;
 }
 
-FrameMetrics frame_metrics(const Trajectory& trajectory, int frame, const MetricSettings& settings) {
+FrameMetrics frame_metrics(const Trajectory& trajectory, int frame, const MetricSettings& settings,
+                           const SensorSeries& sensor) {
   const SampleRange range = samples_in(trajectory, settings.window.start_s, settings.window.end_s);
-  const SensorSeries sensor = sensor_acceleration(trajectory, frame, settings.window.start_s,
-                                                  settings.window.end_s, settings.sensor_rate_hz);
   FrameMetrics m;
   // an empty window measures nothing: NaN, not a misleading zero
   m.sensor_peak_acceleration_g =
@@ -255,21 +254,27 @@ std::vector<Impact> merge_impacts(const std::vector<ContactEvent>& events, doubl
 }
 
 SensorSeries sensor_acceleration(const Trajectory& trajectory, int frame, double start_s, double end_s,
-                                 double sensor_rate_hz) {
+                                 double sensor_rate_hz, double grid_phase) {
   SensorSeries out;
   if (sensor_rate_hz <= 0 || end_s <= start_s) return out;
   const double T = 1 / sensor_rate_hz;
+  start_s += grid_phase * T;
   const std::vector<double>& velocity = trajectory.velocity_m_s[frame];
   // windows [start + k T, start + (k+1) T] that end by `end`, to a rounding error
   const auto windows = static_cast<long long>(std::floor((end_s - start_s) * sensor_rate_hz + kSampleTolerance));
+  if (windows <= 0) return out;
+  out.time_s.reserve(static_cast<std::size_t>(windows));
+  out.acceleration_m_s2.reserve(static_cast<std::size_t>(windows));
+  // each edge from k directly, so that no rounding accumulates over a long window; a window's end is the
+  // next one's start, the same number, read once
+  std::optional<double> v_lo = value_at(trajectory, velocity, start_s);
   for (long long k = 0; k < windows; ++k) {
-    // each edge from k directly, so that no rounding accumulates over a long window
-    const double lo = start_s + static_cast<double>(k) * T, hi = start_s + static_cast<double>(k + 1) * T;
-    const std::optional<double> v_lo = value_at(trajectory, velocity, lo);
-    const std::optional<double> v_hi = value_at(trajectory, velocity, hi);
-    if (!v_lo || !v_hi) continue;  // the series does not reach this window
-    out.time_s.push_back(start_s + (static_cast<double>(k) + 0.5) * T);
-    out.acceleration_m_s2.push_back((*v_hi - *v_lo) / T);
+    const std::optional<double> v_hi = value_at(trajectory, velocity, start_s + static_cast<double>(k + 1) * T);
+    if (v_lo && v_hi) {  // else the series does not reach this window
+      out.time_s.push_back(start_s + (static_cast<double>(k) + 0.5) * T);
+      out.acceleration_m_s2.push_back((*v_hi - *v_lo) / T);
+    }
+    v_lo = v_hi;
   }
   return out;
 }
@@ -294,15 +299,22 @@ void add_energy_metric(Metrics& m, const Trajectory& t, const MetricSettings& se
 
 Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& settings) {
   Metrics m;
+  const double start_s = settings.window.start_s, end_s = settings.window.end_s;
+  const std::array<SensorSeries, 2> sensor = {
+      sensor_acceleration(trajectory, 0, start_s, end_s, settings.sensor_rate_hz),
+      sensor_acceleration(trajectory, 1, start_s, end_s, settings.sensor_rate_hz)};
   for (int f = 0; f < 2; ++f) {
-    m.frames[f] = frame_metrics(trajectory, f, settings);
+    m.frames[f] = frame_metrics(trajectory, f, settings, sensor[f]);
+    m.sensor_peak_over_grid_phases[f] = sensor_peak_over_grid_phases(trajectory, f, start_s, end_s,
+                                                                     settings.sensor_rate_hz, settings.sensor_grid_phases);
     m.frames[f].log_decrement =
         settings.excitation_frequency_hz > 0
             ? kNaN
             : log_decrement(trajectory.time_s, trajectory.displacement_m[f], settings.window.start_s, settings.window.end_s);
   }
-  add_impact_metrics(m, merge_impacts(trajectory.events, settings.window.start_s, settings.window.end_s,
-                                      settings.merge_window_s));
+  const std::vector<Impact> impacts = merge_impacts(trajectory.events, start_s, end_s, settings.merge_window_s);
+  add_impact_metrics(m, impacts);
+  m.impact_samples = impact_samples(trajectory, impacts, sensor, settings.sensor_rate_hz, start_s, end_s);
   m.raw_onsets = onsets_in(trajectory.events, settings.window.start_s, settings.window.end_s);
   add_rate_metrics(m, settings);
   add_energy_metric(m, trajectory, settings);
@@ -318,7 +330,10 @@ MetricErrors compare_metrics(const Metrics& run, const Trajectory& run_trajector
     e.displacement_relative_rms_error[f] =
         displacement_relative_rms_error(run_trajectory, reference_trajectory, f, settings);
     e.log_decrement_relative_error[f] = relative_error(run.frames[f].log_decrement, reference.frames[f].log_decrement);
+    e.sensor_peak_phase_mean_relative_error[f] = relative_error(run.sensor_peak_over_grid_phases[f].mean_g,
+                                                                reference.sensor_peak_over_grid_phases[f].mean_g);
   }
+  e.impact_distribution_distances = distribution_distances(run.impact_samples, reference.impact_samples);
   e.contact_duration_relative_error =
       relative_error(run.contact_duration_mean_s, reference.contact_duration_mean_s);
   e.impacts_per_cycle_difference = std::isnan(run.impacts_per_cycle) || std::isnan(reference.impacts_per_cycle)
@@ -350,11 +365,20 @@ std::vector<std::pair<std::string, double>> flatten(const Metrics& m) {
   out.emplace_back("max_penetration_m", m.max_penetration_m);
   out.emplace_back("mean_impulse_n_s", m.mean_impulse_n_s);
   out.emplace_back("energy_change_relative", m.energy_change_relative);
+  // the statistics beside the maxima, after every column above (impact_statistics.h)
+  for (int f = 0; f < 2; ++f) {
+    const std::string frame = "frame" + std::to_string(f + 1) + "_";
+    out.emplace_back(frame + "sensor_peak_phase_mean_g", m.sensor_peak_over_grid_phases[f].mean_g);
+    out.emplace_back(frame + "sensor_peak_phase_min_g", m.sensor_peak_over_grid_phases[f].min_g);
+    out.emplace_back(frame + "sensor_peak_phase_max_g", m.sensor_peak_over_grid_phases[f].max_g);
+  }
+  out.emplace_back("sensor_peak_phases_read", m.sensor_peak_over_grid_phases[0].phases_read);
+  for (auto& figure : flatten_percentiles(m.impact_samples)) out.push_back(std::move(figure));
   return out;
 }
 
 std::vector<std::pair<std::string, double>> flatten(const MetricErrors& e, const std::string& prefix) {
-  return {
+  std::vector<std::pair<std::string, double>> out = {
       {prefix + "frame1_sensor_peak_relative_error", e.sensor_peak_relative_error[0]},
       {prefix + "frame2_sensor_peak_relative_error", e.sensor_peak_relative_error[1]},
       {prefix + "contact_duration_relative_error", e.contact_duration_relative_error},
@@ -363,7 +387,11 @@ std::vector<std::pair<std::string, double>> flatten(const MetricErrors& e, const
       {prefix + "frame2_displacement_relative_rms_error", e.displacement_relative_rms_error[1]},
       {prefix + "frame1_log_decrement_relative_error", e.log_decrement_relative_error[0]},
       {prefix + "frame2_log_decrement_relative_error", e.log_decrement_relative_error[1]},
+      {prefix + "frame1_sensor_peak_phase_mean_relative_error", e.sensor_peak_phase_mean_relative_error[0]},
+      {prefix + "frame2_sensor_peak_phase_mean_relative_error", e.sensor_peak_phase_mean_relative_error[1]},
   };
+  for (auto& figure : flatten(e.impact_distribution_distances, prefix)) out.push_back(std::move(figure));
+  return out;
 }
 
 }  // namespace ib

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "harness/scoring/impact_statistics.h"
 #include "model/scenario.h"
 #include "model/trajectory.h"
 
@@ -21,6 +22,9 @@ struct MetricSettings {
   double natural_frequency_hz = 0;      // frame 1's f_1; with the excitation, defines the beat period
   double sensor_rate_hz = 2048;         // accelerometer sample rate f_s [Hz]
   double merge_window_s = 0.002;        // onsets closer than this belong to one impact [s]
+  // the sensor peak is also read on grids shifted by j / P of 1/f_s, j = 0 .. P-1, those whose edges are
+  // samples of the series (impact_statistics.h)
+  int sensor_grid_phases = 8;
 };
 
 // One impact: contact episodes whose onsets follow each other within the merge window.
@@ -44,12 +48,14 @@ std::vector<Impact> merge_impacts(const std::vector<ContactEvent>& events, doubl
 // at t_k = start + (k + 1/2) T for every window [t_k - T/2, t_k + T/2] inside [start, end]. The tip
 // velocity is read from the series, linearly interpolated where the series has no sample at t_k +- T/2
 // (none is needed when the series rate is a multiple of f_s and starts on the sensor's grid).
+// grid_phase in [0, 1) shifts the grid by that fraction of T (t_k = start + (k + phase + 1/2) T): the
+// experiment's grid is one of many, and where an impact falls on it moves the peak (docs/statistics.md).
 struct SensorSeries {
   std::vector<double> time_s;
   std::vector<double> acceleration_m_s2;
 };
 SensorSeries sensor_acceleration(const Trajectory& trajectory, int frame, double start_s, double end_s,
-                                 double sensor_rate_hz);
+                                 double sensor_rate_hz, double grid_phase = 0);
 
 struct FrameMetrics {
   double sensor_peak_acceleration_g = 0;  // max |a_s| [g]
@@ -79,6 +85,10 @@ struct Metrics {
   // (E(end of window) - E(0)) / E(0) of the rig's mechanical energy: the energy drift of an unforced run
   // (with elastic contact and no damping it must stay 0). NaN with a motor or without energy data.
   double energy_change_relative = 0;
+  // Beside the maxima (impact_statistics.h): each frame's sensor peak over sensor_grid_phases grid phases,
+  // and each impact's own figures, of which runs.csv holds the median and 95th percentile.
+  std::array<GridPhaseSpread, 2> sensor_peak_over_grid_phases{};
+  ImpactSamples impact_samples;
 };
 
 Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& settings);
@@ -90,6 +100,8 @@ struct MetricErrors {
   double impacts_per_cycle_difference = 0;                  // run - ref [-]
   std::array<double, 2> displacement_relative_rms_error{};  // RMS(u - u_ref) / RMS(u_ref) over the window [-]
   std::array<double, 2> log_decrement_relative_error{};     // free decay [-]; NaN with a motor
+  std::array<double, 2> sensor_peak_phase_mean_relative_error{};  // of the mean over grid phases [-]
+  DistributionDistances impact_distribution_distances{};          // per-impact distributions (W1, KS)
 };
 MetricErrors compare_metrics(const Metrics& run, const Trajectory& run_trajectory, const Metrics& reference,
                              const Trajectory& reference_trajectory, const MetricSettings& settings);
