@@ -67,14 +67,14 @@ def answer_rows(document):
 
 
 def configuration_name(configuration):
-    """'MuJoCo matched' for 'mujoco [contact=matched]' (the tuned column's words)."""
+    """'<display name> matched' for '<engine> [contact=matched]' (the tuned column's words)."""
     engine, _, options = configuration.partition(" [")
     path = next((o.split("=", 1)[1] for o in options.rstrip("]").split(";") if o.startswith("contact=")), "matched")
     return f"{engines.display_name(engine)} {path}"
 
 
 def tie_text(best, name):
-    """' = ODE matched (within intervals)' where the best is not distinguishable from others."""
+    """' = <display name> matched (within intervals)' where the best is not distinguishable from others."""
     tied = best.get("tied_with") or []
     if not tied:
         return ""
