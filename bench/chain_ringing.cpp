@@ -10,7 +10,8 @@
 // Prints a table (Markdown) and, with --csv FILE, writes it as CSV. Nothing is asserted; CPU times are the
 // runs' own (RunResult::cost), to be read with the machine's load.
 //
-// Usage: chain_ringing [--links K] [--only NAME,NAME] [--csv FILE]
+// Usage: chain_ringing [--links K] [--only NAME,NAME] [--csv FILE] [--series DIR]
+// (--series: each resonance run's window as DIR/<simulator>_<damping>.csv: t, both tip accelerations)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -97,6 +98,20 @@ void free_decay(const std::string& simulator, const std::map<std::string, std::s
   }
 }
 
+std::string series_folder;  // --series
+
+void write_series(const std::string& name, const ib::Trajectory& t) {
+  std::string file = series_folder + "/" + name + ".csv";
+  for (char& c : file)
+    if (c == ' ' || c == '=') c = '_';
+  std::ofstream out(file);
+  out.precision(9);
+  out << "t_s,frame1_acceleration_m_s2,frame2_acceleration_m_s2,frame1_displacement_m,frame2_displacement_m\n";
+  for (std::size_t k = 0; k < t.time_s.size(); ++k)
+    out << t.time_s[k] << "," << t.acceleration_m_s2[0][k] << "," << t.acceleration_m_s2[1][k] << ","
+        << t.displacement_m[0][k] << "," << t.displacement_m[1][k] << "\n";
+}
+
 Row measure(const std::string& label, const std::string& simulator, const std::string& damping,
             const std::map<std::string, std::string>& options, int order, const double beam_rms[2]) {
   ib::Scenario s = ib::load_scenario(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/resonance.toml");
@@ -117,8 +132,10 @@ Row measure(const std::string& label, const std::string& simulator, const std::s
       row.rms_m_s2[f] = band_rms(r.trajectory.acceleration_m_s2[f], kSeriesRate_hz, kBandLow_hz, kBandHigh_hz);
       row.share[f] = beam_rms ? row.rms_m_s2[f] / beam_rms[f] : 1.0;
     }
+  if (!series_folder.empty() && r.status == ib::RunStatus::ok) write_series(label + "_" + damping, r.trajectory);
   free_decay(simulator, options, order, row);
-  std::fprintf(stderr, "%s (%s): %s, %.1f s CPU\n", label.c_str(), damping.c_str(), row.status.c_str(), row.cpu_s);
+  std::fprintf(stderr, "%s (%s): %s, %.1f s CPU, %zu impacts in the run\n", label.c_str(), damping.c_str(),
+               row.status.c_str(), row.cpu_s, r.trajectory.events.size());
   return row;
 }
 
@@ -132,8 +149,10 @@ int main(int argc, char** argv) {
     if (key == "--links") links = std::atoi(argv[i + 1]);
     else if (key == "--only") only = "," + std::string(argv[i + 1]) + ",";
     else if (key == "--csv") csv = argv[i + 1];
+    else if (key == "--series") series_folder = argv[i + 1];
     else {
-      std::fprintf(stderr, "chain_ringing: unknown argument %s; allowed: --links K, --only NAME,NAME, --csv FILE\n", argv[i]);
+      std::fprintf(stderr, "chain_ringing: unknown argument %s; allowed: --links K, --only NAME,NAME, --csv FILE, --series DIR\n",
+                   argv[i]);
       return 2;
     }
   }
