@@ -1,5 +1,5 @@
 // How much the chains ring like the beam (issue 31, item 4): for the beam reference, the reference on the
-// engines' K-link chain and every engine (matched Hertz contact, 5e-5 s), each with the chain's damping
+// engines' K-link chain and every engine of the build (matched Hertz contact, 5e-5 s), each with the chain's damping
 // modal and hinge (physics/link_chain.h):
 //  - the 60 to 90 Hz content of frame 1's and frame 2's tip acceleration (the second mode's band, 74 Hz) on
 //    the resonance case's default-study window (scenarios/paper/resonance.toml cut to 20 s, scored over the
@@ -166,8 +166,8 @@ int main(int argc, char** argv) {
     if (wanted("chain"))
       rows.push_back(measure("chain reference K=" + std::to_string(links), "reference", d,
                              ib::chain_reference_options_with_damping(links, damping), 2 * links, beam_rms));
-    for (const char* engine : {"mujoco", "ode", "bullet", "dart", "simbody"})
-      if (wanted(engine) && ib::make_simulator(engine))
+    for (const std::string& engine : ib::simulator_catalog().names)  // the engines of this build, the catalog's order
+      if (engine != "reference" && wanted(engine))
         rows.push_back(measure(engine, engine, d,
                                {{"contact", "matched"}, {"links", std::to_string(links)}, {ib::kChainDampingOption, d}},
                                2 * links, beam_rms));
