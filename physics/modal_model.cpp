@@ -65,7 +65,7 @@ ModalBasis frame_modes(const FrameSpec& frame, const ModeSelection& selection) {
     case ModeSet::beam: return CantileverModes(frame, selection.modes_per_frame).basis();
     case ModeSet::beam_paper:
       return CantileverModes(frame, selection.modes_per_frame, BeamShapes::paper_eq_2_5).basis();
-    case ModeSet::chain: return chain_modes(build_link_chain(frame, selection.chain_links));
+    case ModeSet::chain: return chain_modes(build_link_chain(frame, selection.chain_links, selection.chain_damping));
   }
   throw std::logic_error("unknown mode set");
 }

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "physics/contact_laws.h"
+#include "physics/link_chain.h"
 #include "physics/modal_basis.h"
 #include "model/scenario.h"
 
@@ -31,6 +32,7 @@ struct ModeSelection {
   ModeSet set = ModeSet::beam;
   int modes_per_frame = 10;   // N, for the beam mode sets
   int chain_links = 16;       // K, for the chain (all K modes are used)
+  ChainDamping chain_damping = ChainDamping::modal;  // the chain's damping, as the engine's (rig.md section 4)
 };
 
 // F_m(t) = amplitude cos(omega t).

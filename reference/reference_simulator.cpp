@@ -20,6 +20,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"modes", "mode set: beam (continuous beam, default), beam_paper (the paper's eq. 2.5 shapes), chain (the engines' K-link chain)"},
     {"n", "modes per frame for the beam mode sets, 1..200 (default 10)"},
     {"links", "links K per frame for the chain mode set, 1..1000 (default 16)"},
+    {kChainDampingOption, std::string("for the chain mode set, as the engines': ") + kChainDampingOptionHelp},
     {"rtol", "relative tolerance of the contact integrator, > 0 (default 1e-9)"},
     {"atol", "absolute tolerance on modal coordinates, > 0 (default 1e-12)"},
     {"grid", "free-flight scan points per period of the fastest mode, >= 4 (default 8)"},
@@ -193,6 +194,11 @@ ReferenceSettings reference_settings_from_options(const std::map<std::string, st
       s.modes.modes_per_frame = parse_integer(key, text, 1, 200);
     } else if (key == "links") {
       s.modes.chain_links = parse_integer(key, text, 1, 1000);
+    } else if (key == kChainDampingOption) {
+      const auto damping = chain_damping_from_string(text);
+      if (!damping)
+        throw std::invalid_argument("reference option " + key + "=" + text + ": allowed: " + kChainDampingValues);
+      s.modes.chain_damping = *damping;
     } else if (key == "rtol" || key == "atol") {
       const double v = parse_number(key, text, "a number > 0");
       require(v > 0, key, text, "a number > 0");
@@ -219,6 +225,12 @@ ReferenceSettings reference_settings_from_options(const std::map<std::string, st
 
 std::map<std::string, std::string> chain_reference_options(int links) {
   return {{"modes", "chain"}, {"links", std::to_string(links)}};
+}
+
+std::map<std::string, std::string> chain_reference_options_with_damping(int links, ChainDamping damping) {
+  auto options = chain_reference_options(links);
+  if (damping != ChainDamping::modal) options[kChainDampingOption] = to_string(damping);
+  return options;
 }
 
 std::unique_ptr<Simulator> make_reference_simulator() { return std::make_unique<ReferenceSimulator>(); }

@@ -122,6 +122,11 @@ constexpr const char* kDartSpringDashpot =
     "DART has no compliant rigid contact: the law's force from the tip states (matched = injected), explicit; at "
     "5e-5 s (12 steps per 0.6 ms contact) the restitution is within 0.5 % of the law's, so 5 %; the force is the "
     "published law's, tensile tail included (the chain reference here clips it): contacts up to 3 % longer";
+constexpr const char* kDartSpringDashpotPreResonance =
+    "as kDartSpringDashpot, and frame 1's sensor peak within 7 % of the chain reference's: DART's implicit joint "
+    "springs add omega h / 2 to every mode's zeta (0.0116 to mode 2 at 5e-5 s, four times the modal chain "
+    "damping's 0.003, docs/engines.md), which shortens the ringing the sensor peak catches (-5.2 %; -3.0 % against "
+    "the hinge-damped chain, whose mode 2 has zeta 0.032)";
 constexpr const char* kDartNewton =
     "named configuration length_unit=cm: in metres DART's bounce threshold (no bounce when e v <= 0.1 m/s) makes "
     "every impact of the rig plastic (e = 0.003 at resonance: a finding, tests/dart_single_impact_test.cpp); in "
@@ -187,7 +192,7 @@ constexpr AgreementRow kAgreement[] = {
     {"dart", "resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kDartSpringDashpot},
     {"dart", "resonance", kNewton, 2e-5, "matched", "length_unit=cm", {0.03, 0.05, na}, {0.03, 0.15, na}, kDartNewton},
     {"dart", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kHertzStep},
-    {"dart", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kDartSpringDashpot},
+    {"dart", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.07, 0.05}, {0.03, 0.10, 0.10}, kDartSpringDashpotPreResonance},
     {"dart", "pre_resonance", kNewton, 2e-5, "matched", "length_unit=cm", {0.03, 0.05, na}, {0.03, 0.10, na}, kDartNewton},
     {"dart", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"dart", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},

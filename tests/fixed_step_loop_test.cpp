@@ -1,6 +1,7 @@
 // The one fixed-step loop every engine runs (adapters/common/fixed_step_loop.h), driven by a scripted
 // engine whose tips follow a prescribed path: how many steps it takes, the order of an engine's calls
-// within a step, the loads it hands over (motor at t, the injected contact force), the divergence bound
+// within a step, the loads it hands over (motor at t, the injected contact force, the modal damping
+// torques from the hinge rates it reads), the divergence bound
 // taken from the run's settings, and the three ways a run stops early.
 #include "adapters/common/fixed_step_loop.h"
 
@@ -40,9 +41,19 @@ class ScriptedEngine final : public FixedStepEngine {
     calls.push_back("energy");
     return 0;
   }
+  // Hinge rates per step index when `hinge_rates` is set (the engine then wants the loop's damping torques).
+  bool read_hinge_rates(std::array<Eigen::VectorXd, 2>& rates_rad_s) override {
+    if (!hinge_rates) return false;
+    calls.push_back("rates");
+    rates_rad_s = hinge_rates(n_);
+    return true;
+  }
   void apply_loads(const StepLoads& loads) override {
     calls.push_back("apply");
     applied.push_back(loads);
+    // the torques are the loop's buffer, valid during this call: keep a copy
+    if (loads.hinge_damping_torques_n_m) damping_torques_n_m.push_back(*loads.hinge_damping_torques_n_m);
+    applied.back().hinge_damping_torques_n_m = nullptr;
   }
   std::optional<std::string> step() override {
     calls.push_back("step");
@@ -68,6 +79,8 @@ class ScriptedEngine final : public FixedStepEngine {
   std::vector<std::string> calls;
   std::vector<double> times_read_s;
   std::vector<StepLoads> applied;
+  std::vector<std::array<Eigen::VectorXd, 2>> damping_torques_n_m;
+  std::function<std::array<Eigen::VectorXd, 2>(long long n)> hinge_rates;
   std::optional<long long> read_trouble_at, step_trouble_at;
   double engine_contact_force_n = 0;
 
@@ -94,11 +107,11 @@ struct LoopRun {
   RigSpec rig;
   RunSettings settings;
   RunResult result;
-  explicit LoopRun(double duration_s) {
+  explicit LoopRun(double duration_s, ChainDamping damping = ChainDamping::modal) {
     scenario.duration_s = duration_s;
     settings.series_start_s = 0;
     settings.time_step_s = kStep_s;
-    rig = build_rig(scenario, ContactLaw::hertz, 2);
+    rig = build_rig(scenario, ContactLaw::hertz, 2, damping);
   }
   void run(ScriptedEngine& engine) { run_fixed_steps(engine, rig, scenario, settings, result); }
 };
@@ -232,6 +245,49 @@ TEST(FixedStepLoop, TheEnginesOwnContactForceIsRecordedWhenItMakesTheContact) {
   loop.run(engine);
   ASSERT_FALSE(loop.result.trajectory.events.empty());
   EXPECT_EQ(loop.result.trajectory.events.front().peak_force_n, 42);
+}
+
+// Hinge rates that change with the step, different in the two frames.
+std::array<Eigen::VectorXd, 2> rates_at(long long n) {
+  const double s = static_cast<double>(n + 1);
+  return {Eigen::Vector2d(0.1 * s, -0.2), Eigen::Vector2d(-0.05, 0.3 * s)};
+}
+
+// Modal damping: the rates read at the step's start (after the state is recorded, before the loads are
+// applied) give the torques -C theta' of each frame's own matrix, handed over with that step's loads.
+TEST(FixedStepLoop, ModalDampingTorquesAreMinusCTimesTheRatesAtTheStepsStart) {
+  LoopRun loop(3 * kStep_s);
+  ASSERT_EQ(loop.rig.frames[0].chain.modal_damping_n_m_s_per_rad.rows(), 2);
+  ScriptedEngine engine(at_rest);
+  engine.hinge_rates = rates_at;
+  loop.run(engine);
+  const std::vector<std::string> first_step = {"read", "energy", "rates", "apply", "step", "force"};
+  EXPECT_EQ(std::vector<std::string>(engine.calls.begin(), engine.calls.begin() + 6), first_step);
+  ASSERT_EQ(engine.damping_torques_n_m.size(), 3u);
+  for (long long n = 0; n < 3; ++n)
+    for (int f = 0; f < 2; ++f) {
+      const Eigen::MatrixXd& c = loop.rig.frames[f].chain.modal_damping_n_m_s_per_rad;
+      const Eigen::VectorXd expected = -c * rates_at(n)[f];
+      EXPECT_LT((engine.damping_torques_n_m[n][f] - expected).norm(), 1e-15 * expected.norm()) << n << " " << f;
+      EXPECT_LT(engine.damping_torques_n_m[n][f].dot(rates_at(n)[f]), 0);  // it dissipates
+    }
+}
+
+// No torques where the chain's damping is the hinge dampers (the engine's own), nor for an engine that
+// applies the damping matrix itself (read_hinge_rates false); the rates are not even asked for the former.
+TEST(FixedStepLoop, NoDampingTorquesForHingeDampingOrAnEngineThatAppliesItsOwn) {
+  LoopRun hinge(3 * kStep_s, ChainDamping::hinge);
+  ScriptedEngine asks(at_rest);
+  asks.hinge_rates = rates_at;
+  hinge.run(asks);
+  EXPECT_TRUE(asks.damping_torques_n_m.empty());
+  for (const std::string& call : asks.calls) EXPECT_NE(call, "rates");
+
+  LoopRun modal(3 * kStep_s);
+  ScriptedEngine own(at_rest);  // no hinge_rates: read_hinge_rates returns false
+  modal.run(own);
+  EXPECT_EQ(own.applied.size(), 3u);
+  EXPECT_TRUE(own.damping_torques_n_m.empty());
 }
 
 TEST(FixedStepLoop, TheDivergenceBoundIsTheRunSettings) {

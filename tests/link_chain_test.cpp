@@ -1,10 +1,14 @@
-// The linked-body chain of rig.md section 4: its modes converge to the beam's, its damping is
-// stiffness-proportional with exactly zeta on mode 1.
+// The linked-body chain of rig.md section 4: its modes converge to the beam's; its damping gives every
+// mode the beam's zeta (modal) or is stiffness-proportional with exactly zeta on mode 1 (hinge), as the
+// eigenvalues of the linearised damped chain say.
 #include "physics/link_chain.h"
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "physics/beam_modes.h"
 #include "physics/modal_model.h"
@@ -38,9 +42,67 @@ TEST(LinkChain, HigherModesAndTipValuesConvergeToo) {
   }
 }
 
+// The damped chain's free motion theta' = A theta with A = [[0, I], [-M^-1 K, -M^-1 C]]: each mode is a pair
+// lambda = -zeta omega +- i omega sqrt(1 - zeta^2), so omega = |lambda| and zeta = -Re lambda / |lambda|.
+// The underdamped pairs' (omega, zeta), ascending in omega.
+std::vector<std::pair<double, double>> damped_modes(const LinkChain& chain) {
+  const ChainMatrices m = linearise(chain);
+  const int k = chain.links;
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * k, 2 * k);
+  a.topRightCorner(k, k).setIdentity();
+  a.bottomLeftCorner(k, k) = -m.mass.ldlt().solve(m.stiffness);
+  a.bottomRightCorner(k, k) = -m.mass.ldlt().solve(m.damping);
+  const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();
+  std::vector<std::pair<double, double>> modes;
+  for (const auto& l : lambda)
+    if (l.imag() > 0) modes.emplace_back(std::abs(l), -l.real() / std::abs(l));
+  std::sort(modes.begin(), modes.end());
+  return modes;
+}
+
+// Modal damping, C = M Phi diag(2 zeta omega_n) Phi^T M: every mode of the damped chain has the beam's zeta
+// and its undamped frequency (classical damping leaves |lambda| = omega_n); tolerances: the nonsymmetric
+// eigensolver's rounding on a matrix whose entries span about 1e8 (seen up to 1.4e-8 relative at K = 16).
+TEST(LinkChain, ModalDampingGivesEveryModeTheBeamsZeta) {
+  for (int links : {2, 8, 16}) {
+    const FrameSpec frame = default_rig().frames[0];
+    const LinkChain chain = build_link_chain(frame, links, ChainDamping::modal);
+    EXPECT_EQ(chain.joint_damping_n_m_s_per_rad, 0);  // no hinge dampers
+    const ModalBasis modes = chain_modes(chain);
+    const auto damped = damped_modes(chain);
+    ASSERT_EQ(static_cast<int>(damped.size()), links);
+    for (int n = 0; n < links; ++n) {
+      EXPECT_NEAR(damped[n].second, frame.damping_ratio, 1e-9) << "K = " << links << ", mode " << n + 1;
+      EXPECT_NEAR(damped[n].first / modes.omega_rad_s[n], 1.0, 1e-7) << "K = " << links << ", mode " << n + 1;
+      EXPECT_EQ(modes.zeta[n], frame.damping_ratio);
+    }
+    // Phi^T C Phi = diag(2 zeta omega_n) in closed form: C is symmetric and positive definite
+    const Eigen::MatrixXd& c = chain.modal_damping_n_m_s_per_rad;
+    EXPECT_EQ((c - c.transpose()).norm(), 0);
+    EXPECT_GT(c.ldlt().vectorD().minCoeff(), 0);
+  }
+}
+
+// Hinge damping, c_theta in every hinge: the damped chain's modes have zeta omega_n / omega_1.
+TEST(LinkChain, HingeDampingGivesModeNZetaOmegaNOverOmegaOne) {
+  const FrameSpec frame = default_rig().frames[0];
+  const LinkChain chain = build_link_chain(frame, 8, ChainDamping::hinge);
+  EXPECT_EQ(chain.modal_damping_n_m_s_per_rad.size(), 0);
+  const ModalBasis modes = chain_modes(chain);
+  const auto damped = damped_modes(chain);
+  ASSERT_EQ(damped.size(), 8u);  // all underdamped at K = 8 (the fastest: zeta 0.85)
+  for (int n = 0; n < 8; ++n) {
+    const double expected = frame.damping_ratio * modes.omega_rad_s[n] / modes.omega_rad_s[0];
+    EXPECT_NEAR(damped[n].second / expected, 1.0, 1e-7) << "mode " << n + 1;  // the eigensolver's rounding
+    EXPECT_NEAR(modes.zeta[n] / expected, 1.0, 1e-12) << "mode " << n + 1;
+  }
+  EXPECT_NEAR(damped[1].second / frame.damping_ratio, modes.omega_rad_s[1] / modes.omega_rad_s[0], 1e-6);
+  EXPECT_GT(damped[1].second, 9 * frame.damping_ratio);  // mode 2 (about 74 Hz against 7 Hz): ten times zeta
+}
+
 TEST(LinkChain, DampingIsStiffnessProportionalWithZetaOnModeOne) {
   const FrameSpec frame = default_rig().frames[0];
-  const LinkChain chain = build_link_chain(frame, 8);
+  const LinkChain chain = build_link_chain(frame, 8, ChainDamping::hinge);
   const ModalBasis modes = chain_modes(chain);
   EXPECT_NEAR(modes.zeta[0], frame.damping_ratio, 1e-15);
   EXPECT_NEAR(chain.first_omega_rad_s, modes.omega_rad_s[0], 1e-12 * modes.omega_rad_s[0]);

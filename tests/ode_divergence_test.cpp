@@ -25,8 +25,8 @@ namespace ode_divergence_test {
 
 namespace fs = std::filesystem;
 
-// 13 times the explicit springs' limit (7.5e-5 s for the K = 8 chains): the fastest chain mode grows
-// about tenfold per step.
+// 6 times the explicit springs' limit of the K = 8 chains (1.6e-4 s with the default modal damping; 13 times
+// the 7.5e-5 s of hinge damping): the fastest chain mode grows about tenfold per step.
 constexpr double kDivergingStep_s = 1e-3;
 
 double diagnostic(const RunResult& r, const std::string& name) {
@@ -50,9 +50,15 @@ TEST(OdeDivergence, ExplicitSpringsBeyondTheirLimitEndUnstableWithAReason) {
   EXPECT_NE(r.reason.find("tip displacement |u| = "), std::string::npos) << r.reason;
   EXPECT_NE(r.reason.find("at t = "), std::string::npos) << r.reason;
   EXPECT_NE(r.reason.find("explicit hinge springs are stable only below a step of"), std::string::npos) << r.reason;
+  // modal damping: zeta = 0.003 in every mode, the limit 2 (sqrt(1 + zeta^2) - zeta) / omega_max, just below
+  // 2 / omega_max = 1.62e-4 s; hinge damping: far below it, the fastest modes are heavily damped (zeta 0.85)
   const double limit = diagnostic(r, "explicit_spring_step_limit_s");
-  EXPECT_GT(limit, 5e-5);
-  EXPECT_LT(limit, 1.6e-4);  // below 2 / omega_max: the fastest modes are heavily damped
+  EXPECT_GT(limit, 1.55e-4);
+  EXPECT_LT(limit, 1.62e-4);
+  settings.options = {{"springs", "explicit"}, {"chain_damping", "hinge"}};
+  const RunResult hinge = make_ode_simulator()->run(s, settings);
+  EXPECT_EQ(hinge.status, RunStatus::unstable);
+  EXPECT_NEAR(diagnostic(hinge, "explicit_spring_step_limit_s"), 7.5e-5, 0.3e-5);
   EXPECT_LT(r.cost.steps, 100) << "stopped within a few steps of the divergence";
   const Judgement verdict = judge_stability(s, r, VerdictSettings{});
   EXPECT_EQ(verdict.verdict, Verdict::unstable);
@@ -63,8 +69,9 @@ TEST(OdeDivergence, ExplicitSpringsBeyondTheirLimitEndUnstableWithAReason) {
   EXPECT_EQ(implicit.status, RunStatus::ok) << implicit.reason;
 }
 
-// The adapter's rig without the adapter's guard: explicit springs stepped until ODE gives up. ODE's
-// internal assertion on the non-finite orientation aborts the process.
+// The adapter's rig without the adapter's guard: explicit springs and hinge dampers (chain_damping=hinge:
+// the torques of add_explicit_spring_torques alone) stepped until ODE gives up. ODE's internal assertion on
+// the non-finite orientation aborts the process.
 class UnguardedOde final : public Simulator {
  public:
   std::string name() const override { return "ode_unguarded"; }
@@ -72,7 +79,7 @@ class UnguardedOde final : public Simulator {
   std::vector<std::pair<std::string, std::string>> option_help() const override { return {}; }
   RunResult run(const Scenario& s, const RunSettings& settings) override {
     ode::ensure_initialised();
-    const RigSpec rig = build_rig(s, settings.law, default_links(s));
+    const RigSpec rig = build_rig(s, settings.law, default_links(s), ChainDamping::hinge);
     ode::OdeModelSettings model;
     model.time_step_s = settings.time_step_s;
     model.springs = ode::SpringPath::explicit_torques;

@@ -25,14 +25,21 @@ RunResult run_ode(const Scenario& s, double h, const std::string& springs) {
   return make_ode_simulator()->run(s, free_decay_settings(h, {{"springs", springs}}));
 }
 
-// The estimator itself, on the reference's run of the same chain: it must find the chain's mode.
+// The estimator itself, on the reference's run of the same chain: it must find the chain's mode. With the
+// hinge damping the higher modes have died out (zeta_n >= 0.03) when it starts measuring: the frequency within
+// 1e-4. With the modal damping (the default, what the engines run) they ring on at zeta = 0.003, mode 2 with
+// 2e-4 of mode 1's amplitude from the tip-load shape, and shift the refined peaks: within 2e-4 (seen 1.1e-4).
 TEST(OdeFreeDecay, TheEstimatorFindsTheReferenceChainsMode) {
   const Scenario s = contact_free_decay(false);
-  const RunResult r = testing::reference_on_chain(s, free_decay_settings(0, {}), default_links(s));
-  const Decay d = measure_decay(r.trajectory, kMeasureFrom_s);
   const ChainMode mode = chain_mode(s);
-  EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, 1e-4);
-  EXPECT_NEAR(d.damping_ratio / mode.zeta, 1, 0.01);
+  for (ChainDamping damping : {ChainDamping::hinge, ChainDamping::modal}) {
+    RunSettings settings = free_decay_settings(0, {});
+    settings.options = chain_reference_options_with_damping(default_links(s), damping);
+    const RunResult r = make_reference_simulator()->run(s, settings);
+    const Decay d = measure_decay(r.trajectory, kMeasureFrom_s);
+    EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, damping == ChainDamping::hinge ? 1e-4 : 2e-4) << to_string(damping);
+    EXPECT_NEAR(d.damping_ratio / mode.zeta, 1, 0.01) << to_string(damping);
+  }
 }
 
 // Implicit springs at h = 5e-6 s: their numerical damping omega_1 h / 2 is 1.1e-4 (frame 1) and

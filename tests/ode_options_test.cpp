@@ -58,7 +58,7 @@ TEST(OdeOptions, EveryOptionIsDescribedAndTheRegistryHasTheEngine) {
     names.insert(name);
     EXPECT_FALSE(description.empty()) << name;
   }
-  EXPECT_EQ(names, (std::set<std::string>{"contact", "springs", "stepper", "iterations", "links"}));
+  EXPECT_EQ(names, (std::set<std::string>{"contact", "springs", "stepper", "iterations", "links", "chain_damping"}));
 }
 
 TEST(OdeOptions, BadValuesAreErrorsThatSayWhatIsAllowed) {

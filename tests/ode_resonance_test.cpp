@@ -2,7 +2,9 @@
 // the impacting regime (impacts per motor cycle) and frame 1's sensor peak acceleration.
 //
 // Measured (reference on the K = 8 chain): the impacts settle by about 6 s into one impact every two
-// motor cycles (0.50 per cycle) with frame 1's sensor peak near 7.5 g, and stay there through 30 s. So
+// motor cycles (0.50 per cycle) with frame 1's sensor peak near 7.9 g (7.5 g with the hinge chain damping,
+// whose fast modes stop ringing sooner; 8.6 g with the law clipped as ODE's contact is), and stay there
+// through 30 s. So
 // the run is cut to 12 s and scored over its last 6 s (42 cycles).
 //
 // The step is 2e-5 s: ODE's soft contact (backward Euler, omega h = 0.10 for the contact) then loses
@@ -28,7 +30,11 @@ TEST(OdeResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
   Scenario s = testing::settled_resonance();
   // ODE's contact only pushes: the reference runs the same, clipped, law (tests/ode_single_impact_test.cpp)
   s.contact.viscoelastic->clip_tension = true;
-  const testing::ResonanceComparison c = testing::compare_resonance(*make_ode_simulator(), s, 2e-5, {});
+  // Explicit springs: stable at 2e-5 s (limit 1.6e-4 s with the modal chain damping) and, unlike the default
+  // implicit ones, without numerical damping. The implicit springs add omega h / 2 to every mode's zeta, 0.0046
+  // to mode 2's 0.003 at 2e-5 s, which shortens the ringing the sensor peak catches: -11.6 % (docs/engines.md).
+  const testing::ResonanceComparison c =
+      testing::compare_resonance(*make_ode_simulator(), s, 2e-5, {{"springs", "explicit"}});
   const RunResult& run = c.run;
   ASSERT_EQ(run.status, RunStatus::ok) << run.reason;
   const Metrics &reference = c.reference, &ode = c.engine;

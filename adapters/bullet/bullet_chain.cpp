@@ -100,6 +100,10 @@ class MultiBodyChain final : public BulletChain {
       body_->addJointTorque(j, -k * body_->getJointPos(j) - c * body_->getJointVel(j));
   }
 
+  void add_joint_torques(const Eigen::VectorXd& torques_n_m) override {
+    for (int j = 0; j < body_->getNumLinks(); ++j) body_->addJointTorque(j, torques_n_m[j]);
+  }
+
   void add_tip_force_x(double force_n) override {
     const int last = body_->getNumLinks() - 1;
     const btVector3 force(force_n, 0, 0);
@@ -254,6 +258,14 @@ class ConstraintChain final : public BulletChain {
   }
 
   void add_joint_spring_torques() override {}
+
+  void add_joint_torques(const Eigen::VectorXd& torques_n_m) override {
+    for (std::size_t j = 0; j < bodies_.size(); ++j) {
+      const btVector3 torque(0, torques_n_m[static_cast<Eigen::Index>(j)], 0);  // about the hinge axis y
+      bodies_[j]->applyTorque(torque);
+      if (j > 0) bodies_[j - 1]->applyTorque(-torque);
+    }
+  }
 
   void add_tip_force_x(double force_n) override {
     btRigidBody& tip = *bodies_.back();

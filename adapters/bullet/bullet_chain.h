@@ -38,6 +38,9 @@ class BulletChain {
   // The hinge spring and damper torques of the coming step (multibody); nothing for the constraint
   // chain, whose springs live in its constraints.
   virtual void add_joint_spring_torques() = 0;
+  // Torques [N m] about the hinges for the coming step, in hinge order from the clamp: +torque on the link
+  // above a hinge, -torque on the one below (the loop's modal damping torques, StepLoads).
+  virtual void add_joint_torques(const Eigen::VectorXd& torques_n_m) = 0;
   // A force along +x [N] at the tip point for the coming step.
   virtual void add_tip_force_x(double force_n) = 0;
   virtual double tip_x_m() const = 0;

@@ -30,8 +30,8 @@ namespace {
 using namespace bullet;  // the adapter's own names: chains and contact mapping
 
 // The step when a run does not set one: the largest of 5e-5, 2e-5, 1e-5, 5e-6, ... s within 3/4 of
-// the explicit hinge springs' limit (explicit_hinge_step_limit_s, adapters/common/rig.h; seen: 7e-5 s
-// stable, 8e-5 s not for K = 8): 5e-5 s for the default K = 8 (and fewer links), 2e-6 s for K = 16.
+// the explicit hinge springs' limit (explicit_hinge_step_limit_s, adapters/common/rig.h; hinge damping,
+// K = 8: seen 7e-5 s stable, 8e-5 s not): 5e-5 s for the default K = 8 (and fewer links) with either damping.
 // Never above 5e-5 s: a sphere contact starts at the first step that begins overlapping, and the
 // overlap gained unresisted in that step adds up to (omega h)^2 of an impact's energy to the
 // spring-dashpot (omega = 5200 rad/s for the rig): 7 % at 5e-5 s, 27 % at 1e-4 s, enough to make
@@ -54,6 +54,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
      "multibody (one btMultiBody per frame, hinge springs as joint torques each step; default) or constraints "
      "(btRigidBody links joined by btGeneric6DofSpring2Constraint springs)"},
     {"links", kLinksOptionHelp},
+    {kChainDampingOption, kChainDampingOptionHelp},
 };
 
 Articulation articulation_option(const OptionReader& options) {
@@ -98,8 +99,16 @@ class BulletStepper final : public FixedStepEngine {
     return energy_(angles_, rates_, instantaneous_ ? 0.0 : indentation_m);
   }
 
+  // the hinge rates read_tips took, for the loop's modal damping torques
+  bool read_hinge_rates(std::array<Eigen::VectorXd, 2>& rates_rad_s) override {
+    rates_rad_s = rates_;
+    return true;
+  }
+
   void apply_loads(const StepLoads& loads) override {
     for (int f = 0; f < 2; ++f) bullet_.chain(f).add_joint_spring_torques();
+    if (loads.hinge_damping_torques_n_m)
+      for (int f = 0; f < 2; ++f) bullet_.chain(f).add_joint_torques((*loads.hinge_damping_torques_n_m)[f]);
     if (loads.motor_force_n) bullet_.chain(0).add_tip_force_x(*loads.motor_force_n);
     injected_force_n_ = loads.injected_contact_force_n.value_or(0.0);
     if (loads.injected_contact_force_n) {
@@ -185,7 +194,7 @@ class BulletSimulator final : public Simulator {
     const ContactPath path = options.contact_path();
     const Articulation articulation = articulation_option(options);
     const int links = links_option(options, settings, scenario);
-    const RigSpec rig = build_rig(scenario, settings.law, links);
+    const RigSpec rig = build_rig(scenario, settings.law, links, chain_damping_option(options));
     const double h = resolve_time_step_s(settings, default_time_step(rig), name());
 
     // Which contact Bullet makes, and which the harness injects.

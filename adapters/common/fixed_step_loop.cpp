@@ -80,6 +80,10 @@ void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario
     result.reason = reason;
   };
   if (settings.initial_state) engine.restore_state(*settings.initial_state);
+  // the chains' modal damping matrices, when they have one: the loop applies -C theta' (held over a step)
+  const bool modal_damping = rig.frames[0].chain.modal_damping_n_m_s_per_rad.size() > 0 ||
+                             rig.frames[1].chain.modal_damping_n_m_s_per_rad.size() > 0;
+  std::array<Eigen::VectorXd, 2> hinge_rates_rad_s = zero_hinge_values(rig), damping_torques_n_m = hinge_rates_rad_s;
   const RunClock clock;
   double contact_force_n = 0;  // during the step that ends at the state read next
   for (long long n = 0;; ++n) {
@@ -113,6 +117,13 @@ void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario
     if (injected)
       loads.injected_contact_force_n = injected->force(tips.displacement_m[0], tips.velocity_m_s[0],
                                                        tips.displacement_m[1], tips.velocity_m_s[1], step_s);
+    if (modal_damping && engine.read_hinge_rates(hinge_rates_rad_s)) {
+      for (int f = 0; f < 2; ++f) {
+        const Eigen::MatrixXd& c = rig.frames[f].chain.modal_damping_n_m_s_per_rad;
+        if (c.size() > 0) damping_torques_n_m[f].noalias() = -c * hinge_rates_rad_s[f];
+      }
+      loads.hinge_damping_torques_n_m = &damping_torques_n_m;
+    }
     engine.apply_loads(loads);
     if (auto trouble = engine.step()) {
       stop(*trouble);

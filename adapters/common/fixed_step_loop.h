@@ -9,7 +9,8 @@
 // -> stop when the engine reported trouble (nothing recorded) or a tip is not finite (nothing recorded)
 // -> record the state, with the contact force of the step that led to it -> stop when a tip is beyond
 // the bound (its state is recorded: it happened) -> at the end, stop -> the loads of the coming step from
-// the state at its start (motor at t, the injected contact force) -> step -> the contact force of that
+// the state at its start (motor at t, the injected contact force, the chains' modal damping torques
+// -C theta' from the hinge rates the engine reads, read_hinge_rates) -> step -> the contact force of that
 // step (the injected one, or the engine's own).
 //
 // What stays the engine's, in its Simulator::run around run_fixed_steps: its options, the rig
@@ -44,6 +45,11 @@ struct StepLoads {
   std::optional<double> motor_force_n;                  // on frame 1's tip along +x; absent without a motor
   std::optional<double> injected_contact_force_n;       // the harness's law: -F on frame 1's tip, +F on
                                                         // frame 2's; absent when the engine makes the contact
+  // The chains' modal damping (physics/link_chain.h, ChainDamping::modal) as hinge torques, K per frame in
+  // hinge order from the clamp: tau = -C theta' from the rates at the step's start, each torque acting on
+  // the body above its hinge and its reaction on the body below [N m]. Null when the loop applies none
+  // (hinge damping, or an engine that applies the chain's damping matrix itself: read_hinge_rates).
+  const std::array<Eigen::VectorXd, 2>* hinge_damping_torques_n_m = nullptr;
 };
 
 // What an engine implements for the loop (its rig built, its contact configured, beforehand).
@@ -59,6 +65,14 @@ class FixedStepEngine {
   // The mechanical energy of the state just read [J], with the contact's elastic energy at this
   // indentation where the engine's contact stores one (RigEnergy); called only where the recorder reads it.
   virtual double energy_j(double indentation_m) = 0;
+  // The hinge rates of the state just read [rad/s], K per frame in hinge order from the clamp, for the
+  // modal damping torques of the coming step (StepLoads::hinge_damping_torques_n_m); called only when the
+  // rig's chains have modal damping. False (the default) when the engine applies the chains' damping
+  // matrix itself (a linearised-chain engine with the full C): the loop then adds no torques.
+  virtual bool read_hinge_rates(std::array<Eigen::VectorXd, 2>& rates_rad_s) {
+    (void)rates_rad_s;
+    return false;
+  }
   // Applies the loads of the coming step, in the engine's own order, plus whatever the engine adds
   // itself (explicit hinge springs, a contact joint).
   virtual void apply_loads(const StepLoads& loads) = 0;

@@ -27,6 +27,11 @@ int links_option(const OptionReader& options, const RunSettings& settings, const
   return settings.options.count("links") ? options.integer("links", 0, 1, 64) : default_links(scenario);
 }
 
+ChainDamping chain_damping_option(const OptionReader& options) {
+  return *chain_damping_from_string(
+      options.choice(kChainDampingOption, to_string(ChainDamping::modal), {to_string(ChainDamping::modal), to_string(ChainDamping::hinge)}));
+}
+
 std::array<Eigen::VectorXd, 2> zero_hinge_values(const RigSpec& rig) {
   return {Eigen::VectorXd::Zero(rig.frames[0].chain.links), Eigen::VectorXd::Zero(rig.frames[1].chain.links)};
 }
@@ -41,9 +46,10 @@ void add_chain_diagnostics(const RigSpec& rig, int f, std::vector<std::pair<std:
 
 namespace {
 
-FrameRig build_frame(const FrameSpec& spec, int links, double base_x, double initial_tip_displacement) {
+FrameRig build_frame(const FrameSpec& spec, int links, ChainDamping damping, double base_x,
+                     double initial_tip_displacement) {
   FrameRig f;
-  f.chain = build_link_chain(spec, links);
+  f.chain = build_link_chain(spec, links, damping);
   f.base_x_m = base_x;
   f.tip_z_m = spec.length_m;
   for (int j = 0; j < links; ++j) {
@@ -78,14 +84,14 @@ FrameRig build_frame(const FrameSpec& spec, int links, double base_x, double ini
 
 }  // namespace
 
-RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links) {
+RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links, ChainDamping damping) {
   if (links < 1) throw std::invalid_argument("links must be >= 1, got " + std::to_string(links));
   RigSpec rig;
   rig.gap_m = scenario.gap_m;
   rig.sphere_radius_m = kTipSphereRadius_m;
   rig.frame_spacing_m = scenario.gap_m + 2 * kTipSphereRadius_m;
-  rig.frames[0] = build_frame(scenario.frames[0], links, 0.0, scenario.initial.frame1_tip_displacement_m);
-  rig.frames[1] = build_frame(scenario.frames[1], links, rig.frame_spacing_m, 0.0);
+  rig.frames[0] = build_frame(scenario.frames[0], links, damping, 0.0, scenario.initial.frame1_tip_displacement_m);
+  rig.frames[1] = build_frame(scenario.frames[1], links, damping, rig.frame_spacing_m, 0.0);
   rig.motor = motor_force(scenario);
   rig.law = make_contact_model(scenario, law);
   rig.contact_effective_mass_kg =

@@ -59,13 +59,17 @@ constexpr double kTipSphereRadius_m = 5e-3;
 // frames: the engines' default discretisation.
 int default_links(const Scenario& scenario);
 
-RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links);
+// Both chains with the damping `damping` (physics/link_chain.h; the option chain_damping_option reads).
+RigSpec build_rig(const Scenario& scenario, ContactLaw law, int links, ChainDamping damping = ChainDamping::modal);
 
 // The option "links" of every engine that builds this rig: its help line (an engine's option_help) and its
 // value, the option when given (checked: 1..64, named by the engine's reader), else default_links(scenario).
 constexpr const char* kLinksOptionHelp =
     "links K per frame, 1..64 (default: the smallest K whose first frequency is within 0.5 % of the beam's)";
 int links_option(const OptionReader& options, const RunSettings& settings, const Scenario& scenario);
+// The option chain_damping of every engine that builds this rig (help: kChainDampingOptionHelp, with its name
+// kChainDampingOption, physics/link_chain.h): modal (default) or hinge, checked by the engine's reader.
+ChainDamping chain_damping_option(const OptionReader& options);
 
 // Both frames' hinge angles or rates, zero: the size each chain's state has (K entries per frame).
 std::array<Eigen::VectorXd, 2> zero_hinge_values(const RigSpec& rig);
@@ -75,11 +79,18 @@ std::array<Eigen::VectorXd, 2> zero_hinge_values(const RigSpec& rig);
 void add_chain_diagnostics(const RigSpec& rig, int f, std::vector<std::pair<std::string, double>>& diagnostics);
 
 // The longest step at which explicit hinge springs and dampers stay stable [s], for engines that apply
-// them as forces and integrate with semi-implicit (symplectic) Euler (ODE's springs=explicit, Bullet).
-// Stiffness-proportional damping keeps the chain's modes apart, and one mode (omega_n, zeta_n) is stable
-// while (omega h)^2 + 4 zeta omega h < 4, i.e. omega h < 2 (sqrt(1 + zeta^2) - zeta): 2 / omega without
-// damping. The fastest modes are heavily damped, so the limit is below 2 / omega_max; K = 8: 7.5e-5 s,
-// set by the fastest mode (1966 Hz, zeta 0.85).
+// them as forces and integrate with semi-implicit (symplectic) Euler (ODE's springs=explicit, Bullet),
+// the damping being either the hinge dampers or the modal damping torques -C theta' the fixed-step loop
+// holds over a step from the rates at its start (fixed_step_loop.h). Both dampings keep the linearised
+// chain's modes apart, and one mode (omega_n, zeta_n) is stable while (omega h)^2 + 4 zeta omega h < 4, i.e.
+// omega h < 2 (sqrt(1 + zeta^2) - zeta): 2 / omega without damping. Hinge damping: the fastest modes are
+// heavily damped, so the limit is below 2 / omega_max; K = 8: 7.5e-5 s, set by the fastest mode (1966 Hz,
+// zeta 0.85). Modal damping: zeta_n = zeta (0.003) in every mode, so the limit is 2 (1 - zeta) / omega_max
+// to first order, about twice the hinge damping's. Where the engine's springs are implicit (their force at
+// the step's end) and only the modal damping is explicit, a mode's step matrix (x, h v) is
+// [[1, 1 - 2 zeta a], [-a^2, 1 - 2 zeta a]] / (1 + a^2) with a = omega h, whose eigenvalues stay inside
+// the unit circle at every a for zeta < 1 (Jury: a^2 - 2 zeta a + 2 > 0 and a^2 - 4 zeta a + 4 > 0): the
+// explicit modal damping adds no step limit there. tests/rig_test.cpp checks both on the stepped chain.
 double explicit_hinge_step_limit_s(const RigSpec& rig);
 
 // Mechanical energy of the rig from its hinge angles and rates (linearised chain: kinetic

@@ -106,6 +106,11 @@ void DartRig::add_tip_force(int f, double force_x_n) {
                               /*isForceLocal=*/false, /*isOffsetLocal=*/true);
 }
 
+void DartRig::set_hinge_torques(int f, const Eigen::VectorXd& torques_n_m) {
+  // a torque is a force times a length: model units scale it by length_scale^2, as the hinge stiffness
+  frames_[f].skeleton->setForces(torques_n_m * (settings_.length_scale * settings_.length_scale));
+}
+
 double DartRig::time_step_s() const { return world_->getTimeStep(); }
 
 void DartRig::step() { world_->step(); }

@@ -50,6 +50,9 @@ class DartRig {
   const Eigen::VectorXd& hinge_rates_rad_s(int f) const;
   // Adds a force along x [N] at tip f for the coming step (DART clears it after each step).
   void add_tip_force(int f, double force_x_n);
+  // Sets the torques [N m] about frame f's hinges for the coming step, from the clamp (DART's joint forces,
+  // cleared after each step): the loop's modal damping torques (StepLoads).
+  void set_hinge_torques(int f, const Eigen::VectorXd& torques_n_m);
   void step();  // one step of the world's own step, time_step_s()
   double time_step_s() const;  // the world's step (World::getTimeStep) [s]
   // The force between the tips during the last step [N], > 0 compressive, from DART's contact constraints

@@ -23,7 +23,8 @@ using dart_adapter::DartRig;
 using dart_adapter::DartRigSettings;
 
 // The step when a run's settings give none, as for the other fixed-step engines. DART's joint springs and
-// dampers are implicit, so the chain is stable at any step; the contact is what the step resolves.
+// dampers are implicit, so the chain is stable at any step; the modal damping torques the loop holds over a
+// step add no limit with implicit springs (explicit_hinge_step_limit_s); the contact is what the step resolves.
 constexpr double kDefaultTimeStep_s = 1e-4;
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
@@ -31,6 +32,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"length_unit", "the length unit of the DART model: m (default), cm or mm; DART's contact solver has velocity constants in model units (no bounce when e v <= 0.1 unit/s, bounce capped at 100 unit/s), so cm puts them at 1 mm/s and 1 m/s; the physics is the same in any unit"},
     {"lcp", "DART's boxed LCP solver: dantzig (default) or pgs"},
     {"links", kLinksOptionHelp},
+    {kChainDampingOption, kChainDampingOptionHelp},
 };
 
 struct RunPlan {
@@ -39,6 +41,7 @@ struct RunPlan {
   std::string length_unit = "m";
   bool pgs = false;
   int links = 0;
+  ChainDamping damping = ChainDamping::modal;
   double time_step_s = kDefaultTimeStep_s;
 };
 
@@ -50,6 +53,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   plan.length_scale = plan.length_unit == "m" ? 1.0 : plan.length_unit == "cm" ? 100.0 : 1000.0;
   plan.pgs = options.choice("lcp", "dantzig", {"dantzig", "pgs"}) == "pgs";
   plan.links = links_option(options, settings, scenario);
+  plan.damping = chain_damping_option(options);
   plan.time_step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "dart");
   return plan;
 }
@@ -70,7 +74,7 @@ class DartStepper final : public FixedStepEngine {
  public:
   DartStepper(const Scenario& scenario, const RunSettings& settings, const RunPlan& plan)
       : plan_(plan),
-        rig_(build_rig(scenario, settings.law, plan.links)),
+        rig_(build_rig(scenario, settings.law, plan.links, plan.damping)),
         contact_(dart_adapter::contact_setup(plan.contact, rig_.law)),
         dart_rig_(rig_, rig_settings(plan, contact_)),
         energy_(rig_) {}
@@ -103,7 +107,14 @@ class DartStepper final : public FixedStepEngine {
     return energy_(angles, rates, contact_.force_from_tip_states ? indentation_m : 0.0);
   }
 
+  bool read_hinge_rates(std::array<Eigen::VectorXd, 2>& rates_rad_s) override {
+    for (int f = 0; f < 2; ++f) rates_rad_s[f] = dart_rig_.hinge_rates_rad_s(f);
+    return true;
+  }
+
   void apply_loads(const StepLoads& loads) override {
+    if (loads.hinge_damping_torques_n_m)
+      for (int f = 0; f < 2; ++f) dart_rig_.set_hinge_torques(f, (*loads.hinge_damping_torques_n_m)[f]);
     if (loads.injected_contact_force_n) {
       dart_rig_.add_tip_force(0, -*loads.injected_contact_force_n);
       dart_rig_.add_tip_force(1, *loads.injected_contact_force_n);

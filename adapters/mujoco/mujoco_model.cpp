@@ -18,6 +18,7 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
      "contact settings) (default matched)"},
     {"integrator", "euler (MuJoCo's default: semi-implicit, joint damping implicit) or rk4 (default euler)"},
     {"links", kLinksOptionHelp},
+    {kChainDampingOption, kChainDampingOptionHelp},
     {"newton_contact_steps",
      "Newton law, matched path: time steps the contact force lasts, 2..1000 (default 4); see "
      "adapters/mujoco/README.md"},
@@ -56,11 +57,14 @@ void write_frame(std::ostringstream& out, const MujocoRunPlan& plan, int f) {
       << " m; beam length L = " << num(chain.beam_length_m) << " m as " << chain.links
       << " links of l = " << num(chain.link_length_m) << " m (hinges at segment middles, the piece below the first is "
       << "ground);\n         tip mass " << num(chain.tip_mass_kg) << " kg merged into the last link; hinge stiffness "
-      << "k_theta = EI / l = " << num(chain.joint_stiffness_n_m_per_rad)
-      << " N m/rad, damping c_theta = (2 zeta / omega_1) "
-      << "k_theta = " << num(chain.joint_damping_n_m_s_per_rad)
-      << " N m s/rad\n         (zeta = " << num(chain.damping_ratio)
-      << ", chain omega_1 = " << num(chain.first_omega_rad_s) << " rad/s). -->\n";
+      << "k_theta = EI / l = " << num(chain.joint_stiffness_n_m_per_rad) << " N m/rad, ";
+  if (chain.damping == ChainDamping::hinge)
+    out << "damping c_theta = (2 zeta / omega_1) k_theta = " << num(chain.joint_damping_n_m_s_per_rad)
+        << " N m s/rad\n         (zeta = " << num(chain.damping_ratio) << ", chain omega_1 = "
+        << num(chain.first_omega_rad_s) << " rad/s). -->\n";
+  else
+    out << "no hinge dampers:\n         modal damping (zeta = " << num(chain.damping_ratio)
+        << " in every mode), the harness applies the torques -C theta' each step (MJCF has no damping matrix). -->\n";
   std::string indent = "    ";
   for (int j = 0; j < chain.links; ++j) {
     const RigBody& body = frame.bodies[j];
@@ -135,7 +139,7 @@ MujocoRunPlan plan_mujoco_run(const Scenario& scenario, const RunSettings& setti
                                                                                      : MujocoIntegrator::euler;
   const int newton_steps = options.integer("newton_contact_steps", kDefaultNewtonContactSteps, 2, 1000);
   plan.time_step_s = resolve_time_step_s(settings, kDefaultMujocoTimeStep_s, "mujoco");
-  plan.rig = build_rig(scenario, settings.law, plan.links);
+  plan.rig = build_rig(scenario, settings.law, plan.links, chain_damping_option(options));
 
   plan.native_contact = plan.path == ContactPath::native;
   const bool matched = plan.path == ContactPath::matched;

@@ -82,6 +82,11 @@ class MujocoRig {
                data_->qfrc_applied);
   }
   void clear_applied_forces() { mju_zero(data_->qfrc_applied, model_->nv); }
+  // Torques [N m] about the hinges (a hinge's generalised force), added to qfrc_applied.
+  void apply_hinge_torques(const std::array<Eigen::VectorXd, 2>& torques_n_m) {
+    for (int f = 0; f < 2; ++f)
+      for (int j = 0; j < plan_.links; ++j) data_->qfrc_applied[dof_address_[f][j]] += torques_n_m[f][j];
+  }
 
   // The normal force [N] of MuJoCo's active contacts (>= 0; only the tip spheres can collide).
   double contact_normal_force() const {
@@ -193,8 +198,15 @@ class MujocoStepper final : public FixedStepEngine {
   }
 
   // forces held over the step, from the state at its start
+  // the hinge rates of the state read_tips computed, for the loop's modal damping torques
+  bool read_hinge_rates(std::array<Eigen::VectorXd, 2>& rates_rad_s) override {
+    rates_rad_s = rig_.rates();
+    return true;
+  }
+
   void apply_loads(const StepLoads& loads) override {
     rig_.clear_applied_forces();
+    if (loads.hinge_damping_torques_n_m) rig_.apply_hinge_torques(*loads.hinge_damping_torques_n_m);
     if (loads.motor_force_n) rig_.apply_tip_force(0, *loads.motor_force_n);
     if (loads.injected_contact_force_n) {
       rig_.apply_tip_force(0, -*loads.injected_contact_force_n);

@@ -141,6 +141,12 @@ void OdeRig::add_explicit_spring_torques() {
   }
 }
 
+void OdeRig::add_hinge_torques(const std::array<Eigen::VectorXd, 2>& torques_n_m) {
+  for (int f = 0; f < 2; ++f)
+    for (std::size_t j = 0; j < frames_[f].hinges.size(); ++j)
+      dJointAddHingeTorque(frames_[f].hinges[j], torques_n_m[f][static_cast<Eigen::Index>(j)]);
+}
+
 bool OdeRig::make_tip_contact(const dSurfaceParameters& surface) {
   dJointGroupEmpty(contact_group_);
   has_contact_ = false;

@@ -58,6 +58,9 @@ class OdeRig {
   // Forces and torques for the coming step (ODE clears them after each step).
   void add_tip_force(int frame, double force_x_n);
   void add_explicit_spring_torques();  // explicit_torques only
+  // Torques [N m] about each frame's hinges, K per frame from the clamp: +torque on the body above a
+  // hinge, -torque on the one below (the loop's modal damping torques, StepLoads).
+  void add_hinge_torques(const std::array<Eigen::VectorXd, 2>& torques_n_m);
 
   // ODE's own contact for the coming step: collides the tip spheres and, when they overlap, makes one
   // contact joint with this surface and a feedback record. Returns whether a contact joint was made.

@@ -31,16 +31,18 @@ constexpr int kOdeDefaultQuickStepIterations = 20;  // dWorldGetQuickStepNumIter
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"contact", "matched (the law in ODE's own terms where it has one, default), injected (the law's force from the tip states, ODE's collision off), native (ODE's default hard contact)"},
-    {"springs", "hinge springs: implicit (both hinge stops at the rest angle with StopERP/StopCFM from k, c and the step; default) or explicit (dJointAddHingeTorque each step; stable only below the step in the diagnostic explicit_spring_step_limit_s, about 7.5e-5 s for K = 8)"},
+    {"springs", "hinge springs: implicit (both hinge stops at the rest angle with StopERP/StopCFM from k, c and the step; default) or explicit (dJointAddHingeTorque each step; stable only below the step in the diagnostic explicit_spring_step_limit_s, for K = 8 about 1.6e-4 s with chain_damping=modal, 7.5e-5 s with hinge)"},
     {"stepper", "world (dWorldStep, direct LCP solver; default) or quick (dWorldQuickStep, iterative)"},
     {"iterations", "dWorldQuickStep iterations, 1..100000 (default 20, ODE's own default); only with stepper=quick"},
     {"links", kLinksOptionHelp},
+    {kChainDampingOption, kChainDampingOptionHelp},
 };
 
 struct RunPlan {
   ContactPath contact = ContactPath::matched;
   OdeModelSettings model;
   int links = 0;
+  ChainDamping damping = ChainDamping::modal;
 };
 
 RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
@@ -55,6 +57,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   if (settings.options.count("iterations") && plan.model.stepper != Stepper::quick)
     throw std::invalid_argument("ode option iterations: only with stepper=quick");
   plan.links = links_option(options, settings, scenario);
+  plan.damping = chain_damping_option(options);
   plan.model.time_step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "ode");
   return plan;
 }
@@ -64,7 +67,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
 class OdeStepper final : public FixedStepEngine {
  public:
   OdeStepper(const Scenario& scenario, const RunSettings& settings, const RunPlan& plan)
-      : rig_(build_rig(scenario, settings.law, plan.links)),
+      : rig_(build_rig(scenario, settings.law, plan.links, plan.damping)),
         contact_(ode::contact_setup(plan.contact, rig_.law, plan.model.time_step_s)),
         model_(with_spheres(plan.model, contact_.ode_collision)),
         ode_rig_(rig_, model_),
@@ -94,11 +97,17 @@ class OdeStepper final : public FixedStepEngine {
     return std::nullopt;
   }
 
+  // the hinge rates read_tips took, for the loop's modal damping torques
+  bool read_hinge_rates(std::array<Eigen::VectorXd, 2>& rates_rad_s) override {
+    rates_rad_s = rates_;
+    return true;
+  }
+
   // Newton's contact stores no energy (RigEnergy takes 0 indentation for it)
   double energy_j(double indentation_m) override { return energy_(angles_, rates_, newton_ ? 0.0 : indentation_m); }
 
   // The loads of the coming step: the law's force when the adapter applies it (-F on frame 1's tip, +F
-  // on frame 2's, along x), the contact joint, the motor, the explicit springs.
+  // on frame 2's, along x), the contact joint, the motor, the explicit springs, the modal damping torques.
   void apply_loads(const StepLoads& loads) override {
     if (loads.injected_contact_force_n) {
       ode_rig_.add_tip_force(0, -*loads.injected_contact_force_n);
@@ -107,6 +116,7 @@ class OdeStepper final : public FixedStepEngine {
     if (contact_.ode_collision && ode_rig_.make_tip_contact(contact_.surface)) ++contact_joint_steps_;
     if (loads.motor_force_n) ode_rig_.add_tip_force(0, *loads.motor_force_n);
     if (model_.springs == SpringPath::explicit_torques) ode_rig_.add_explicit_spring_torques();
+    if (loads.hinge_damping_torques_n_m) ode_rig_.add_hinge_torques(*loads.hinge_damping_torques_n_m);
   }
 
   std::optional<std::string> step() override {

@@ -19,12 +19,28 @@ void TipLoads::calcForce(const State& state, Vector_<SpatialVec>& body_forces, V
   tips_[1].applyForceToBodyPoint(state, stations_m_[1], Vec3(tip_force_n_[1], 0, 0), body_forces);
 }
 
+void HingeDampingMatrix::calcForce(const State& state, Vector_<SpatialVec>&, Vector_<Vec3>&, Vector& mobility_forces) const {
+  for (int f = 0; f < 2; ++f) {
+    const Eigen::Index k = damping_[f].rows();
+    if (k == 0) continue;
+    Eigen::VectorXd rates(k);
+    for (Eigen::Index j = 0; j < k; ++j) rates[j] = links_[f][static_cast<std::size_t>(j)].getRate(state);
+    const Eigen::VectorXd torques = -damping_[f] * rates;
+    for (Eigen::Index j = 0; j < k; ++j)
+      links_[f][static_cast<std::size_t>(j)].applyOneMobilityForce(state, 0, torques[j], mobility_forces);
+  }
+}
+
 SimbodyChain::SimbodyChain(const RigSpec& rig) : rig_(rig), matter_(system_), forces_(system_) {
   system_.setUseUniformBackground(true);  // no gravity: the rig has none (rig.md)
   for (int f = 0; f < 2; ++f) build_frame(rig.frames[f], frames_[f]);
   auto* loads = new TipLoads({tip_body(0), tip_body(1)}, {tip_station_m(0), tip_station_m(1)}, rig.motor);
   loads_ = loads;
   Force::Custom(forces_, loads);  // the subsystem owns it
+  if (rig.frames[0].chain.modal_damping_n_m_s_per_rad.size() > 0 || rig.frames[1].chain.modal_damping_n_m_s_per_rad.size() > 0)
+    Force::Custom(forces_, new HingeDampingMatrix({frames_[0].links, frames_[1].links},
+                                                  {rig.frames[0].chain.modal_damping_n_m_s_per_rad,
+                                                   rig.frames[1].chain.modal_damping_n_m_s_per_rad}));
 }
 
 // Body frames sit at each link's hinge; the centre of mass and the inertia (about it, as RigBody gives
@@ -43,7 +59,7 @@ void SimbodyChain::build_frame(const FrameRig& spec, Frame& frame) {
     MobilizedBody::Pin link(parent, Transform(kZToY, hinge_in_parent_m), body, Transform(kZToY, Vec3(0)));
     // the hinge's spring (rest angle 0: the straight beam) and damper, on the pin's one coordinate
     Force::MobilityLinearSpring(forces_, link, MobilizerQIndex(0), k, 0);
-    Force::MobilityLinearDamper(forces_, link, MobilizerUIndex(0), c);
+    if (c > 0) Force::MobilityLinearDamper(forces_, link, MobilizerUIndex(0), c);  // hinge damping only
     frame.links.push_back(link);
     parent = link;
     parent_joint_z_m = b.joint_z_m;

@@ -2,7 +2,10 @@
 // (axis along ground y) with Force::MobilityLinearSpring and Force::MobilityLinearDamper at every hinge,
 // the tip mass merged into the last link as RigSpec gives it, and one Force::Custom element carrying the
 // loads that come from outside the chain (the motor, evaluated at every stage time; the injected tip
-// forces, held between the loop's steps). The contact is added by simbody_contact.h.
+// forces, held between the loop's steps). With modal chain damping (physics/link_chain.h) the hinge dampers
+// are 0 and a second Force::Custom element applies the damping matrix, -C theta' from the rates of the state
+// it is evaluated at: Simbody integrates it like its own dampers (the shared loop's held torques are for
+// engines without a force element of their own). The contact is added by simbody_contact.h.
 #pragma once
 
 #include <Simbody.h>
@@ -43,6 +46,21 @@ class TipLoads : public SimTK::Force::Custom::Implementation {
   std::array<SimTK::Vec3, 2> stations_m_;  // the tip point on each last link, in its body frame
   std::optional<MotorForce> motor_;
   std::array<double, 2> tip_force_n_{};    // along ground x
+};
+
+// The chains' modal damping matrices as mobility forces on the pins, -C theta' per frame, evaluated at every
+// stage (no potential energy: it only dissipates).
+class HingeDampingMatrix : public SimTK::Force::Custom::Implementation {
+ public:
+  HingeDampingMatrix(std::array<std::vector<SimTK::MobilizedBody::Pin>, 2> links, std::array<Eigen::MatrixXd, 2> damping)
+      : links_(std::move(links)), damping_(std::move(damping)) {}
+  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>&, SimTK::Vector_<SimTK::Vec3>&,
+                 SimTK::Vector& mobility_forces) const override;
+  SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
+
+ private:
+  std::array<std::vector<SimTK::MobilizedBody::Pin>, 2> links_;
+  std::array<Eigen::MatrixXd, 2> damping_;  // C of each frame [N m s/rad]
 };
 
 class SimbodyChain {

@@ -20,9 +20,11 @@ namespace {
 using simbody::ContactKind;
 using simbody::IntegratorKind;
 
-// The step when a run's settings give none. The hinge springs are forces integrated explicitly, so the
-// step must stay below the chain's explicit limit (explicit_hinge_step_limit_s: 7.5e-5 s for K = 8 with
-// semi-explicit Euler); 5e-5 s also resolves the spring-dashpot contact (omega h = 0.26).
+// The step when a run's settings give none. The hinge springs and the damping (hinge dampers, or the modal
+// damping matrix as a force element, simbody_chain.h) are forces integrated explicitly, so the step must stay
+// below the chain's explicit limit (explicit_hinge_step_limit_s for K = 8 with semi-explicit Euler: 7.5e-5 s
+// with hinge damping, about twice that with modal); 5e-5 s also resolves the spring-dashpot contact
+// (omega h = 0.26).
 constexpr double kDefaultTimeStep_s = 5e-5;
 constexpr double kDefaultConstraintTolerance_m = 1e-6;
 
@@ -32,12 +34,14 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"accuracy", "error-controlled integration with this relative accuracy, 1e-10..0.1 (integrator rk3, rkm, verlet or cpodes; default rkm); the run's step is then only the recording interval"},
     {"constraint_tolerance", "rigid Newton contact: the distance at which the spheres count as touching [m], 1e-9..1e-3 (default 1e-6; Simbody's own 1e-3 fires the impact 0.5 mm early)"},
     {"links", kLinksOptionHelp},
+    {kChainDampingOption, kChainDampingOptionHelp},
 };
 
 struct RunPlan {
   ContactPath contact = ContactPath::matched;
   simbody::SteppingSettings stepping;
   int links = 0;
+  ChainDamping damping = ChainDamping::modal;
 };
 
 RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
@@ -64,6 +68,7 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   if (settings.options.count("constraint_tolerance") && !plan.stepping.rigid_contact)
     throw std::invalid_argument("simbody option constraint_tolerance: only with the rigid Newton contact (law newton, contact matched)");
   plan.links = links_option(options, settings, scenario);
+  plan.damping = chain_damping_option(options);
   plan.stepping.step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "simbody");
   return plan;
 }
@@ -73,7 +78,7 @@ class SimbodyStepper final : public FixedStepEngine {
  public:
   SimbodyStepper(const Scenario& scenario, const RunSettings& settings, const RunPlan& plan)
       : plan_(plan),
-        rig_(build_rig(scenario, settings.law, plan.links)),
+        rig_(build_rig(scenario, settings.law, plan.links, plan.damping)),
         setup_(simbody::contact_setup(plan.contact, rig_.law)),
         chain_(rig_),
         contact_(chain_, setup_, rig_),
