@@ -84,6 +84,9 @@ int run_and_print(const ib::Scenario& scenario, ib::JobSpec job, const ib::Measu
     run_reference(beam, "beam");
     if (const auto links = ib::make_simulator(engine)->chain_links(scenario, job.settings)) {
       reference.settings.options = ib::simulator_catalog().chain_reference_options(*links);
+      // the chain's damping is the engine's choice (option chain_damping): its reference is damped alike
+      if (const auto damping = job.settings.options.find("chain_damping"); damping != job.settings.options.end())
+        reference.settings.options[damping->first] = damping->second;
       run_reference(chain, "chain");
     }
   }

@@ -150,5 +150,20 @@ TEST_F(SuitePlan, AnEnsemblePlansEveryStartAgainstTheReferencesOfTheSameStart) {
   EXPECT_EQ(third_reference_starts, 2) << "the third start: the beam reference of each law alone";
 }
 
+// An engine's chain damping (option chain_damping) is its chain reference's too: an engine run with the
+// hinge dampers is compared with the reference on a chain damped alike, not with the modal one.
+TEST_F(SuitePlan, AnEnginesChainDampingIsItsChainReferences) {
+  settings_.engine_options["mirror"] = {{"chain_damping", "hinge"}};
+  const auto plan = by_id(plan_suites({settings_}));
+  int engines = 0;
+  for (const auto& [id, u] : plan) {
+    if (u.kind != PlannedUnit::Kind::engine) continue;
+    ++engines;
+    ASSERT_EQ(u.after.size(), 2u) << id;
+    EXPECT_NE(u.after[1].find("chain_damping=hinge"), std::string::npos) << id << " -> " << u.after[1];
+  }
+  EXPECT_GT(engines, 0);
+}
+
 }  // namespace suite_plan_test
 }  // namespace ib

@@ -274,6 +274,9 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
               if (const auto links = simulator->chain_links(s, job.spec.settings)) {
                 auto chain_options = part.reference_options;
                 for (const auto& [name, value] : settings_.simulators.chain_reference_options(*links)) chain_options[name] = value;
+                // the chain's damping is the engine's choice (option chain_damping): its reference is damped alike
+                if (const auto damping = options.find("chain_damping"); damping != options.end())
+                  chain_options[damping->first] = damping->second;
                 PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options, start);
                 chain.spec.warnings = warnings;
                 chain.beam_reference = beam.id;
