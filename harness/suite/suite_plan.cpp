@@ -174,6 +174,10 @@ void SuiteRunner::plan() {
   part_jobs_.resize(parts_.size());
   part_files_.resize(parts_.size());
   for (std::size_t part = 0; part < parts_.size(); ++part) plan_part(part, planned);
+  for (const auto* list : {&jobs_, &step_groups_})
+    for (const PlannedJob& job : *list)
+      for (const std::string& id : {job.beam_reference, job.chain_reference})
+        if (!id.empty()) compared_references_.insert(id);
 }
 
 void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& planned) {

@@ -223,6 +223,9 @@ class SuiteRunner : public SuiteSource {
   std::vector<std::vector<std::string>> part_files_;      // each part's scenario files, readable or not
   std::vector<PlannedJob> jobs_;
   std::vector<PlannedJob> step_groups_;  // --find-steps: one job (dt = 0) per group, not run itself
+  // The references some run of the whole plan is compared with: a reference's series is kept only then (an
+  // ensemble's reference starts beyond its engines' measure the references' spread by their metrics alone).
+  std::set<std::string> compared_references_;
   std::deque<PlannedJob> probe_jobs_;    // the searches' probes (a deque keeps their addresses)
   std::vector<RunRecord> unrunnable_;
   std::set<std::string> recorded_;
