@@ -31,9 +31,9 @@ def base_job_id(run):
 
 def configuration_key(run):
     """What an ensemble's members share (with member 0's job id: two suite parts that ran the same
-    configuration stay two); a run outside an ensemble is its own configuration."""
-    if starts_of(run) <= 1:
-        return ("single", run["job_id"])
+    configuration stay two); a run outside an ensemble is its own configuration (its job id is its base's).
+    Member 0 belongs with its starts even where it says N = 1: a study part without the ensemble planned it
+    first (a job two parts plan runs once, with the first part's settings)."""
     return (run["scenario"], run["law"], run["engine"], run.number("time_step_s"), run["options"], base_job_id(run))
 
 

@@ -155,6 +155,26 @@ class Folders(unittest.TestCase):
     def everyone(self, n):
         return {job_id: n for job_id in (BEAM, CHAIN, BEST, OTHER)}
 
+    def test_start_zero_planned_by_a_part_without_the_ensemble_joins_its_starts(self):
+        """A study part without the ensemble that plans start 0 first records it with N = 1 (the first part's
+        settings): it is still the ensemble's member, not a configuration of its own."""
+        write_folder(self.folder, starts=self.everyone(3), spread={BEST: 0.04})
+        path = os.path.join(self.folder, "runs.csv")
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            fields, rows = reader.fieldnames, list(reader)
+        for row in rows:
+            if row["job_id"] == BEST:
+                row["ensemble_starts"] = "1"
+        with open(path, "w", newline="") as f:
+            writer = csv.DictWriter(f, fields)
+            writer.writeheader()
+            writer.writerows(rows)
+        document = answer.summarise(data.read_runs(self.folder), None, {}, TOLERANCES, {})
+        run = next(c for c in document["cases"][0]["configurations"]
+                   if c["configuration"] == f"{BEST_ENGINE} [contact=matched]")
+        self.assertEqual(run["best_run"]["ensemble"]["starts"], 3, run["best_run"]["ensemble"])
+
     def test_a_difference_inside_the_intervals_is_a_tie(self):
         """The two engines' frame 2 errors differ by 1.3 % (the rows'); each scatters ±4 % over 12 starts."""
         suite, document, page = self.summary(starts=self.everyone(12),
