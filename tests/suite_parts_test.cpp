@@ -131,6 +131,8 @@ TEST_F(SuiteParts, AnEnsembleSharesItsStartsWithOtherPartsOfTheSameStepOnly) {
   // hertz: 3 beam starts, 2 chain and 2 mirror starts; newton (the second part's alone): beam, chain, mirror
   EXPECT_EQ(outcome.jobs_total, 10);
   EXPECT_EQ(outcome.not_ok_recorded, 0);
+  for (const nlohmann::json& line : test::json_lines(root_ / "out" / "runs.jsonl"))
+    EXPECT_EQ(line["verdict"], "ok") << line["job_id"] << ": " << line["reason"];
   // a reference start an engine start is compared with keeps its series; one beyond the engines' only its metrics
   const fs::path runs = root_ / "out" / "runs" / "short_free" / "reference" / "hertz";
   EXPECT_TRUE(fs::exists(runs / "start=1" / "series.csv.gz"));

@@ -81,7 +81,7 @@ bool restore_cached_reference(const std::string& cache_folder, const nlohmann::o
   if (held_key.is_discarded() || !(held_key == key) || !fs::exists(entry / "row.jsonl") || !fs::exists(entry / "row.csv"))
     return false;
   std::error_code error;
-  fs::remove_all(run_folder, error);
+  clear_run_folder(run_folder);  // its own files only: the runs below its id (ensemble starts, chain) are others'
   try {
     copy_files(entry, run_folder);
     fs::remove(fs::path(run_folder) / "key.json");
@@ -89,8 +89,7 @@ bool restore_cached_reference(const std::string& cache_folder, const nlohmann::o
         << "restored from the reference cache " << entry.string() << " (its costs are the cached run's)\n";
   } catch (const fs::filesystem_error& e) {
     std::fprintf(stderr, "suite: the reference cache %s could not be read (%s); the reference runs\n", entry.c_str(), e.what());
-    fs::remove_all(run_folder, error);
-    fs::create_directories(run_folder, error);
+    clear_run_folder(run_folder);
     return false;
   }
   return true;

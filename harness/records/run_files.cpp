@@ -107,6 +107,14 @@ std::string read_text_file(const std::string& path) {
   return text.str();
 }
 
+void clear_run_folder(const std::string& folder) {
+  std::error_code error;
+  for (const std::filesystem::directory_entry& entry : std::filesystem::directory_iterator(folder, error))
+    if (!entry.is_directory(error)) std::filesystem::remove(entry.path(), error);
+  std::filesystem::create_directories(folder, error);
+  if (error) throw OutputError(output_error_text(folder, "create the run folder", error.value()));
+}
+
 void write_text_file(const std::string& path, const std::string& text) {
   if (const int error = put_text(path, "w", text)) throw OutputError(output_error_text(path, "write", error));
 }

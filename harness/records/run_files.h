@@ -27,6 +27,10 @@ std::string output_error_text(const std::string& path, const std::string& action
 // failed write leaves the old file as it was); each checked after writing, flushing and closing.
 // Throw OutputError.
 void write_text_file(const std::string& path, const std::string& text);
+// Empties a run's folder of its own files (a previous, unfinished attempt's), creating it when absent. Its
+// subfolders stay: they are other runs' (a job's ensemble starts and its chain reference are below its id).
+// Throws OutputError when the folder cannot be made.
+void clear_run_folder(const std::string& folder);
 // The whole of a file as it is; "" when it is absent or cannot be read (callers that must tell the two
 // apart check first). The one whole-file reader of the harness.
 std::string read_text_file(const std::string& path);

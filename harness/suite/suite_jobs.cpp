@@ -51,10 +51,7 @@ const ReferenceData* SuiteRunner::reference(const std::string& id, const Planned
 
 std::string SuiteRunner::start(const PlannedJob& job, ProcessPool& pool) {
   const std::string folder = folder_of(job);
-  std::error_code error;
-  fs::remove_all(folder, error);  // a previous, unfinished attempt
-  fs::create_directories(folder, error);
-  if (error) throw OutputError(output_error_text(folder, "create the run folder", error.value()));
+  clear_run_folder(folder);  // a previous, unfinished attempt's files; the runs below its id are others'
   const Scenario& scenario = scenarios_[job.scenario];
   if (cacheable(job) && restore_cached_reference(settings_.reference_cache, cache_key_of(job), folder)) {
     progress_->estimate().start(job.id, progress_->now_s());
@@ -69,9 +66,7 @@ std::string SuiteRunner::start(const PlannedJob& job, ProcessPool& pool) {
   std::vector<ScoredFrom> scored;
   for (const PlannedJob* other : unrecorded_scored_from(job)) {
     const std::string other_folder = folder_of(*other);
-    fs::remove_all(other_folder, error);
-    fs::create_directories(other_folder, error);
-    if (error) throw OutputError(output_error_text(other_folder, "create the run folder", error.value()));
+    clear_run_folder(other_folder);
     scored.push_back({other, reference(other->beam_reference, *other), reference(other->chain_reference, *other)});
   }
   const std::string unit = "suite " + settings_.out + " " + job.id;
