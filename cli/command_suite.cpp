@@ -93,8 +93,7 @@ ib::SuiteSettings::Ensemble ensemble_from(const SuiteOptions& o) {
   e.engine_starts = o.ensemble_starts;
   e.reference_starts = o.reference_ensemble_starts == 0 ? o.ensemble_starts : o.reference_ensemble_starts;
   e.displacement_step_m = o.ensemble_step_m;
-  if (e.engine_starts < 1 || e.engine_starts > kMaxStarts)
-    throw std::invalid_argument("--ensemble " + std::to_string(e.engine_starts) + ": allowed: 1 to " + std::to_string(kMaxStarts));
+  ib::check_option("--ensemble", e.engine_starts, 1, kMaxStarts, "", true);
   if (o.reference_ensemble_starts != 0 && (e.reference_starts < e.engine_starts || e.reference_starts > kMaxStarts))
     throw std::invalid_argument("--reference-ensemble " + std::to_string(e.reference_starts) + ": allowed: 0 (--ensemble's), or " +
                                 std::to_string(e.engine_starts) + " (--ensemble) to " + std::to_string(kMaxStarts) +

@@ -101,6 +101,12 @@ ImpactSamples impact_samples(const Trajectory& trajectory, const std::vector<Imp
 
 GridPhaseSpread sensor_peak_over_grid_phases(const Trajectory& trajectory, int frame, double start_s, double end_s,
                                              double sensor_rate_hz, int phases) {
+  return sensor_peak_over_grid_phases(trajectory, frame, sensor_acceleration(trajectory, frame, start_s, end_s, sensor_rate_hz),
+                                      start_s, end_s, sensor_rate_hz, phases);
+}
+
+GridPhaseSpread sensor_peak_over_grid_phases(const Trajectory& trajectory, int frame, const SensorSeries& on_grid,
+                                             double start_s, double end_s, double sensor_rate_hz, int phases) {
   GridPhaseSpread spread;
   if (phases < 1 || sensor_rate_hz <= 0) return spread;
   double sum = 0;
@@ -109,7 +115,8 @@ GridPhaseSpread sensor_peak_over_grid_phases(const Trajectory& trajectory, int f
     const double phase = static_cast<double>(j) / phases;
     if (j > 0 && !edges_on_samples(trajectory, start_s + phase / sensor_rate_hz, sensor_rate_hz)) continue;
     const double peak_g =
-        peak_of(sensor_acceleration(trajectory, frame, start_s, end_s, sensor_rate_hz, phase)) / kStandardGravity_m_s2;
+        peak_of(j == 0 ? on_grid : sensor_acceleration(trajectory, frame, start_s, end_s, sensor_rate_hz, phase)) /
+        kStandardGravity_m_s2;
     if (std::isnan(peak_g)) return GridPhaseSpread{};  // a grid the series does not reach: no spread to speak of
     sum += peak_g;
     spread.min_g = read == 0 ? peak_g : std::min(spread.min_g, peak_g);

@@ -61,6 +61,9 @@ struct GridPhaseSpread {
 };
 GridPhaseSpread sensor_peak_over_grid_phases(const Trajectory& trajectory, int frame, double start_s, double end_s,
                                              double sensor_rate_hz, int phases);
+// The same with the reading on the unshifted grid (phase 0) given, as compute_metrics has it already.
+GridPhaseSpread sensor_peak_over_grid_phases(const Trajectory& trajectory, int frame, const SensorSeries& on_grid,
+                                             double start_s, double end_s, double sensor_rate_hz, int phases);
 
 // One per-impact distribution of a run against the reference's: W1 in the figure's unit, W1 over the
 // reference's median, and the KS statistic. NaN where either has no impact (or the median is 0).

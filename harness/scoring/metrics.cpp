@@ -305,7 +305,7 @@ Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& sett
       sensor_acceleration(trajectory, 1, start_s, end_s, settings.sensor_rate_hz)};
   for (int f = 0; f < 2; ++f) {
     m.frames[f] = frame_metrics(trajectory, f, settings, sensor[f]);
-    m.sensor_peak_over_grid_phases[f] = sensor_peak_over_grid_phases(trajectory, f, start_s, end_s,
+    m.sensor_peak_over_grid_phases[f] = sensor_peak_over_grid_phases(trajectory, f, sensor[f], start_s, end_s,
                                                                      settings.sensor_rate_hz, settings.sensor_grid_phases);
     m.frames[f].log_decrement =
         settings.excitation_frequency_hz > 0

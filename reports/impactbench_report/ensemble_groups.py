@@ -17,11 +17,6 @@ def start_of(run):
     return 0 if math.isnan(value) else int(value)
 
 
-def starts_of(run):
-    value = run.number("ensemble_starts")
-    return 1 if math.isnan(value) else int(value)
-
-
 def base_job_id(run):
     """The job id of member 0: member K >= 1 is it + '/start=K'."""
     job_id = run["job_id"]
