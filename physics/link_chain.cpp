@@ -1,8 +1,12 @@
 #include "physics/link_chain.h"
 
+#include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
+#include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "physics/beam_modes.h"
 
 namespace ib {
 namespace {
@@ -12,6 +16,65 @@ Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solve_chain(const Chai
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(m.stiffness, m.mass);
   if (solver.info() != Eigen::Success) throw std::runtime_error("chain eigenproblem did not converge");
   return solver;
+}
+
+// k_j = (EI / l) a (1 + b x_j / L)
+void set_joint_stiffnesses(LinkChain& chain, double uniform_n_m_per_rad, double scale, double taper) {
+  chain.stiffness_scale = scale;
+  chain.stiffness_taper = taper;
+  chain.joint_stiffness_n_m_per_rad.resize(chain.links);
+  for (int j = 0; j < chain.links; ++j)
+    chain.joint_stiffness_n_m_per_rad[j] =
+        uniform_n_m_per_rad * scale * (1 + taper * chain.bodies[j].start_m / chain.beam_length_m);
+}
+
+// The chain's squared frequencies over the beam's, less one, for its first min(K, 2) modes.
+Eigen::Vector2d frequency_mismatch(const LinkChain& chain, const Eigen::Vector2d& beam_omega_squared) {
+  const auto solver = solve_chain(linearise(chain));
+  Eigen::Vector2d mismatch = Eigen::Vector2d::Zero();
+  for (int n = 0; n < std::min(chain.links, 2); ++n) mismatch[n] = solver.eigenvalues()[n] / beam_omega_squared[n] - 1;
+  return mismatch;
+}
+
+// Solves for a and b (Newton, finite-difference Jacobian) so that the chain's first two frequencies are the
+// beam's; a single hinge has only a, solved for the first. The uniform chain (a = 1, b = 0) is within a few
+// per cent, so a few iterations reach the eigensolver's rounding (which grows with K: 1e-11 at K = 64).
+void tune_joint_stiffnesses(LinkChain& chain, const FrameSpec& frame) {
+  const CantileverModes beam(frame, 2);
+  const Eigen::Vector2d beam_omega_squared(beam.omega_rad_s(0) * beam.omega_rad_s(0),
+                                           beam.omega_rad_s(1) * beam.omega_rad_s(1));
+  const double uniform = frame.bending_stiffness_n_m2() / chain.link_length_m;
+  set_joint_stiffnesses(chain, uniform, 1, 0);
+  chain.uniform_first_omega_rad_s = std::sqrt(solve_chain(linearise(chain)).eigenvalues()[0]);
+  Eigen::Vector2d p(1, 0), best = p;  // (a, b)
+  double best_mismatch = 1;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    set_joint_stiffnesses(chain, uniform, p[0], p[1]);
+    const Eigen::Vector2d r = frequency_mismatch(chain, beam_omega_squared);
+    if (r.cwiseAbs().maxCoeff() < best_mismatch) {
+      best_mismatch = r.cwiseAbs().maxCoeff();
+      best = p;
+    }
+    if (best_mismatch < 1e-14) break;
+    Eigen::Vector2d step(r[0] * p[0] / (1 + r[0]), 0);  // one hinge: omega^2 is proportional to a
+    if (chain.links > 1) {
+      Eigen::Matrix2d jacobian;
+      const double h = 1e-6;
+      for (int c = 0; c < 2; ++c) {
+        Eigen::Vector2d q = p;
+        q[c] += h;
+        set_joint_stiffnesses(chain, uniform, q[0], q[1]);
+        jacobian.col(c) = (frequency_mismatch(chain, beam_omega_squared) - r) / h;
+      }
+      step = jacobian.partialPivLu().solve(r);
+    }
+    p -= step;
+  }
+  set_joint_stiffnesses(chain, uniform, best[0], best[1]);  // the iterates end in the eigensolver's rounding
+  const double mismatch = frequency_mismatch(chain, beam_omega_squared).cwiseAbs().maxCoeff();
+  if (!(mismatch < 1e-9))
+    throw std::runtime_error("the chain's joint stiffnesses did not reach the beam's first two frequencies (K = " +
+                             std::to_string(chain.links) + ", omega^2 off by " + std::to_string(mismatch) + ")");
 }
 
 }  // namespace
@@ -35,7 +98,6 @@ LinkChain build_link_chain(const FrameSpec& frame, int links, ChainDamping dampi
   chain.tip_mass_kg = frame.tip_mass_kg;
   chain.damping_ratio = frame.damping_ratio;
   chain.damping = damping;
-  chain.joint_stiffness_n_m_per_rad = frame.bending_stiffness_n_m2() / chain.link_length_m;
   const double rho_a = frame.mass_per_length_kg_m();
   for (int j = 0; j < links; ++j) {
     ChainBody body;
@@ -47,13 +109,16 @@ LinkChain build_link_chain(const FrameSpec& frame, int links, ChainDamping dampi
     body.inertia_kg_m2 = body.mass_kg * body.length_m * body.length_m / 12;
     chain.bodies.push_back(body);
   }
+  chain.joint_damping_n_m_s_per_rad.assign(links, 0.0);
+  tune_joint_stiffnesses(chain, frame);
   // the undamped chain (no damping set yet) fixes omega_1 and, for modal damping, the modes
   const ChainMatrices undamped = linearise(chain);
   const auto solver = solve_chain(undamped);
   chain.first_omega_rad_s = std::sqrt(solver.eigenvalues()[0]);
   if (damping == ChainDamping::hinge)
-    chain.joint_damping_n_m_s_per_rad =
-        2 * frame.damping_ratio / chain.first_omega_rad_s * chain.joint_stiffness_n_m_per_rad;
+    for (int j = 0; j < links; ++j)
+      chain.joint_damping_n_m_s_per_rad[j] =
+          2 * frame.damping_ratio / chain.first_omega_rad_s * chain.joint_stiffness_n_m_per_rad[j];
   else
     chain.modal_damping_n_m_s_per_rad = modal_damping_matrix(undamped.mass, undamped.stiffness, frame.damping_ratio);
   return chain;
@@ -76,8 +141,10 @@ ChainMatrices linearise(const LinkChain& chain) {
   m.tip_lever.resize(k);
   for (int i = 0; i < k; ++i) m.tip_lever[i] = chain.beam_length_m - chain.bodies[i].start_m;
   m.mass += chain.tip_mass_kg * m.tip_lever * m.tip_lever.transpose();
-  m.stiffness = chain.joint_stiffness_n_m_per_rad * Eigen::MatrixXd::Identity(k, k);
-  m.damping = chain.joint_damping_n_m_s_per_rad * Eigen::MatrixXd::Identity(k, k);
+  m.stiffness = Eigen::Map<const Eigen::VectorXd>(chain.joint_stiffness_n_m_per_rad.data(), k).asDiagonal();
+  m.damping = Eigen::MatrixXd::Zero(k, k);
+  if (static_cast<int>(chain.joint_damping_n_m_s_per_rad.size()) == k)
+    m.damping.diagonal() = Eigen::Map<const Eigen::VectorXd>(chain.joint_damping_n_m_s_per_rad.data(), k);
   if (chain.modal_damping_n_m_s_per_rad.size() > 0) m.damping += chain.modal_damping_n_m_s_per_rad;
   return m;
 }
@@ -112,7 +179,7 @@ ModalBasis chain_modes(const LinkChain& chain) {
 Eigen::VectorXd static_tip_load_angles(const LinkChain& chain, double tip_force_n) {
   Eigen::VectorXd theta(chain.links);
   for (int i = 0; i < chain.links; ++i)
-    theta[i] = tip_force_n * (chain.beam_length_m - chain.bodies[i].start_m) / chain.joint_stiffness_n_m_per_rad;
+    theta[i] = tip_force_n * (chain.beam_length_m - chain.bodies[i].start_m) / chain.joint_stiffness_n_m_per_rad[i];
   return theta;
 }
 

@@ -5,10 +5,12 @@
 // [0, L] is split into K segments of length l = L/K with a revolute joint at the middle of each,
 // x_j = (j - 1/2) l. The piece [0, l/2] is ground; body j spans [x_j, x_{j+1}], the last body spans
 // [x_K, L] and carries the tip mass as a point mass at x = L. Each body has mass rho A times its length
-// and the rotary inertia of a slender rod; each joint has stiffness EI / l. The chain's damping is one of
+// and the rotary inertia of a slender rod. Joint j has stiffness (EI / l) a (1 + b x_j / L), with the scale a and
+// the taper b solved so that the chain's first two frequencies equal the beam's (a uniform EI / l leaves the
+// second 1 % high, enough to move it off the impacts' harmonic it rings on). The chain's damping is one of
 // two (ChainDamping): modal, the joint damping matrix C = M Phi diag(2 zeta omega_n) Phi^T M that gives
 // every mode the beam's zeta (the measured beam rings in every mode with about the same zeta); or hinge,
-// a damper (2 zeta / omega_1) EI / l in every joint, with omega_1 the chain's own first frequency (mode 1
+// a damper (2 zeta / omega_1) k_j in every joint, with omega_1 the chain's own first frequency (mode 1
 // gets exactly zeta, mode n zeta omega_n / omega_1).
 #pragma once
 
@@ -34,7 +36,7 @@ std::optional<ChainDamping> chain_damping_from_string(const std::string& name);
 constexpr const char* kChainDampingOption = "chain_damping";
 constexpr const char* kChainDampingOptionHelp =
     "the chain's damping: modal (every mode gets the beam's zeta: joint damping matrix M Phi diag(2 zeta omega_n) "
-    "Phi^T M, default) or hinge (a damper (2 zeta / omega_1) EI / l in every hinge: mode n gets zeta omega_n / omega_1)";
+    "Phi^T M, default) or hinge (a damper (2 zeta / omega_1) k_theta in every hinge: mode n gets zeta omega_n / omega_1)";
 constexpr const char* kChainDampingValues = "modal, hinge";
 
 struct ChainBody {
@@ -51,9 +53,15 @@ struct LinkChain {
   double link_length_m = 0;                   // l = L / K [m]
   std::vector<ChainBody> bodies;              // K bodies, body j from joint j
   double tip_mass_kg = 0;                     // point mass at x = L on the last body [kg]
-  double joint_stiffness_n_m_per_rad = 0;     // k_theta = EI / l [N m/rad]
+  // k_j = (EI / l) a (1 + b x_j / L) per joint [N m/rad]; a and b (stiffness_scale, stiffness_taper) give the
+  // chain the beam's first two frequencies (one hinge: a alone, the first)
+  std::vector<double> joint_stiffness_n_m_per_rad;
+  double stiffness_scale = 1;                 // a [-]
+  double stiffness_taper = 0;                 // b [-]
+  double uniform_first_omega_rad_s = 0;       // omega_1 of the same chain with every k_j = EI / l (a = 1, b = 0):
+                                              // how well K links discretise the beam, before any tuning [rad/s]
   ChainDamping damping = ChainDamping::modal; // which of the two dampings below the chain has
-  double joint_damping_n_m_s_per_rad = 0;     // hinge: c_theta = (2 zeta / omega_1) k_theta; modal: 0 [N m s/rad]
+  std::vector<double> joint_damping_n_m_s_per_rad;  // hinge: c_j = (2 zeta / omega_1) k_j; modal: 0 [N m s/rad]
   Eigen::MatrixXd modal_damping_n_m_s_per_rad;// modal: C = M Phi diag(2 zeta omega_n) Phi^T M (K x K); hinge: empty
   double first_omega_rad_s = 0;               // omega_1 of the chain, used for c_theta [rad/s]
   double damping_ratio = 0;                   // the beam's zeta: of every mode (modal), of mode 1 (hinge) [-]
@@ -82,7 +90,7 @@ Eigen::MatrixXd modal_damping_matrix(const Eigen::MatrixXd& mass, const Eigen::M
 // mass-normalised, with damping ratios zeta_n = zeta (modal) or zeta omega_n / omega_1 (hinge).
 ModalBasis chain_modes(const LinkChain& chain);
 
-// Joint angles [rad] of the chain's static deflection under a tip force F [N]: theta_j = F (L - x_j) / k.
+// Joint angles [rad] of the chain's static deflection under a tip force F [N]: theta_j = F (L - x_j) / k_j.
 Eigen::VectorXd static_tip_load_angles(const LinkChain& chain, double tip_force_n);
 
 }  // namespace ib

@@ -97,6 +97,10 @@ constexpr const char* kImplicitSpringDashpot =
 constexpr const char* kMujocoNewton =
     "MuJoCo has no restitution: a no-tension spring-dashpot lasting 4 steps (0.4 ms at the default 1e-4 s) "
     "that rebounds with e; an impulse spread over most of a 0.49 ms sensor window reads 2 to 4 % low, inside 5 %";
+constexpr const char* kMujocoNewtonPreResonance =
+    "as kMujocoNewton, but in the pre-resonance on the tuned chain (rig.md section 4) the 0.4 ms stand-in contact at "
+    "1e-4 s reads frame 1's sensor peak 5.8 % low against the chain reference; at 5e-5 s (0.2 ms) +0.7 %, at 2e-5 s "
+    "+1.7 %: so 5e-5 s";
 constexpr const char* kOdeNewton =
     "dContactBounce is exact per impact but found at the start of the step that begins overlapping, up to one "
     "step late: at the default 1e-4 s the peak is 3.7 % / 7.2 % low (resonance / pre-resonance), at 2e-5 s "
@@ -116,17 +120,20 @@ constexpr const char* kFreeVibrationSpringDashpot =
     "(chain reference: the first impact alone reads 7.33 g, the whole run 8.11 g), and where it falls on the 2048 Hz grid decides it: a 0.4 % change of the sensor rate moves the reference's "
     "own value by -30 % to +19 %. Engines whose later impacts drift by tens of us land anywhere in that range, "
     "and a smaller step does not help (ODE -6.6 % at 1e-5 s, -10.3 % at 2e-6 s; Bullet +4.0 % at 1e-5 s, -9.3 % "
-    "at 5e-6 s): the bound 12 % is the measured spread plus margin, not a convergence check";
+    "at 5e-6 s). On the tuned chain (rig.md section 4) Bullet reads -17.7 % (chain) and -25.7 % (beam), DART -16.4 % "
+    "(beam): the bounds 25 % (chain) and 30 % (beam) are the reference's own range, not a convergence check; the "
+    "row's contact duration is one";
+constexpr const char* kImplicitJointSpringsPreResonance =
+    "finding: ODE's and DART's implicit joint springs add omega h / 2 to every mode's zeta, and on the tuned chain "
+    "(rig.md section 4: mode 2 at the beam's 73.19 Hz, near a harmonic of the impacts) that changes the mode-2 "
+    "ringing frame 1's sensor reads by +5 to +9 % against the chain reference, first order in the step: ODE, Hertz, "
+    "+7.6 % at 2e-5 s, +5.5 % at 1e-5 s, +3.9 % at 5e-6 s, +1.6 % at 2.5e-6 s; with explicit springs (no such "
+    "damping) -0.3 % at 1e-5 s. So 10 % (chain) and 12 % (beam)";
 
 constexpr const char* kDartSpringDashpot =
     "DART has no compliant rigid contact: the law's force from the tip states (matched = injected), explicit; at "
     "5e-5 s (12 steps per 0.6 ms contact) the restitution is within 0.5 % of the law's, so 5 %; the force is the "
     "published law's, tensile tail included (the chain reference here clips it): contacts up to 3 % longer";
-constexpr const char* kDartSpringDashpotPreResonance =
-    "as kDartSpringDashpot, and frame 1's sensor peak within 7 % of the chain reference's: DART's implicit joint "
-    "springs add omega h / 2 to every mode's zeta (0.0116 to mode 2 at 5e-5 s, four times the modal chain "
-    "damping's 0.003, docs/engines.md), which shortens the ringing the sensor peak catches (-5.2 %; -3.0 % against "
-    "the hinge-damped chain, whose mode 2 has zeta 0.032)";
 constexpr const char* kDartNewton =
     "named configuration length_unit=cm: in metres DART's bounce threshold (no bounce when e v <= 0.1 m/s) makes "
     "every impact of the rig plastic (e = 0.003 at resonance: a finding, tests/dart_single_impact_test.cpp); in "
@@ -160,21 +167,21 @@ constexpr AgreementRow kAgreement[] = {
     {"mujoco", "resonance", kNewton, 1e-4, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kMujocoNewton},
     {"mujoco", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kHertzStep},
     {"mujoco", "pre_resonance", kSpringDashpot, 1e-4, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kMujocoSpringDashpot},
-    {"mujoco", "pre_resonance", kNewton, 1e-4, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kMujocoNewton},
+    {"mujoco", "pre_resonance", kNewton, 5e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kMujocoNewtonPreResonance},
     {"mujoco", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"mujoco", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"mujoco", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
+    {"mujoco", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
     {"mujoco", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
     // ---------------------------------------------------------------- ODE 0.16.2, dWorldStep, implicit hinge springs
     {"ode", "resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kOdeHertzStep},
     {"ode", "resonance", kSpringDashpot, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kImplicitSpringDashpot},
     {"ode", "resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kOdeNewton},
-    {"ode", "pre_resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kOdeHertzStep},
+    {"ode", "pre_resonance", kHertz, 2e-5, "matched", "", {0.03, 0.10, 0.05}, {0.03, 0.12, 0.07}, kImplicitJointSpringsPreResonance},
     {"ode", "pre_resonance", kSpringDashpot, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kImplicitSpringDashpot},
-    {"ode", "pre_resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kOdeNewton},
+    {"ode", "pre_resonance", kNewton, 2e-5, "matched", "", {0.03, 0.10, na}, {0.03, 0.12, na}, kImplicitJointSpringsPreResonance},
     {"ode", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"ode", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"ode", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
+    {"ode", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
     {"ode", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
     // ---------------------------------------------------------------- Bullet 3.24 (double), btMultiBody
     {"bullet", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
@@ -185,18 +192,18 @@ constexpr AgreementRow kAgreement[] = {
     {"bullet", "pre_resonance", kNewton, 5e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kBulletNewton},
     {"bullet", "post_resonance", kHertz, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"bullet", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"bullet", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
+    {"bullet", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
     {"bullet", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
     // ---------------------------------------------------------------- DART 6.12.1, semi-implicit Euler, implicit joint springs
     {"dart", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
     {"dart", "resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kDartSpringDashpot},
     {"dart", "resonance", kNewton, 2e-5, "matched", "length_unit=cm", {0.03, 0.05, na}, {0.03, 0.15, na}, kDartNewton},
-    {"dart", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kHertzStep},
-    {"dart", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.07, 0.05}, {0.03, 0.10, 0.10}, kDartSpringDashpotPreResonance},
-    {"dart", "pre_resonance", kNewton, 2e-5, "matched", "length_unit=cm", {0.03, 0.05, na}, {0.03, 0.10, na}, kDartNewton},
+    {"dart", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.10, 0.05}, {0.03, 0.12, 0.07}, kImplicitJointSpringsPreResonance},
+    {"dart", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.10, 0.05}, {0.03, 0.12, 0.10}, kImplicitJointSpringsPreResonance},
+    {"dart", "pre_resonance", kNewton, 2e-5, "matched", "length_unit=cm", {0.03, 0.10, na}, {0.03, 0.12, na}, kImplicitJointSpringsPreResonance},
     {"dart", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"dart", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"dart", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
+    {"dart", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
     {"dart", "free_vibration", kNewton, 1e-5, "matched", "length_unit=cm", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
     // ---------------------------------------------------------------- Simbody 3.7, semi-explicit Euler, explicit hinge springs
     {"simbody", "resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kSimbodyHertz},
@@ -207,7 +214,7 @@ constexpr AgreementRow kAgreement[] = {
     {"simbody", "pre_resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kSimbodyNewton},
     {"simbody", "post_resonance", kHertz, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kSimbodyPostResonance},
     {"simbody", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"simbody", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.12, 0.05}, {na, 0.15, 0.10}, kFreeVibrationSpringDashpot},
+    {"simbody", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
     {"simbody", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
 };
 

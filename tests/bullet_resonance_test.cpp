@@ -41,10 +41,11 @@ TEST(BulletResonance, ImpactsPerCycleAndSensorPeakAreTheReferences) {
   const Metrics expected = compute_metrics(reference.trajectory, window);
   ASSERT_GT(expected.impacts, 0);
 
-  // The documented step: the adapter's default 5e-5 s (explicit hinge springs are stable below
-  // 7.5e-5 s at K = 8). Bullet's implicit contact loses energy at it (a single impact's restitution
-  // is 0.55 instead of 0.78), yet the steady state is set by the forcing and the gap and comes out the same.
-  settings.time_step_s = 5e-5;
+  // Half the adapter's default step. Bullet's implicit contact loses energy (a single impact's restitution
+  // is 0.55 instead of 0.78 at 5e-5 s); at 2.5e-5 s the steady state, set by the forcing and the gap, comes
+  // out the reference's. At the default 5e-5 s the rig on the tuned chain (rig.md section 4) settles instead
+  // into one impact per motor cycle: a finding the studies report, not agreement.
+  settings.time_step_s = 2.5e-5;
   settings.options = {{"contact", "matched"}, {"links", std::to_string(kLinks)}};
   const RunResult bullet = make_bullet_simulator()->run(s, settings);
   ASSERT_EQ(bullet.status, RunStatus::ok) << bullet.reason;
@@ -54,7 +55,7 @@ TEST(BulletResonance, ImpactsPerCycleAndSensorPeakAreTheReferences) {
   EXPECT_DOUBLE_EQ(measured.impacts_per_cycle, expected.impacts_per_cycle);
   const double peak = measured.frames[0].sensor_peak_acceleration_g, expected_peak = expected.frames[0].sensor_peak_acceleration_g;
   EXPECT_NEAR(peak / expected_peak, 1.0, 0.10);
-  std::printf("[ measured ] h = 5e-5 s: impacts per cycle %.4f (reference %.4f), frame 1 sensor peak %.4f g "
+  std::printf("[ measured ] h = 2.5e-5 s: impacts per cycle %.4f (reference %.4f), frame 1 sensor peak %.4f g "
               "(reference %.4f g, %+.2f %%), frame 2 %.4f g (reference %.4f g), %lld steps, %.1f us/step\n",
               measured.impacts_per_cycle, expected.impacts_per_cycle, peak, expected_peak, 100 * (peak / expected_peak - 1),
               measured.frames[1].sensor_peak_acceleration_g, expected.frames[1].sensor_peak_acceleration_g, bullet.cost.steps,

@@ -107,7 +107,8 @@ TEST(BulletSingleImpact, HertzAsAForceFromTheTipStates) {
   ASSERT_EQ(bullet.status, RunStatus::ok) << bullet.reason;
   ASSERT_EQ(bullet.trajectory.events.size(), 1u);
   const ContactEvent& b = bullet.trajectory.events[0];
-  EXPECT_NEAR(duration(b) / force_duration, 1.0, 0.02);
+  // the episode's ends are read at steps: 2 % and one step (4.4 % of 0.23 ms) of quantisation
+  EXPECT_NEAR(duration(b) / force_duration, 1.0, 0.02 + 1e-5 / force_duration);
   EXPECT_NEAR(b.restitution / r.restitution, 1.0, 0.02);
   std::printf("[ measured ] hertz, h = 1e-5 s: duration %.4g us (reference %.4g us: %+.2f %%), e = %.5f (reference %.5f: %+.2f %%)\n",
               1e6 * duration(b), 1e6 * force_duration, 100 * (duration(b) / force_duration - 1), b.restitution,

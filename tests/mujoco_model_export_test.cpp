@@ -65,8 +65,8 @@ void expect_rig(const mjModel* m, const RigSpec& rig, int links) {
       const int joint = id(m, mjOBJ_JOINT, mujoco_joint_name(f, j));
       EXPECT_EQ(m->jnt_type[joint], mjJNT_HINGE);
       EXPECT_EQ(m->jnt_axis[3 * joint + 1], 1);
-      EXPECT_NEAR(m->jnt_stiffness[joint], frame.chain.joint_stiffness_n_m_per_rad, 1e-12);
-      EXPECT_NEAR(m->dof_damping[m->jnt_dofadr[joint]], frame.chain.joint_damping_n_m_s_per_rad, 1e-15);
+      EXPECT_NEAR(m->jnt_stiffness[joint], frame.chain.joint_stiffness_n_m_per_rad[j], 1e-12);
+      EXPECT_NEAR(m->dof_damping[m->jnt_dofadr[joint]], frame.chain.joint_damping_n_m_s_per_rad[j], 1e-15);
     }
   }
   // at the straight rest state the tip spheres' surfaces are the gap apart, at the tips

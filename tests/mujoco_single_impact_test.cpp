@@ -107,7 +107,8 @@ TEST_P(MujocoSingleImpact, DurationAndRestitutionMatchTheReference) {
   std::printf("%s: force episode %.5e s (predicted %.5e), e %.5f (%+.2f %% vs reference)\n", c.name.c_str(),
               episode_duration, force_fraction * ref_duration, episode.restitution,
               100 * (episode.restitution / ref.restitution - 1));
-  EXPECT_NEAR(episode_duration / (force_fraction * ref_duration), 1, 0.02);
+  // the episode's ends are read at steps: 2 % and one step of quantisation (4.4 % of a 0.23 ms Hertz contact)
+  EXPECT_NEAR(episode_duration / (force_fraction * ref_duration), 1, 0.02 + run.time_step_s / (force_fraction * ref_duration));
   EXPECT_NEAR(episode.restitution / ref.restitution, 1, 0.02);
 }
 

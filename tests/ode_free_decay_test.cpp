@@ -28,7 +28,10 @@ RunResult run_ode(const Scenario& s, double h, const std::string& springs) {
 // The estimator itself, on the reference's run of the same chain: it must find the chain's mode. With the
 // hinge damping the higher modes have died out (zeta_n >= 0.03) when it starts measuring: the frequency within
 // 1e-4. With the modal damping (the default, what the engines run) they ring on at zeta = 0.003, mode 2 with
-// 2e-4 of mode 1's amplitude from the tip-load shape, and shift the refined peaks: within 2e-4 (seen 1.1e-4).
+// 2e-4 of mode 1's amplitude from the tip-load shape, and shift the refined peaks: within 4e-4. How far depends
+// on where mode 2 falls against the estimator's peaks, not on its share of the shape (1e-3 of the tip's
+// displacement both ways): seen 1.1e-4 with uniform joints (mode 2 at 10.62 f_1), 2.9e-4 with the tuned joints
+// (the beam's 10.53 f_1).
 TEST(OdeFreeDecay, TheEstimatorFindsTheReferenceChainsMode) {
   const Scenario s = contact_free_decay(false);
   const ChainMode mode = chain_mode(s);
@@ -37,7 +40,7 @@ TEST(OdeFreeDecay, TheEstimatorFindsTheReferenceChainsMode) {
     settings.options = chain_reference_options_with_damping(default_links(s), damping);
     const RunResult r = make_reference_simulator()->run(s, settings);
     const Decay d = measure_decay(r.trajectory, kMeasureFrom_s);
-    EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, damping == ChainDamping::hinge ? 1e-4 : 2e-4) << to_string(damping);
+    EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, damping == ChainDamping::hinge ? 1e-4 : 4e-4) << to_string(damping);
     EXPECT_NEAR(d.damping_ratio / mode.zeta, 1, 0.01) << to_string(damping);
   }
 }

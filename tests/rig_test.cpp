@@ -117,7 +117,7 @@ TEST(Rig, EnergyAndEffectiveMassesAreThoseOfTheChain) {
   const RigEnergy energy(rig);
   const ChainMatrices m = linearise(rig.frames[0].chain);
   const double u = m.tip_lever.dot(rig.frames[0].initial_angles_rad);
-  const double force = u / (m.tip_lever.squaredNorm() / rig.frames[0].chain.joint_stiffness_n_m_per_rad);
+  const double force = u / m.tip_lever.dot(m.stiffness.ldlt().solve(m.tip_lever));  // u / (lever^T K^-1 lever)
   const std::array<Eigen::VectorXd, 2> angles = {rig.frames[0].initial_angles_rad, rig.frames[1].initial_angles_rad};
   const std::array<Eigen::VectorXd, 2> rates = {Eigen::VectorXd::Zero(16), Eigen::VectorXd::Zero(16)};
   EXPECT_NEAR(energy(angles, rates, -1e-3) / (0.5 * force * u), 1.0, 1e-12);

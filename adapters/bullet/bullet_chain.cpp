@@ -95,9 +95,10 @@ class MultiBodyChain final : public BulletChain {
   }
 
   void add_joint_spring_torques() override {
-    const double k = frame_.chain.joint_stiffness_n_m_per_rad, c = frame_.chain.joint_damping_n_m_s_per_rad;
+    const std::vector<double>& k = frame_.chain.joint_stiffness_n_m_per_rad;
+    const std::vector<double>& c = frame_.chain.joint_damping_n_m_s_per_rad;
     for (int j = 0; j < body_->getNumLinks(); ++j)
-      body_->addJointTorque(j, -k * body_->getJointPos(j) - c * body_->getJointVel(j));
+      body_->addJointTorque(j, -k[j] * body_->getJointPos(j) - c[j] * body_->getJointVel(j));
   }
 
   void add_joint_torques(const Eigen::VectorXd& torques_n_m) override {
@@ -243,8 +244,8 @@ class ConstraintChain final : public BulletChain {
       joint->setAngularUpperLimit(btVector3(0, -1, 0));
       const int about_y = 4;  // 0-2 linear, 3-5 angular
       joint->enableSpring(about_y, true);
-      joint->setStiffness(about_y, frame.chain.joint_stiffness_n_m_per_rad, false);
-      joint->setDamping(about_y, frame.chain.joint_damping_n_m_s_per_rad, false);
+      joint->setStiffness(about_y, frame.chain.joint_stiffness_n_m_per_rad[j], false);
+      joint->setDamping(about_y, frame.chain.joint_damping_n_m_s_per_rad[j], false);
       joint->setEquilibriumPoint(about_y, 0);
       world_.addConstraint(joint.get(), true);
       joints_.push_back(std::move(joint));

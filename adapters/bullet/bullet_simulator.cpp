@@ -208,12 +208,7 @@ class BulletSimulator final : public Simulator {
     d.emplace_back("chain_links", links);
     d.emplace_back("articulation_multibody", articulation == Articulation::multibody ? 1 : 0);
     d.emplace_back("contact_injected", injected ? 1 : 0);
-    for (int f = 0; f < 2; ++f) {
-      const std::string frame = "frame" + std::to_string(f + 1) + "_";
-      d.emplace_back(frame + "joint_stiffness_n_m_per_rad", rig.frames[f].chain.joint_stiffness_n_m_per_rad);
-      d.emplace_back(frame + "joint_damping_n_m_s_per_rad", rig.frames[f].chain.joint_damping_n_m_s_per_rad);
-      d.emplace_back(frame + "chain_first_frequency_hz", rig.frames[f].chain.first_omega_rad_s / (2 * M_PI));
-    }
+    for (int f = 0; f < 2; ++f) add_chain_diagnostics(rig, f, d);
     if (!injected) configure_tip_contact(bullet, rig, path, h, d);
     btContactSolverInfo& info = bullet.solver_info();
     d.emplace_back("solver_iterations", info.m_numIterations);

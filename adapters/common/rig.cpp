@@ -15,7 +15,8 @@ int default_links(const Scenario& scenario) {
     bool close = true;
     for (const FrameSpec& frame : scenario.frames) {
       const double beam = CantileverModes(frame, 1).omega_rad_s(0);
-      const double chain = chain_modes(build_link_chain(frame, links)).omega_rad_s[0];
+      // the discretisation's own accuracy, before the joints are tuned to the beam's frequencies
+      const double chain = build_link_chain(frame, links).uniform_first_omega_rad_s;
       close = close && std::abs(chain / beam - 1) <= 0.005;
     }
     if (close) return links;
@@ -40,8 +41,10 @@ void add_chain_diagnostics(const RigSpec& rig, int f, std::vector<std::pair<std:
   const std::string frame = "frame" + std::to_string(f + 1);
   const LinkChain& chain = rig.frames[f].chain;
   diagnostics.emplace_back(frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI));
-  diagnostics.emplace_back(frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad);
-  diagnostics.emplace_back(frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad);
+  diagnostics.emplace_back(frame + "_root_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad.front());
+  diagnostics.emplace_back(frame + "_joint_stiffness_scale", chain.stiffness_scale);
+  diagnostics.emplace_back(frame + "_joint_stiffness_taper", chain.stiffness_taper);
+  diagnostics.emplace_back(frame + "_root_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad.front());
 }
 
 namespace {
@@ -76,7 +79,10 @@ FrameRig build_frame(const FrameSpec& spec, int links, ChainDamping damping, dou
   f.tip_effective_mass_kg = 1 / m.tip_lever.dot(m.mass.ldlt().solve(m.tip_lever));
   f.initial_angles_rad = Eigen::VectorXd::Zero(links);
   if (initial_tip_displacement != 0) {
-    const double compliance = m.tip_lever.squaredNorm() / f.chain.joint_stiffness_n_m_per_rad;
+    // u(L) = sum_j (L - x_j) theta_j with theta_j = F (L - x_j) / k_j
+    const Eigen::VectorXd stiffness =
+        Eigen::Map<const Eigen::VectorXd>(f.chain.joint_stiffness_n_m_per_rad.data(), links);
+    const double compliance = m.tip_lever.cwiseAbs2().cwiseQuotient(stiffness).sum();
     f.initial_angles_rad = static_tip_load_angles(f.chain, initial_tip_displacement / compliance);
   }
   return f;

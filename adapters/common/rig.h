@@ -55,8 +55,9 @@ struct RigSpec {
 
 constexpr double kTipSphereRadius_m = 5e-3;
 
-// The smallest K (up to 64) whose first frequency is within 0.5 % of the continuous beam's, for both
-// frames: the engines' default discretisation.
+// The smallest K (up to 64) whose uniform chain (every joint EI / l) has its first frequency within 0.5 % of
+// the continuous beam's, for both frames: the engines' default discretisation. (The tuned chain matches the
+// first two frequencies at any K; the uniform chain's error says how well K links resolve the beam.)
 int default_links(const Scenario& scenario);
 
 // Both chains with the damping `damping` (physics/link_chain.h; the option chain_damping_option reads).
@@ -75,7 +76,8 @@ ChainDamping chain_damping_option(const OptionReader& options);
 std::array<Eigen::VectorXd, 2> zero_hinge_values(const RigSpec& rig);
 
 // Frame f's chain as an engine's diagnostics name it: frameN_chain_first_frequency_hz,
-// frameN_joint_stiffness_n_m_per_rad, frameN_joint_damping_n_m_s_per_rad (N = f + 1).
+// frameN_root_joint_stiffness_n_m_per_rad, frameN_joint_stiffness_scale, frameN_joint_stiffness_taper,
+// frameN_root_joint_damping_n_m_s_per_rad (N = f + 1).
 void add_chain_diagnostics(const RigSpec& rig, int f, std::vector<std::pair<std::string, double>>& diagnostics);
 
 // The longest step at which explicit hinge springs and dampers stay stable [s], for engines that apply

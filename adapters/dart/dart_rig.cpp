@@ -53,8 +53,8 @@ void DartRig::build_frame(const FrameRig& spec, double sphere_radius_m, int f) {
         parent ? Eigen::Vector3d(0, 0, (b.joint_z_m - parent_joint_z_m) * s)
                : Eigen::Vector3d(frame.base_x, 0, b.joint_z_m * s);
     joint.mRestPositions[0] = 0;
-    joint.mSpringStiffnesses[0] = spec.chain.joint_stiffness_n_m_per_rad * s2;
-    joint.mDampingCoefficients[0] = spec.chain.joint_damping_n_m_s_per_rad * s2;
+    joint.mSpringStiffnesses[0] = spec.chain.joint_stiffness_n_m_per_rad[j - 1] * s2;
+    joint.mDampingCoefficients[0] = spec.chain.joint_damping_n_m_s_per_rad[j - 1] * s2;
     BodyNode::Properties body;
     body.mName = link;
     body.mInertia.setMass(b.mass_kg);

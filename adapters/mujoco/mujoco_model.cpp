@@ -57,10 +57,10 @@ void write_frame(std::ostringstream& out, const MujocoRunPlan& plan, int f) {
       << " m; beam length L = " << num(chain.beam_length_m) << " m as " << chain.links
       << " links of l = " << num(chain.link_length_m) << " m (hinges at segment middles, the piece below the first is "
       << "ground);\n         tip mass " << num(chain.tip_mass_kg) << " kg merged into the last link; hinge stiffness "
-      << "k_theta = EI / l = " << num(chain.joint_stiffness_n_m_per_rad) << " N m/rad, ";
+      << "k_j = (EI / l) a (1 + b x_j / L) with a = " << num(chain.stiffness_scale) << ", b = "
+      << num(chain.stiffness_taper) << "\n         (the beam's first two frequencies), ";
   if (chain.damping == ChainDamping::hinge)
-    out << "damping c_theta = (2 zeta / omega_1) k_theta = " << num(chain.joint_damping_n_m_s_per_rad)
-        << " N m s/rad\n         (zeta = " << num(chain.damping_ratio) << ", chain omega_1 = "
+    out << "damping c_j = (2 zeta / omega_1) k_j\n         (zeta = " << num(chain.damping_ratio) << ", chain omega_1 = "
         << num(chain.first_omega_rad_s) << " rad/s). -->\n";
   else
     out << "no hinge dampers:\n         modal damping (zeta = " << num(chain.damping_ratio)
@@ -77,7 +77,7 @@ void write_frame(std::ostringstream& out, const MujocoRunPlan& plan, int f) {
         << (j + 1 == chain.links ? " (beam piece + tip mass)" : "") << ", centre of mass at z = " << num(body.com_z_m)
         << " m, inertia about it " << num(body.inertia_y_kg_m2) << " kg m^2 -->\n";
     out << indent << "<joint name=\"" << mujoco_joint_name(f, j) << "\" type=\"hinge\" axis=\"0 1 0\" stiffness=\""
-        << num(chain.joint_stiffness_n_m_per_rad) << "\" damping=\"" << num(chain.joint_damping_n_m_s_per_rad)
+        << num(chain.joint_stiffness_n_m_per_rad[j]) << "\" damping=\"" << num(chain.joint_damping_n_m_s_per_rad[j])
         << "\" springref=\"0\"/>\n";
     out << indent << "<inertial pos=\"0 0 " << num(body.com_z_m - body.joint_z_m) << "\" mass=\"" << num(body.mass_kg)
         << "\" diaginertia=\"" << num(body.inertia_xz_kg_m2) << " " << num(body.inertia_y_kg_m2) << " "

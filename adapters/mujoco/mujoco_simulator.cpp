@@ -128,10 +128,7 @@ std::vector<std::pair<std::string, double>> plan_diagnostics(const MujocoRunPlan
   double omega_max = 0;
   for (int f = 0; f < 2; ++f) {
     const LinkChain& chain = plan.rig.frames[f].chain;
-    const std::string frame = "frame" + std::to_string(f + 1);
-    out.push_back({frame + "_joint_stiffness_n_m_per_rad", chain.joint_stiffness_n_m_per_rad});
-    out.push_back({frame + "_joint_damping_n_m_s_per_rad", chain.joint_damping_n_m_s_per_rad});
-    out.push_back({frame + "_chain_first_frequency_hz", chain.first_omega_rad_s / (2 * M_PI)});
+    add_chain_diagnostics(plan.rig, f, out);
     omega_max = std::max(omega_max, chain_modes(chain).omega_rad_s.maxCoeff());
   }
   // explicit hinge springs: the semi-implicit Euler step is stable below about 2 / omega_max

@@ -26,12 +26,15 @@ OdeRig::OdeRig(const RigSpec& rig, const OdeModelSettings& settings) : settings_
 // two-sided (lo == hi), so with soft_constraint's ERP and CFM it is a spring-dashpot about the straight
 // shape, integrated by backward Euler.
 void OdeRig::soften_hinge_stops(int f) {
-  stop_softness_[f] = soft_constraint(frames_[f].stiffness, frames_[f].damping, settings_.time_step_s);
-  for (dJointID hinge : frames_[f].hinges) {
-    dJointSetHingeParam(hinge, dParamLoStop, 0);
-    dJointSetHingeParam(hinge, dParamHiStop, 0);
-    dJointSetHingeParam(hinge, dParamStopERP, stop_softness_[f].erp);
-    dJointSetHingeParam(hinge, dParamStopCFM, stop_softness_[f].cfm);
+  const Frame& frame = frames_[f];
+  stop_softness_[f].clear();
+  for (std::size_t j = 0; j < frame.hinges.size(); ++j) {
+    const SoftConstraint soft = soft_constraint(frame.stiffness[j], frame.damping[j], settings_.time_step_s);
+    stop_softness_[f].push_back(soft);
+    dJointSetHingeParam(frame.hinges[j], dParamLoStop, 0);
+    dJointSetHingeParam(frame.hinges[j], dParamHiStop, 0);
+    dJointSetHingeParam(frame.hinges[j], dParamStopERP, soft.erp);
+    dJointSetHingeParam(frame.hinges[j], dParamStopCFM, soft.cfm);
   }
 }
 
@@ -134,7 +137,7 @@ void OdeRig::add_explicit_spring_torques() {
       const double body_rate = dBodyGetAngularVel(frame.bodies[j])[1];
       const double angle = std::remainder(body_pitch - previous_pitch, 2 * M_PI), rate = body_rate - previous_rate;
       // +torque about the hinge axis (+y) on body j, -torque on its parent
-      dJointAddHingeTorque(frame.hinges[j], -(frame.stiffness * angle + frame.damping * rate));
+      dJointAddHingeTorque(frame.hinges[j], -(frame.stiffness[j] * angle + frame.damping[j] * rate));
       previous_pitch = body_pitch;
       previous_rate = body_rate;
     }

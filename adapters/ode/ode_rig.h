@@ -79,8 +79,9 @@ class OdeRig {
   std::vector<double> body_states() const;
   void set_body_states(const std::vector<double>& values);  // body_count() x kValuesPerBody values
 
-  double hinge_stop_erp(int frame) const { return stop_softness_[frame].erp; }
-  double hinge_stop_cfm(int frame) const { return stop_softness_[frame].cfm; }
+  // the root hinge's (every hinge has the same ERP; its CFM scales as 1 / k_j)
+  double hinge_stop_erp(int frame) const { return stop_softness_[frame].at(0).erp; }
+  double hinge_stop_cfm(int frame) const { return stop_softness_[frame].at(0).cfm; }
   double world_erp() const { return dWorldGetERP(world_); }  // the hinges' own (hard) rows
   double world_cfm() const { return dWorldGetCFM(world_); }
 
@@ -91,7 +92,7 @@ class OdeRig {
     dGeomID sphere = nullptr;
     double base_x_m = 0;
     double tip_offset_z_m = 0;     // tip point above the last body's centre of mass, in its frame
-    double stiffness = 0, damping = 0;  // hinge springs [N m/rad], [N m s/rad]
+    std::vector<double> stiffness, damping;  // hinge j's spring [N m/rad] and damper [N m s/rad]
   };
   void build_frame(const FrameRig& spec, double sphere_radius_m, Frame& frame);
   void soften_hinge_stops(int frame);
@@ -102,7 +103,7 @@ class OdeRig {
   dWorldID world_ = nullptr;
   dJointGroupID contact_group_ = nullptr;
   std::array<Frame, 2> frames_;
-  std::array<SoftConstraint, 2> stop_softness_{};  // implicit_stops only
+  std::array<std::vector<SoftConstraint>, 2> stop_softness_{};  // per hinge, implicit_stops only
   bool has_contact_ = false;
   dJointFeedback contact_feedback_{};
   dVector3 contact_normal_{};

@@ -47,7 +47,6 @@ SimbodyChain::SimbodyChain(const RigSpec& rig) : rig_(rig), matter_(system_), fo
 // them) are shifted there, so a child's hinge is at (0, 0, its joint height - this one's) in the parent.
 void SimbodyChain::build_frame(const FrameRig& spec, Frame& frame) {
   frame.base_x_m = spec.base_x_m;
-  const double k = spec.chain.joint_stiffness_n_m_per_rad, c = spec.chain.joint_damping_n_m_s_per_rad;
   MobilizedBody parent = matter_.Ground();
   double parent_joint_z_m = 0;
   for (std::size_t j = 0; j < spec.bodies.size(); ++j) {
@@ -58,6 +57,7 @@ void SimbodyChain::build_frame(const FrameRig& spec, Frame& frame) {
     const Vec3 hinge_in_parent_m = j == 0 ? Vec3(spec.base_x_m, 0, b.joint_z_m) : Vec3(0, 0, b.joint_z_m - parent_joint_z_m);
     MobilizedBody::Pin link(parent, Transform(kZToY, hinge_in_parent_m), body, Transform(kZToY, Vec3(0)));
     // the hinge's spring (rest angle 0: the straight beam) and damper, on the pin's one coordinate
+    const double k = spec.chain.joint_stiffness_n_m_per_rad[j], c = spec.chain.joint_damping_n_m_s_per_rad[j];
     Force::MobilityLinearSpring(forces_, link, MobilizerQIndex(0), k, 0);
     if (c > 0) Force::MobilityLinearDamper(forces_, link, MobilizerUIndex(0), c);  // hinge damping only
     frame.links.push_back(link);

@@ -43,8 +43,11 @@ def describe(engine, path, diagnostics):
     items = [("contact path", PATHS.get(path, path))]
     if "chain_links" in diagnostics:
         # "hinge" was three engines' word in folders written before the one vocabulary (docs/diagnostics.md)
-        stiffness = diagnostics.get("frame1_joint_stiffness_n_m_per_rad", diagnostics.get("frame1_hinge_stiffness_n_m_per_rad"))
-        items.append(("chain", f"{number(diagnostics['chain_links'])} rigid links per frame, joint stiffness "
+        # and before the joints were tuned to the beam's first two frequencies: one stiffness for every joint
+        stiffness = diagnostics.get("frame1_root_joint_stiffness_n_m_per_rad",
+                                    diagnostics.get("frame1_joint_stiffness_n_m_per_rad",
+                                                    diagnostics.get("frame1_hinge_stiffness_n_m_per_rad")))
+        items.append(("chain", f"{number(diagnostics['chain_links'])} rigid links per frame, root joint stiffness "
                                f"{number(stiffness, 'N m/rad')} "
                                f"(frame 1), first frequency {number(diagnostics.get('frame1_chain_first_frequency_hz'), 'Hz')}"))
     items += engine_items(engines.descriptor(engine), diagnostics)
