@@ -27,7 +27,7 @@ namespace ode_divergence_test {
 
 namespace fs = std::filesystem;
 
-// 6 times the explicit springs' limit of the K = 8 chains (1.6e-4 s with the default modal damping; 13 times
+// 6 times the explicit springs' limit of the K = 8 chains (1.65e-4 s with the default modal damping; 13 times
 // the 7.5e-5 s of hinge damping): the fastest chain mode grows about tenfold per step.
 constexpr double kDivergingStep_s = 1e-3;
 

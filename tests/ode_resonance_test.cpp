@@ -30,7 +30,7 @@ TEST(OdeResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
   Scenario s = testing::settled_resonance();
   // ODE's contact only pushes: the reference runs the same, clipped, law (tests/ode_single_impact_test.cpp)
   s.contact.viscoelastic->clip_tension = true;
-  // Explicit springs: stable at 2e-5 s (limit 1.6e-4 s with the modal chain damping) and, unlike the default
+  // Explicit springs: stable at 2e-5 s (limit 1.65e-4 s with the modal chain damping) and, unlike the default
   // implicit ones, without numerical damping. The implicit springs add omega h / 2 to every mode's zeta, 0.0046
   // to mode 2's 0.003 at 2e-5 s, which shortens the ringing the sensor peak catches: -11.6 % (docs/engines.md).
   const testing::ResonanceComparison c =

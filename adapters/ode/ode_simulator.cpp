@@ -31,7 +31,7 @@ constexpr int kOdeDefaultQuickStepIterations = 20;  // dWorldGetQuickStepNumIter
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"contact", "matched (the law in ODE's own terms where it has one, default), injected (the law's force from the tip states, ODE's collision off), native (ODE's default hard contact)"},
-    {"springs", "hinge springs: implicit (both hinge stops at the rest angle with StopERP/StopCFM from k, c and the step; default) or explicit (dJointAddHingeTorque each step; stable only below the step in the diagnostic explicit_spring_step_limit_s, for K = 8 about 1.6e-4 s with chain_damping=modal, 7.5e-5 s with hinge)"},
+    {"springs", "hinge springs: implicit (both hinge stops at the rest angle with StopERP/StopCFM from k, c and the step; default) or explicit (dJointAddHingeTorque each step; stable only below the step in the diagnostic explicit_spring_step_limit_s, for K = 8 about 1.65e-4 s with chain_damping=modal, 7.5e-5 s with hinge)"},
     {"stepper", "world (dWorldStep, direct LCP solver; default) or quick (dWorldQuickStep, iterative)"},
     {"iterations", "dWorldQuickStep iterations, 1..100000 (default 20, ODE's own default); only with stepper=quick"},
     {"links", kLinksOptionHelp},
