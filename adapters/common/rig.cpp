@@ -79,10 +79,8 @@ FrameRig build_frame(const FrameSpec& spec, int links, ChainDamping damping, dou
   f.tip_effective_mass_kg = 1 / m.tip_lever.dot(m.mass.ldlt().solve(m.tip_lever));
   f.initial_angles_rad = Eigen::VectorXd::Zero(links);
   if (initial_tip_displacement != 0) {
-    // u(L) = sum_j (L - x_j) theta_j with theta_j = F (L - x_j) / k_j
-    const Eigen::VectorXd stiffness =
-        Eigen::Map<const Eigen::VectorXd>(f.chain.joint_stiffness_n_m_per_rad.data(), links);
-    const double compliance = m.tip_lever.cwiseAbs2().cwiseQuotient(stiffness).sum();
+    // u(L) = tip_lever . theta, with theta the static deflection under a unit tip force
+    const double compliance = m.tip_lever.dot(static_tip_load_angles(f.chain, 1.0));
     f.initial_angles_rad = static_tip_load_angles(f.chain, initial_tip_displacement / compliance);
   }
   return f;

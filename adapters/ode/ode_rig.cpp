@@ -27,15 +27,17 @@ OdeRig::OdeRig(const RigSpec& rig, const OdeModelSettings& settings) : settings_
 // shape, integrated by backward Euler.
 void OdeRig::soften_hinge_stops(int f) {
   const Frame& frame = frames_[f];
-  stop_softness_[f].clear();
   for (std::size_t j = 0; j < frame.hinges.size(); ++j) {
     const SoftConstraint soft = soft_constraint(frame.stiffness[j], frame.damping[j], settings_.time_step_s);
-    stop_softness_[f].push_back(soft);
     dJointSetHingeParam(frame.hinges[j], dParamLoStop, 0);
     dJointSetHingeParam(frame.hinges[j], dParamHiStop, 0);
     dJointSetHingeParam(frame.hinges[j], dParamStopERP, soft.erp);
     dJointSetHingeParam(frame.hinges[j], dParamStopCFM, soft.cfm);
   }
+}
+
+SoftConstraint OdeRig::root_stop_softness(int f) const {
+  return soft_constraint(frames_[f].stiffness.at(0), frames_[f].damping.at(0), settings_.time_step_s);
 }
 
 OdeRig::~OdeRig() {

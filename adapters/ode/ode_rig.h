@@ -79,9 +79,9 @@ class OdeRig {
   std::vector<double> body_states() const;
   void set_body_states(const std::vector<double>& values);  // body_count() x kValuesPerBody values
 
-  // the root hinge's (every hinge has the same ERP; its CFM scales as 1 / k_j)
-  double hinge_stop_erp(int frame) const { return stop_softness_[frame].at(0).erp; }
-  double hinge_stop_cfm(int frame) const { return stop_softness_[frame].at(0).cfm; }
+  // the root hinge's (every hinge has the same ERP; its CFM scales as 1 / k_j); implicit_stops only
+  double hinge_stop_erp(int frame) const { return root_stop_softness(frame).erp; }
+  double hinge_stop_cfm(int frame) const { return root_stop_softness(frame).cfm; }
   double world_erp() const { return dWorldGetERP(world_); }  // the hinges' own (hard) rows
   double world_cfm() const { return dWorldGetCFM(world_); }
 
@@ -96,6 +96,7 @@ class OdeRig {
   };
   void build_frame(const FrameRig& spec, double sphere_radius_m, Frame& frame);
   void soften_hinge_stops(int frame);
+  SoftConstraint root_stop_softness(int frame) const;
   static void pose_frame(const FrameRig& spec, const Eigen::VectorXd& angles, const Frame& frame);
   double pitch(dBodyID body) const;  // rotation about y [rad]
 
@@ -103,7 +104,6 @@ class OdeRig {
   dWorldID world_ = nullptr;
   dJointGroupID contact_group_ = nullptr;
   std::array<Frame, 2> frames_;
-  std::array<std::vector<SoftConstraint>, 2> stop_softness_{};  // per hinge, implicit_stops only
   bool has_contact_ = false;
   dJointFeedback contact_feedback_{};
   dVector3 contact_normal_{};
