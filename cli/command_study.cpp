@@ -44,8 +44,8 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
                                      std::to_string(s.ensemble.reference_starts) + ")";
     std::printf("%s \"%s\": %s; engines %s; laws %s; paths %s; dt_s %s%s\n", s.step_search ? "search" : "suite",
                 suite_names[i].c_str(), list_text(s.inputs).c_str(), list_text(s.engines).c_str(), laws(s.laws).c_str(),
-                s.contact_paths.empty() ? "default" : list_text(s.contact_paths).c_str(),
-                s.step_search ? "searched" : steps(s.time_steps_s).c_str(), starts.c_str());
+                s.recommended ? "recommended" : s.contact_paths.empty() ? "default" : list_text(s.contact_paths).c_str(),
+                s.step_search ? "searched" : s.recommended ? "recommended" : steps(s.time_steps_s).c_str(), starts.c_str());
   }
   for (std::size_t i = 0; i < sweeps.size(); ++i) {
     const ib::SweepSettings& s = sweeps[i];

@@ -118,6 +118,13 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
   s.extend = o.extend;
   s.reference_cache = o.reference_cache;
   s.ensemble = ensemble_from(o);
+  if (o.recommended) {
+    // the configuration sets the contact path and the step of every law: a path or step beside it is a mistake
+    if (!o.paths.empty() || !s.time_steps_s.empty() || o.find_steps)
+      throw std::invalid_argument("--recommended cannot be combined with --paths, --dt or --find-steps (each engine's "
+                                  "recommended configuration sets its contact path and time step per law)");
+    s.recommended = true;
+  }
   if (o.find_steps) {
     if (!s.time_steps_s.empty()) throw std::invalid_argument("--dt cannot be combined with --find-steps (the search chooses the steps)");
     s.step_search = parse_step_search(o, s.measurement.verdicts);

@@ -21,6 +21,7 @@ struct SuiteOptions : MatrixOptions {
   double max_duration_s = 0;  // 0: not given (given: > 0)
   bool extend = false;
   bool find_steps = false, keep_series = false;
+  bool recommended = false;  // --recommended: each engine in its authors' configuration per law
   int steps_per_octave = 4;
   std::string step_range = "1e-6,1e-3", tolerances;
   std::string reference_cache;  // a folder sharing reference runs between output folders

@@ -87,6 +87,10 @@ int main(int argc, char** argv) {
                     "frame 1's initial tip displacement between two starts of an ensemble [m]")
       ->capture_default_str();
   suite_measurement.add_to(suite, /*with_timing=*/true);
+  suite->add_flag("--recommended", suite_options.recommended,
+                  "each engine in its authors' recommended configuration for each law: the options and time step of "
+                  "its adapters/<engine>/descriptor.json, every setting with its source (docs/engines.md); not with "
+                  "--paths, --dt or --find-steps");
   suite->add_flag("--find-steps", suite_options.find_steps,
                   "per scenario, law, engine and options: search the largest stable step and the largest step at "
                   "which each headline metric is within tolerance, by bisection on a geometric grid (--steps-per-octave); "

@@ -5,6 +5,7 @@
 // (docs/adding-an-engine.md).
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +22,14 @@ struct DiagnosticsKey {
   std::vector<std::pair<std::string, std::string>> values;
 };
 
+// The engine's authors' recommended configuration for one contact law (descriptor.json "recommended"): the
+// options to set and the time step; each setting's source is in the descriptor's text (recommended_json).
+struct RecommendedConfiguration {
+  std::string law;                            // "hertz", "viscoelastic", "newton"
+  std::map<std::string, std::string> options;  // e.g. {"contact", "matched"}, {"length_unit", "cm"}
+  double time_step_s = 0;                     // 0: the engine's default step
+};
+
 struct SimulatorDescriptor {
   std::string name;          // the catalog name, e.g. "mujoco"
   std::string display_name;  // e.g. "MuJoCo"
@@ -29,6 +38,8 @@ struct SimulatorDescriptor {
   // contact path (matched, injected, native) -> "#rrggbb": the same in every figure of the report
   std::vector<std::pair<std::string, std::string>> colours;
   std::vector<DiagnosticsKey> diagnostics;
+  std::vector<RecommendedConfiguration> recommended;  // one per law it names; empty: none
+  std::string recommended_json;  // the descriptor's "recommended" object as written (with its sources), "" if none
 };
 
 }  // namespace ib

@@ -129,6 +129,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadStudy{"ensemble_spread_beyond_a_hundredth_of_the_gap",
                  "[[suite]]\nscenarios = [\"scenarios/paper\"]\nensemble_starts = 200\nensemble_step_m = 1e-6\n",
                  {":4:", "ensemble_step_m", "--ensemble-step 1e-06", "allowed"}},
+        BadStudy{"recommended_beside_a_step",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\ndt_s = [1e-4]\nrecommended = true\n",
+                 {":4:", "recommended", "--recommended cannot be combined with --paths, --dt or --find-steps"}},
         BadStudy{"syntax", "[[suite]\nscenarios = [\"scenarios/paper\"]\n", {":1:", "TOML syntax error"}}),
     [](const ::testing::TestParamInfo<BadStudy>& info) { return std::string(info.param.name); });
 

@@ -165,5 +165,27 @@ TEST_F(SuitePlan, AnEnginesChainDampingIsItsChainReferences) {
   EXPECT_GT(engines, 0);
 }
 
+TEST_F(SuitePlan, RecommendedRunsEachEnginesOwnConfigurationForEachLaw) {
+  // the mirror's authors name a configuration for Hertz only: its options over the part's, at its own step
+  SimulatorDescriptor mirror;
+  mirror.name = "mirror";
+  mirror.recommended = {{"hertz", {{"contact", "native"}, {"chain_damping", "hinge"}}, 2e-5}};
+  settings_.simulators.descriptors.push_back(mirror);
+  settings_.recommended = true;
+  settings_.time_steps_s.clear();
+  settings_.contact_paths.clear();
+  settings_.engine_options["mirror"] = {{"chain_damping", "modal"}, {"links", "4"}};
+  std::vector<std::string> engine_runs;
+  for (const auto& [id, u] : by_id(plan_suites({settings_})))
+    if (u.kind == PlannedUnit::Kind::engine) engine_runs.push_back(id);
+  ASSERT_EQ(engine_runs.size(), 1u) << "one run, Hertz's: the Newton law has no recommended configuration";
+  const std::string& id = engine_runs[0];
+  EXPECT_NE(id.find("/hertz/"), std::string::npos) << id;
+  EXPECT_NE(id.find("dt=2e-05"), std::string::npos) << id;
+  EXPECT_NE(id.find("contact=native"), std::string::npos) << id;
+  EXPECT_NE(id.find("chain_damping=hinge"), std::string::npos) << id << ": the authors' setting wins";
+  EXPECT_NE(id.find("links=4"), std::string::npos) << id << ": the part's own option stays beneath";
+}
+
 }  // namespace suite_plan_test
 }  // namespace ib

@@ -31,6 +31,10 @@ struct SuiteSettings : MatrixSettings {
   // DIR/steps.jsonl when its search ends. time_steps_s is then ignored for the engines.
   std::optional<StepSearchSettings> step_search;
   bool keep_probe_series = false;                  // the probes' series.csv.gz (default: summary and events only)
+  // Set: each engine runs in its authors' recommended configuration for each law (its descriptor.json's
+  // "recommended": options and time step) instead of contact_paths x time_steps_s; an engine without one
+  // runs nothing in this suite. The per-engine options (engine_options) still apply beneath it.
+  bool recommended = false;
   // Set: reference runs are shared with other output folders through this one (harness/jobs/reference_cache.h):
   // a reference whose key is there is copied, not solved; one solved here is stored there.
   std::string reference_cache;

@@ -262,15 +262,7 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
           if (engine == "reference" || start >= part.ensemble.engine_starts) continue;
           const auto engine_options = part.engine_options.count(engine) ? part.engine_options.at(engine)
                                                                         : std::map<std::string, std::string>{};
-          const std::vector<double> steps = part.time_steps_s.empty() || part.step_search
-                                                ? std::vector<double>{0}
-                                                : part.time_steps_s;
-          const std::vector<std::string> paths =
-              part.contact_paths.empty() ? std::vector<std::string>{""} : part.contact_paths;
-          for (const std::string& path : paths)
-          for (double dt : steps) {
-            auto options = engine_options;
-            if (!path.empty()) options["contact"] = path;
+          for (const auto& [options, dt] : engine_configurations(part, settings_.simulators, engine, law, engine_options)) {
             PlannedJob job = make_job(index, JobKind::engine, engine, law, dt, options, start);
             job.spec.warnings = warnings;
             job.beam_reference = beam.id;

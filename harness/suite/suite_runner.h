@@ -62,6 +62,15 @@ struct ScoredFrom {
   const ReferenceData* chain;
 };
 
+// The (options, time step [s]; 0: the engine's default) an engine runs for one law in a suite part: the part's
+// contact paths x time steps (a step search: one each, its steps searched), or, with `recommended`, the
+// engine's authors' configuration for the law (its descriptor's), none for an engine without one.
+// suite_configurations.cpp.
+using EngineConfiguration = std::pair<std::map<std::string, std::string>, double>;
+std::vector<EngineConfiguration> engine_configurations(const SuiteSettings& part, const SimulatorCatalog& catalog,
+                                                       const std::string& engine, ContactLaw law,
+                                                       const std::map<std::string, std::string>& engine_options);
+
 // The step search judges "within tolerance" with the verdicts' own tolerances: one record.
 SuiteSettings with_one_tolerance_record(SuiteSettings settings);
 std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSettings>& parts);

@@ -87,6 +87,39 @@ class TheShippedDescriptors(unittest.TestCase):
                 self.assertNotIn(colour.lower(), seen, f"{path}: {colour} is {seen.get(colour.lower())}'s too")
                 seen[colour.lower()] = f"{d['name']} {path_name}"
 
+    def test_every_recommended_setting_names_its_source(self):
+        """An engine's recommended configuration (descriptor "recommended"): a configuration per law with a
+        contact path and a time step; each option it sets, and its step, is a setting listed with why and a
+        source (a link, or a repository file), or said to have no value from the authors."""
+        laws = {"hertz", "viscoelastic", "newton"}
+        checked = 0
+        for path, d in shipped().items():
+            if "recommended" not in d:
+                continue
+            recommended = d["recommended"]
+            self.assertEqual(set(recommended["laws"]), laws, path)
+            settings = recommended["settings"]
+            for entry in settings:
+                self.assertTrue(entry["setting"] and entry["why"] and entry["value_is"], f"{path}: {entry}")
+                if not entry["value_is"].startswith("no value"):
+                    self.assertRegex(entry["source"], r"^(https://|adapters/)", f"{path}: {entry['setting']}")
+            texts = " | ".join(entry["setting"] for entry in settings)
+            for law, configuration in recommended["laws"].items():
+                self.assertIn("contact", configuration["options"], f"{path}: {law}")
+                self.assertGreater(configuration["time_step_s"], 0, f"{path}: {law}")
+                for name, value in configuration["options"].items():
+                    self.assertIn(f"{name}={value}", texts, f"{path}: {law} sets {name}={value} without a source")
+                mantissa, exponent = f"{configuration['time_step_s']:e}".split("e")
+                step = f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"  # 2.5e-5, as the settings write it
+                self.assertRegex(texts, rf"time step[^|]*{re.escape(step)} s", f"{path}: {law}'s time step without a source")
+                checked += 1
+            with open(os.path.join(REPOSITORY, "docs", "engines.md")) as f:
+                documented = f.read()
+            for entry in settings:  # docs/engines.md lists them as the descriptor has them
+                self.assertIn(f"**{entry['setting']}** ({entry['value_is']}): {entry['why']}.", documented, path)
+                self.assertIn(entry["source"], documented, f"{path}: {entry['setting']}")
+        self.assertGreater(checked, 0)
+
     def test_each_documented_key_is_written_by_its_simulator(self):
         """A key the descriptor documents but the adapter never writes is a renamed or removed one."""
         for path, d in shipped().items():
@@ -116,6 +149,7 @@ class TheCommand(unittest.TestCase):
             for field in ("display_name", "packages", "colours"):
                 self.assertEqual(p[field], d[field], f"{d['name']}: {field}")
             self.assertEqual([k["key"] for k in p["diagnostics"]], [k["key"] for k in d["diagnostics"]])
+            self.assertEqual(p.get("recommended"), d.get("recommended"), f"{d['name']}: recommended")
         names = subprocess.run([EXECUTABLE, "engines", "--names"], capture_output=True, text=True)
         self.assertEqual(names.stdout.strip().split(","), list(printed))
         human = subprocess.run([EXECUTABLE, "engines"], capture_output=True, text=True)
