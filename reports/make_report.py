@@ -22,8 +22,8 @@ import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from impactbench_report import analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
-from impactbench_report import step_figures, zoom_figures  # noqa: E402
+from impactbench_report import ablation, analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
+from impactbench_report import front_figures, step_figures, zoom_figures  # noqa: E402
 from impactbench_report import dynamics, spectral, sweep  # noqa: E402
 
 CAVEATS = [
@@ -227,6 +227,8 @@ def main():
             sweeps.append((name, sweep.read(folder)))
         except data.ResultsError as error:
             sys.exit(f"make_report: {error}")
+    fronts_figures = (front_figures.lead_figure(document["cases"], figures_folder, stamp),
+                      front_figures.cases_figure(document["cases"], figures_folder, stamp))
     paths_by_case, paths_by_law, sections_by_sweep = draw_figures(suite, cases, chosen_by_law, experiment, steps,
                                                                   tolerances, figures_folder, stamp, sweeps)
     for (scenario, law, chosen), paths, case in zip(cases, paths_by_case, document["cases"]):
@@ -245,6 +247,8 @@ def main():
     for law, paths in zip(sorted(chosen_by_law), paths_by_law):
         sections.append((f"{law}: stability and the experiment", "", "", paths))
 
+    if document["ablation"]:
+        sections.append(ablation.section(document["ablation"]))
     try:
         measured = performance.section(args.suite)  # SUITE/performance/: bench/ timings, if any were saved
     except ValueError as error:
@@ -264,8 +268,8 @@ def main():
         source = os.path.join(args.suite, name)
         if os.path.exists(source) and os.path.abspath(out) != os.path.abspath(args.suite):
             shutil.copy(source, os.path.join(out, name))
-    write_markdown(os.path.join(out, "summary.md"), document, facts, sections, out)
-    write_html(os.path.join(out, "index.html"), document, facts, sections, out)
+    write_markdown(os.path.join(out, "summary.md"), document, facts, sections, out, fronts_figures)
+    write_html(os.path.join(out, "index.html"), document, facts, sections, out, fronts_figures)
     print(f"report: {os.path.join(out, 'index.html')}, {os.path.join(out, 'summary.md')}, "
           f"{os.path.join(out, 'summary.json')}")
 
@@ -311,8 +315,9 @@ def sweep_report(folder, out):
     print(f"report: {os.path.join(out, 'index.html')}, {os.path.join(out, 'summary.md')}")
 
 
-def write_markdown(path, document, facts, sections, out):
-    lines = [first_screen.markdown(document, facts)] + [f"\n{a}" for a in document.get("sweep_answers", [])]
+def write_markdown(path, document, facts, sections, out, fronts_figures=(None, None)):
+    lead, by_case = (f"![{os.path.basename(p)}]({os.path.relpath(p, out)})" if p else "" for p in fronts_figures)
+    lines = [first_screen.markdown(document, facts, lead, by_case)] + [f"\n{a}" for a in document.get("sweep_answers", [])]
     lines += ["", "## Caveats", ""] + [f"- {c}" for c in CAVEATS]
     for title, text, _, paths in sections:
         lines += ["", f"## {title}", ""]
@@ -326,10 +331,11 @@ def write_markdown(path, document, facts, sections, out):
 STYLE = """
 body { font-family: sans-serif; margin: 1.5em auto; max-width: 1340px; padding: 0 1em; color: #222; }
 h1 { font-size: 1.35em; margin: 0.3em 0; } .lede { font-size: 0.85em; margin: 0.3em 0; }
-#answer { font-size: 0.8em; } #answer td { white-space: nowrap; padding: 0.15em 0.4em; }
-#answer td:nth-child(3), #answer td:nth-child(7) { white-space: normal; }
-#answer td:nth-child(2), #answer td:nth-child(6) { text-align: left; } #answer th { font-size: 0.9em; }
-#answer td:nth-child(2), #answer td:nth-child(6) { white-space: normal; min-width: 9em; }  /* ties wrap */
+#answer, #cases { font-size: 0.8em; } #answer td, #cases td { white-space: nowrap; padding: 0.15em 0.4em; }
+#answer th, #cases th { font-size: 0.9em; } #answer td:nth-child(3n+2) { text-align: left; white-space: normal; }
+#cases td:nth-child(3), #cases td:nth-child(7) { white-space: normal; }
+#cases td:nth-child(2), #cases td:nth-child(6) { text-align: left; }
+#cases td:nth-child(2), #cases td:nth-child(6) { white-space: normal; min-width: 9em; }  /* ties wrap */
 .notes { font-size: 0.75em; color: #444; margin: 0.2em 0; } .engines { font-size: 0.8em; margin: 0.4em 0; } .convention { font-size: 0.8em; color: #444; }
 p + table { display: block; overflow-x: auto; max-width: 100%; }
 p.case + table td { white-space: nowrap; } p.case + table td:last-child { white-space: normal; min-width: 30em; }
@@ -358,12 +364,12 @@ def figure_html(path, out):
             f"alt='{html.escape(caption)}'></a></figure>")
 
 
-def write_html(path, document, facts, sections, out):
+def write_html(path, document, facts, sections, out, fronts_figures=(None, None)):
     import html
     parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
              "<meta name='viewport' content='width=device-width, initial-scale=1'>",
              f"<title>impactbench report</title><style>{STYLE}</style></head><body>",
-             first_screen.html_page_top(document, facts),
+             first_screen.html_page_top(document, facts, *(figure_html(p, out) if p else "" for p in fronts_figures)),
              "".join(f"<p class='lede'>{html.escape(a)}</p>" for a in document.get("sweep_answers", [])),
              "<nav><b>Cases:</b> " + " · ".join(f"<a href='#{anchor(t)}'>{html.escape(t)}</a>" for t, _, _, _ in sections)
              + " · <a href='#settings'>settings</a> · <a href='#provenance'>what ran</a> · <a href='#caveats'>caveats</a></nav>"]

@@ -11,10 +11,10 @@ ensemble's intervals beside it, each naming the job ids of the members it was co
 
 import math
 
-from . import analysis, data, engines, settings, significance
+from . import ablation, analysis, data, engines, fronts, settings, significance
 from .tables import percent
 
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
 
 RUN_COLUMNS = ["time_step_s", "verdict", "reason", "same_run_as", "chain_links", "duration_s", "window_start_s",
                "window_end_s", "frame1_sensor_peak_acceleration_g", "frame2_sensor_peak_acceleration_g",
@@ -144,6 +144,7 @@ def case_answer(suite, steps, scenario, law, experiment, tolerances):
                 best[kind] = (chosen, entry)
         if chosen:
             chosen_runs[config] = chosen
+    case["fronts"] = fronts.case_fronts(runs, tolerances, need, law)
     for kind in ("out_of_box", "tuned"):
         if kind in best:
             run, entry = best[kind]
@@ -207,6 +208,17 @@ def engine_standing(engine, cases, tolerances, runs=()):
     return standing
 
 
+def lead_operating_points(cases, engine):
+    """The engine's two operating points in the lead case (fronts.lead_case): {scenario, law,
+    most_accurate, cheapest_within_tolerance_vs_beam} with the points' job ids, or None."""
+    case = fronts.lead_case(cases)
+    entry = None if case is None else case["fronts"]["engines"].get(engine)
+    if entry is None:
+        return None
+    return {"scenario": case["scenario"], "law": case["law"], "most_accurate": entry["most_accurate"],
+            "cheapest_within_tolerance_vs_beam": entry["cheapest_within_tolerance_vs_beam"]}
+
+
 def summarise(suite, steps, experiment, tolerances, provenance):
     cases = [case_answer(suite, steps, s, l, experiment, tolerances) for s, l in suite.cases()]
     engines = sorted({r["engine"] for r in suite.runs if r["engine"] not in ("reference", "")})
@@ -221,6 +233,7 @@ def summarise(suite, steps, experiment, tolerances, provenance):
         standing["first_unstable"] = None if not unstable else {"job_id": unstable[0]["job_id"],
                                                                 "reason": unstable[0]["reason"]}
         standing["version"] = next((r["engine_version"] for r in runs if r["engine_version"]), "")
+        standing["operating_points"] = lead_operating_points(cases, engine)
         standing["line"] = standing_line(standing)
         standings.append(standing)
     configurations = {}
@@ -241,7 +254,7 @@ def summarise(suite, steps, experiment, tolerances, provenance):
         entry["settings"] = settings.merged(entry.pop("per_law"))
     return {"schema_version": SCHEMA_VERSION, "schema": "docs/summary-json.md", "suite": provenance,
             "verdict_tolerances": tolerances, "warnings": warnings(suite), "cases": cases, "engines": standings,
-            "configurations": configurations}
+            "configurations": configurations, "ablation": ablation.engine_ablation(cases)}
 
 
 def warnings(suite):
@@ -300,5 +313,27 @@ def standing_line(s):
         if k["cpu_time_per_simulated_s_median"] is not None:
             text += f" at {k['cpu_time_per_simulated_s_median']:.2g} s CPU/s"
         parts.append(text)
+    points = s.get("operating_points")
+    if points:
+        parts.append(operating_points_text(points))
     parts.append(f"{s['unstable_runs']} of {s['runs']} runs unstable, {s['failed_runs']} failed")
     return f"{name}: " + "; ".join(parts) + "."
+
+
+def point_text(point):
+    """'matched at 5e-5 s, 0.16 s CPU/s' for a front's point."""
+    step = point["time_step_s"]
+    cost = point["cpu_time_per_simulated_s"]
+    return (fronts.settings_text(point) + (f" at {step:g} s" if step else "")
+            + (f", {cost:.2g} s CPU/s" if cost is not None else ""))
+
+
+def operating_points_text(points):
+    """'resonance, hertz: most accurate matched at 5e-5 s, ...; cheapest within the tolerances ...'."""
+    accurate, cheapest = points["most_accurate"], points["cheapest_within_tolerance_vs_beam"]
+    text = f"{points['scenario']}, {points['law']}: most accurate " + (point_text(accurate) if accurate else "none")
+    if cheapest is None:
+        return text + ", none within every tolerance of the beam"
+    if accurate and cheapest["job_id"] == accurate["job_id"]:
+        return text + ", also the cheapest within every tolerance of the beam"
+    return text + "; cheapest within every tolerance of the beam " + point_text(cheapest)

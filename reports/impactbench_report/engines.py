@@ -42,6 +42,12 @@ def colour(engine, path):
     return descriptor(engine).get("colours", {}).get(path)
 
 
+def recommended(engine):
+    """The engine's authors' recommended configuration (engines.json "recommended": per law its options and
+    time step, and every setting with its source), or {} when the folder's engines.json has none."""
+    return descriptor(engine).get("recommended") or {}
+
+
 def repository_packages():
     """The Debian packages of every engine of this checkout (adapters/*/descriptor.json), in folder order:
     what bench/machine.sh records and the performance section shows."""

@@ -1,10 +1,10 @@
 """The report's first screen, rendered from the summary document (answer.py) in HTML and Markdown: the
-answer table (id "answer"), one line per engine, then the settings behind every configuration and what
+fronts, what to use (id "answer"), the best configuration per case (id "cases"), one line per engine, then the settings behind every configuration and what
 ran where. Every number printed here is in summary.json, which names the runs.csv row it came from."""
 
 import html
 
-from . import engines
+from . import engines, operating_points
 from .answer import error_text, warning_lines
 from .tables import step_text
 
@@ -127,15 +127,19 @@ def verdict_mark(run):
     return "" if largest["tolerance_multiple"] <= 1 else " ✗"
 
 
-def html_page_top(document, facts):
-    parts = ["<h1>impactbench: which engine, which setting, what error, at what cost</h1>",
+def html_page_top(document, facts, lead_front_html="", cases_fronts_html=""):
+    """The page's first screen: the lead case's front (front_figures.py), what to use (operating_points.py,
+    the element with id "answer"), every other case's front, then the table of the best configuration per case
+    (id "cases"), the engines' lines, the warnings and the error convention."""
+    parts = ["<h1>impactbench: which engine, which setting, what error, at what cost</h1>", lead_front_html,
+             operating_points.html_section(document), cases_fronts_html,
              "<p class='lede'>For each case and contact law: the configuration that comes closest to the "
              "continuous-beam reference out of the box (the engine's own contact and defaults) and once tuned "
              "(the law matched in or injected into the engine), its largest headline error against the beam "
              "(✗: beyond the verdict's tolerance; ?: an interval straddles it), its largest stable time step and its CPU cost per simulated "
              "second (CPU [s/s]). ≥: the largest step tried was stable. The configurations' settings and every run are below; report/summary.json holds the "
              "same, each number with the runs.csv row it came from.</p>",
-             table(ANSWER_HEADER, answer_rows(document)[0], "answer"),
+             table(ANSWER_HEADER, answer_rows(document)[0], "cases"),
              "<p class='notes'>" + "<br>".join(html.escape(n) for n in answer_rows(document)[1]) + "</p>",
              "<ul class='engines'>"]
     parts += [f"<li>{html.escape(s['line'])}</li>" for s in document["engines"]]
@@ -206,10 +210,13 @@ def table(header, rows, element_id=None):
     return f"<table{attribute}><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
-def markdown(document, facts):
+def markdown(document, facts, lead_front="", cases_fronts=""):
     from .tables import markdown as markdown_table
-    lines = ["# impactbench: which engine, which setting, what error, at what cost", "",
-             markdown_table(ANSWER_HEADER, answer_rows(document)[0]), ""]
+    lines = ["# impactbench: which engine, which setting, what error, at what cost", ""]
+    lines += [lead_front, ""] if lead_front else []
+    lines += operating_points.markdown(document)
+    lines += [cases_fronts, ""] if cases_fronts else []
+    lines += [markdown_table(ANSWER_HEADER, answer_rows(document)[0]), ""]
     lines += answer_rows(document)[1] + [""]
     lines += [f"- {s['line']}" for s in document["engines"]]
     lines += warnings_markdown(document.get("warnings", []))

@@ -1,6 +1,7 @@
 """The report's page as a reader meets it, rendered in headless Chromium (reports/tests/page_in_chromium.py):
-it loads with no console error, every <img> is drawn, every file of report/figures/ is shown on the page, and
-the answer (the element with id "answer") lies on the first screen of a 1366 x 768 window. The first screen
+it loads with no console error, every <img> is drawn, every file of report/figures/ is shown on the page, it
+opens with the fronts (figures/fronts.svg, the first image, above the answer), and the answer (the element
+with id "answer": what to use) lies on the first screen of a 1366 x 768 window. The first screen
 is saved as first-screen.png beside index.html, for the closing note.
 
     /usr/bin/python3 reports/tests/test_page_in_chromium.py REPORT_FOLDER
@@ -35,8 +36,10 @@ ANSWER = """(() => {
     .filter(e => !answer.contains(e) && !e.contains(answer) && e.getBoundingClientRect().top < box.top &&
                  !(e.parentElement && e.parentElement.closest("p, ul, ol, table, svg, figure, pre")));
   const headings = blocks.filter(e => /^H[1-3]$/.test(e.tagName)).map(e => e.textContent.trim().slice(0, 60));
+  const first = document.images[0];
   return {top: box.top, height: box.height, tag: answer.tagName.toLowerCase(), headings: headings,
-          blocks: blocks.length};
+          blocks: blocks.length,
+          first_image: first ? {src: first.getAttribute("src"), top: first.getBoundingClientRect().top} : null};
 })()"""
 
 # Every image, once each has loaded or failed; "lazy" images are made eager first, as if the reader scrolled
@@ -99,6 +102,19 @@ def answer_problems(seen):
     return []
 
 
+def fronts_problems(seen):
+    """The page opens with the fronts: its first image is figures/fronts.svg, above the answer."""
+    answer = seen["answer"]
+    first = answer and answer.get("first_image")
+    if not first:
+        return ["the page has no image: it must open with the fronts (figures/fronts.svg)"]
+    if not first["src"].endswith("figures/fronts.svg"):
+        return [f'the first image is {first["src"]}, not the fronts (figures/fronts.svg)']
+    if first["top"] >= answer["top"]:
+        return [f'the fronts start at {first["top"]:.0f} px, below the answer ({answer["top"]:.0f} px)']
+    return []
+
+
 class ReportPage(unittest.TestCase):
     """The report given on the command line, opened once."""
 
@@ -124,6 +140,9 @@ class ReportPage(unittest.TestCase):
     def test_the_answer_is_on_the_first_screen(self):
         self.assertNoProblems(answer_problems(self.seen))
         self.assertGreater(os.path.getsize(self.screenshot), 1000)
+
+    def test_it_opens_with_the_fronts_above_the_answer(self):
+        self.assertNoProblems(fronts_problems(self.seen))
 
 
 GOOD_IMAGE = '<svg xmlns="http://www.w3.org/2000/svg" width="200" height="100"><rect width="200" height="100"/></svg>'
@@ -152,11 +171,13 @@ class TheChecksCanFail(unittest.TestCase):
         shutil.rmtree(cls.folder)
 
     def test_a_good_page_passes(self):
-        report = hand_made(os.path.join(self.folder, "good"), '<h1>Report</h1><table id="answer"><tr><td>engine_a</td></tr>'
-                           '</table><img src="figures/drawn.svg" loading="lazy" style="margin-top:3000px">')
+        report = hand_made(os.path.join(self.folder, "good"), '<h1>Report</h1><img src="figures/fronts.svg">'
+                           '<table id="answer"><tr><td>engine_a</td></tr>'
+                           '</table><img src="figures/drawn.svg" loading="lazy" style="margin-top:3000px">',
+                           figures=("fronts.svg", "drawn.svg"))
         seen = look_at(report, os.path.join(report, "first-screen.png"))
         self.assertEqual(console_problems(seen) + image_problems(seen) + figure_problems(seen, report)
-                         + answer_problems(seen), [])
+                         + answer_problems(seen) + fronts_problems(seen), [])
 
     def test_every_fault_is_named(self):
         report = hand_made(os.path.join(self.folder, "faulty"),
@@ -173,6 +194,7 @@ class TheChecksCanFail(unittest.TestCase):
         self.assertEqual(image_problems(seen), ['<img src="figures/gone.svg"> is not drawn (complete: true, naturalWidth: 0)'])
         self.assertRegex(" ".join(figure_problems(seen, report)), r"1 of the 2 files .*: unshown\.svg$")
         self.assertRegex(" ".join(answer_problems(seen)), r"starts at 1\d\d\d px, below the first screen.*Report / Caveats")
+        self.assertEqual(fronts_problems(seen), ["the first image is figures/drawn.svg, not the fronts (figures/fronts.svg)"])
 
     def test_a_page_without_the_answer_is_reported(self):
         report = hand_made(os.path.join(self.folder, "no_answer"), '<img src="figures/drawn.svg">')

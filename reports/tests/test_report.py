@@ -178,6 +178,34 @@ class Report(unittest.TestCase):
         self.assertGreater(traced, 100)
         self.assertEqual({e["engine"] for e in summary["engines"]}, set(self.engines))
 
+    def test_every_point_of_a_front_traces_to_runs_csv(self):
+        """summary.json's fronts: each point is its runs.csv row (step, cost, verdict) with its score
+        computed from that row; each engine's most accurate point scores no worse than its other stable
+        points (this suite's runs are single, without a measured noise)."""
+        with open(os.path.join(self.report, "summary.json")) as f:
+            summary = json.load(f)
+        by_id = {r["job_id"]: r for r in self.rows}
+        tolerances = summary["verdict_tolerances"]
+        checked = 0
+        for case in summary["cases"]:
+            for engine, entry in case["fronts"]["engines"].items():
+                stable_scores = []
+                for point in entry["points"]:
+                    row = by_id[point["job_id"]]
+                    self.assertEqual((row["engine"], row["verdict"]), (engine, point["verdict"]))
+                    self.assertEqual(point["time_step_s"], float(row["time_step_s"]))
+                    self.assertEqual(point["cpu_time_per_simulated_s"], float(row["cpu_time_per_simulated_s"]))
+                    score = independent_score(row, tolerances)
+                    if point["score_vs_beam"] is not None:
+                        self.assertAlmostEqual(point["score_vs_beam"], score, places=12)
+                        if row["verdict"] in ("ok", "inaccurate"):
+                            stable_scores.append(score)
+                    checked += 1
+                if entry["most_accurate"] is not None:
+                    self.assertAlmostEqual(entry["most_accurate"]["score_vs_beam"], min(stable_scores), places=12)
+                self.assertTrue(set(entry["front_job_ids"]) <= {p["job_id"] for p in entry["points"]})
+        self.assertGreater(checked, 20)
+
     def test_a_suite_without_native_runs_says_not_run_rather_than_no_stable_run(self):
         self.assertFalse(any(path_of(r) == "native" for r in self.rows if r["engine"] != "reference"))
         with open(os.path.join(self.report, "summary.json")) as f:
