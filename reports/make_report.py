@@ -332,7 +332,8 @@ STYLE = """
 body { font-family: sans-serif; margin: 1.5em auto; max-width: 1340px; padding: 0 1em; color: #222; }
 h1 { font-size: 1.35em; margin: 0.3em 0; } .lede { font-size: 0.85em; margin: 0.3em 0; }
 #answer, #cases { font-size: 0.8em; } #answer td, #cases td { white-space: nowrap; padding: 0.15em 0.4em; }
-#answer th, #cases th { font-size: 0.9em; } #answer td:nth-child(3n+2) { text-align: left; white-space: normal; }
+#answer th, #cases th { font-size: 0.9em; } #answer td { white-space: normal; min-width: 6em; }
+#answer td:nth-child(3n+2) { text-align: left; } #answer td:nth-child(3n+1) { white-space: nowrap; min-width: 0; }
 #cases td:nth-child(3), #cases td:nth-child(7) { white-space: normal; }
 #cases td:nth-child(2), #cases td:nth-child(6) { text-align: left; }
 #cases td:nth-child(2), #cases td:nth-child(6) { white-space: normal; min-width: 9em; }  /* ties wrap */

@@ -3,10 +3,10 @@ second, its score: the largest headline error in multiples of its tolerance, ana
 front is the stable points no other stable point beats on both; each engine's two operating points are
 the most accurate point and the cheapest point within the verdict tolerances.
 
-Where a case needed an ensemble (significance.case_need), scores are intervals: the most accurate point is
-the cheapest of the points whose score cannot be told from the smallest one (ensembles.compare), and a point
-is within the tolerances only where every error's interval is (ensembles.verdict); a single run without a
-measured noise is within where its score is at most 1."""
+Where a case needed an ensemble (significance.case_need), scores are intervals: the most accurate point names
+the points whose score cannot be told from its own (ensembles.compare), and a point is within the tolerances
+only where every error's interval is (ensembles.verdict); a single run without a measured noise is within
+where its score is at most 1."""
 
 import math
 from dataclasses import dataclass
@@ -73,8 +73,8 @@ def within_tolerances(point, tolerances, need, against="beam"):
 
 
 def most_accurate(candidates, tolerances, need):
-    """(the cheapest point whose score vs the beam cannot be told from the smallest, the other points tied
-    with the smallest); (None, []) without a scored point."""
+    """(the point with the smallest score vs the beam, the cheaper first among equal scores; the other points
+    whose score the noise cannot tell from it), or (None, []) without a scored point."""
     scored = [p for p in candidates if p.scored]
     if not scored:
         return None, []
@@ -88,8 +88,7 @@ def most_accurate(candidates, tolerances, need):
         if (other is not None and significance.like_with_like(best_interval, other)
                 and ensembles.compare(best_interval[0], other[0]) == "tie"):
             tied.append(p)
-    chosen = min([best] + tied, key=lambda p: (p.cost_s_per_s, p.score))
-    return chosen, [p for p in [best] + tied if p is not chosen]
+    return best, sorted(tied, key=lambda p: p.cost_s_per_s)
 
 
 def cheapest_within(candidates, tolerances, need, against="beam"):

@@ -32,7 +32,7 @@ def operating_rows(case):
                 row += [entry[key + "_why_none"], "–", "–"]
                 continue
             tied = point.get("tied_with_job_ids") or []
-            row += [point_setting(point) + (f" (= {len(tied)} more within the noise)" if tied else ""),
+            row += [point_setting(point) + (f" (tied within the noise with {len(tied)} more)" if tied else ""),
                     error_text(point["largest_error_vs_beam"]),
                     "–" if point["cpu_time_per_simulated_s"] is None else f"{point['cpu_time_per_simulated_s']:.3g}"]
         rows.append(row)
@@ -56,8 +56,8 @@ def operating_rows(case):
 
 
 def intro(case):
-    return (f"What to use, {case['scenario']}, {case['law']}: each engine's most accurate run (the cheapest of those "
-            "the noise cannot tell apart) and its cheapest run within every verdict tolerance of the beam, from the "
+    return (f"What to use, {case['scenario']}, {case['law']}: each engine's most accurate run (with how many others the "
+            "noise cannot tell from it) and its cheapest run within every verdict tolerance of the beam, from the "
             "runs on the fronts above; and its authors' recommended configuration, each setting with its source below; "
             "every case's in summary.json (fronts).")
 
