@@ -9,7 +9,7 @@ import math
 
 import matplotlib.pyplot as plt
 
-from . import engines, fronts
+from . import analysis, engines, fronts
 from .figures import VERDICT_COLOURS, legend_axis, log_axis, proxy, save
 
 PATH_MARKERS = {"matched": "o", "injected": "s", "native": "^"}
@@ -17,16 +17,8 @@ SMALL_COLUMNS = 3
 SCORE_FLOOR = 1e-3  # a score of exactly 0 sits on the floor (no error in any metric, as to the printed digits)
 
 
-def path_of(point):
-    for option in point["options"].split(";"):
-        name, _, value = option.partition("=")
-        if name == "contact":
-            return value
-    return "matched"
-
-
 def colour(point):
-    return engines.colour(point["engine"], path_of(point)) or "black"
+    return engines.colour(point["engine"], analysis.contact_path(point)) or "black"
 
 
 def draw_case(ax, case, title, fontsize):
@@ -62,7 +54,7 @@ def draw_case(ax, case, title, fontsize):
             ax.plot(*zip(*line), color=colour(own[entry["front_job_ids"][0]]), linewidth=0.8, alpha=0.7, zorder=2)
     for point, cost, score in scored:
         solid = point["job_id"] in on_front
-        ax.scatter([cost], [score], color=colour(point), marker=PATH_MARKERS.get(path_of(point), "o"),
+        ax.scatter([cost], [score], color=colour(point), marker=PATH_MARKERS.get(analysis.contact_path(point), "o"),
                    s=30 if solid else 14, alpha=1.0 if solid else 0.3, edgecolors="black" if solid else "none",
                    linewidths=0.6, zorder=4 if solid else 3)
     recommended = {e["recommended"]["job_id"] for e in fronts["engines"].values() if e.get("recommended")}
@@ -87,7 +79,7 @@ def legend_handles(cases):
     for case in cases:
         for entry in case["fronts"]["engines"].values():
             for point in entry["points"]:
-                seen.setdefault((point["engine"], path_of(point)), colour(point))
+                seen.setdefault((point["engine"], analysis.contact_path(point)), colour(point))
     handles = [proxy(f"{engines.display_name(e)}, {p}", color=c, marker=PATH_MARKERS.get(p, "o"))
                for (e, p), c in seen.items()]
     return handles + [
@@ -104,10 +96,6 @@ def legend_handles(cases):
 CAPTION = ("every engine run at its CPU time per simulated second and its largest headline error against the beam "
            "in multiples of that metric's verdict tolerance (ensemble means where a run stands for one); the Pareto "
            "front solid, dominated runs faint, each engine's recommended configuration ringed")
-
-
-def with_runs(cases):
-    return [c for c in cases if c.get("fronts") and c["fronts"]["engines"]]
 
 
 def lead_figure(cases, folder, stamp):
@@ -127,7 +115,7 @@ def lead_figure(cases, folder, stamp):
 def cases_figure(cases, folder, stamp):
     """One small panel per case and law but the lead one, below the first; None when there is none."""
     lead = fronts.lead_case(cases)
-    rest = [c for c in with_runs(cases) if c is not lead]
+    rest = [c for c in fronts.with_runs(cases) if c is not lead]
     if not rest:
         return None
     rows = math.ceil(len(rest) / SMALL_COLUMNS)

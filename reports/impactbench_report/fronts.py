@@ -176,8 +176,13 @@ LEAD_CASE = ("resonance", "hertz")  # the case the first screen and the engines'
 def lead_case(cases):
     """The case whose operating points the first screen gives (summary.json's cases): the resonance with
     Hertz contact where it ran, else the first case with engine runs; None without one."""
-    with_runs = [c for c in cases if c.get("fronts") and c["fronts"]["engines"]]
-    return next((c for c in with_runs if (c["scenario"], c["law"]) == LEAD_CASE), with_runs[0] if with_runs else None)
+    found = with_runs(cases)
+    return next((c for c in found if (c["scenario"], c["law"]) == LEAD_CASE), found[0] if found else None)
+
+
+def with_runs(cases):
+    """The cases (summary.json's) whose fronts hold an engine run."""
+    return [c for c in cases if c.get("fronts") and c["fronts"]["engines"]]
 
 
 def settings_text(point):

@@ -142,13 +142,16 @@ class Report(unittest.TestCase):
                 checked += 1
         self.assertGreater(checked, 10)
 
+    def summary_and_rows(self):
+        """summary.json, runs.csv's rows by job id, and the verdict tolerances the summary names."""
+        with open(os.path.join(self.report, "summary.json")) as f:
+            summary = json.load(f)
+        return summary, {r["job_id"]: r for r in self.rows}, summary["verdict_tolerances"]
+
     def test_the_summary_traces_to_runs_csv(self):
         """summary.json: every run it names is a row of runs.csv with the same values; each case's best
         configuration is stable and no other stable configuration of its kind scores better."""
-        with open(os.path.join(self.report, "summary.json")) as f:
-            summary = json.load(f)
-        by_id = {r["job_id"]: r for r in self.rows}
-        tolerances = summary["verdict_tolerances"]
+        summary, by_id, tolerances = self.summary_and_rows()
         traced = 0
         for case in summary["cases"]:
             for config in case["configurations"]:
@@ -182,10 +185,7 @@ class Report(unittest.TestCase):
         """summary.json's fronts: each point is its runs.csv row (step, cost, verdict) with its score
         computed from that row; each engine's most accurate point scores no worse than its other stable
         points (this suite's runs are single, without a measured noise)."""
-        with open(os.path.join(self.report, "summary.json")) as f:
-            summary = json.load(f)
-        by_id = {r["job_id"]: r for r in self.rows}
-        tolerances = summary["verdict_tolerances"]
+        summary, by_id, tolerances = self.summary_and_rows()
         checked = 0
         for case in summary["cases"]:
             for engine, entry in case["fronts"]["engines"].items():
