@@ -55,6 +55,7 @@ ib::StepSearchSettings parse_step_search(const SuiteOptions& o, ib::VerdictSetti
   if (o.steps_per_octave < 1 || o.steps_per_octave > 64)
     throw std::invalid_argument("--steps-per-octave " + std::to_string(o.steps_per_octave) + ": allowed: 1 to 64");
   s.points_per_octave = o.steps_per_octave;
+  s.walk = o.step_walk;
   const auto range = split(o.step_range, ',');
   if (range.size() != 2) throw std::invalid_argument("--step-range " + o.step_range + ": expected MIN,MAX in seconds, e.g. 1e-6,1e-3");
   s.min_step_s = parse_positive(range[0], "--step-range");
@@ -130,8 +131,8 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
     s.step_search = parse_step_search(o, s.measurement.verdicts);
     s.keep_probe_series = o.keep_series;
   } else if (o.step_range != SuiteOptions{}.step_range || !o.tolerances.empty() ||
-             o.steps_per_octave != SuiteOptions{}.steps_per_octave || o.keep_series) {
-    throw std::invalid_argument("--step-range, --steps-per-octave, --tolerance and --keep-series need --find-steps");
+             o.steps_per_octave != SuiteOptions{}.steps_per_octave || o.keep_series || o.step_walk) {
+    throw std::invalid_argument("--step-range, --steps-per-octave, --step-walk, --tolerance and --keep-series need --find-steps");
   }
   return s;
 }

@@ -23,6 +23,7 @@ struct SuiteOptions : MatrixOptions {
   bool find_steps = false, keep_series = false;
   bool recommended = false;  // --recommended: each engine in its authors' configuration per law
   int steps_per_octave = 4;
+  bool step_walk = false;  // --step-walk: the search walks down the grid (a front's ladder) instead of bisecting
   std::string step_range = "1e-6,1e-3", tolerances;
   std::string reference_cache;  // a folder sharing reference runs between output folders
   int ensemble_starts = 1;            // --ensemble: starts of every configuration

@@ -98,6 +98,10 @@ int main(int argc, char** argv) {
   suite->add_option("--steps-per-octave", suite_options.steps_per_octave,
                     "with --find-steps: grid steps per halving of the step (4: a ratio of 1.19; 1: a coarse search, ratio 2)")
       ->capture_default_str();
+  suite->add_flag("--step-walk", suite_options.step_walk,
+                  "with --find-steps: instead of bisecting, walk down the grid from its largest step until the error "
+                  "against the beam stops falling (two stable steps in a row that lower it by at most a tenth of a "
+                  "tolerance) or the range ends: an error-against-cost front's ladder");
   suite->add_flag("--keep-series", suite_options.keep_series,
                   "with --find-steps: keep every probe's series.csv.gz (default: its summary and events only)");
   suite->add_option("--step-range", suite_options.step_range, "with --find-steps: MIN,MAX step searched [s]")

@@ -70,6 +70,7 @@ const std::vector<KeySpec> kSearchKeys = {
     {"steps_per_octave", Type::integer, "--steps-per-octave", "grid steps per halving of the step"},
     {"step_range_s", Type::numbers, "--step-range", "[MIN, MAX] step searched [s]"},
     {"keep_series", Type::boolean, "--keep-series", "keep every probe's series"},
+    {"walk", Type::boolean, "--step-walk", "walk down the grid until the error stops falling (a front's ladder), not bisect"},
 };
 const std::vector<KeySpec> kSweepKeys = {
     {"scenario", Type::text, "scenario", "a scenario file with a motor"},
@@ -272,6 +273,7 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
     if (given.count("steps_per_octave")) s.steps_per_octave = std::stoi(given["steps_per_octave"]);
     if (given.count("step_range_s")) s.step_range = given["step_range_s"];
     if (given.count("keep_series")) s.keep_series = given["keep_series"] == "true";
+    if (given.count("walk")) s.step_walk = given["walk"] == "true";
   }
   return part;
 }

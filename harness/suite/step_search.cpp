@@ -1,5 +1,6 @@
 #include "harness/suite/step_search.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -171,6 +172,7 @@ std::optional<int> StepSearch::unprobed_inside(const Bracket& b) const {
 bool StepSearch::closed(const Bracket& b) const { return b.not_applicable || !unprobed_inside(b); }
 
 int StepSearch::probes_left_estimate() const {
+  if (settings_.walk) return next_walk_probe() ? settings_.walk_flat_probes : 0;  // at least the flat probes
   int most = 0, open = 0;
   for (int p : predicates()) {
     const Bracket b = bracket(p);
@@ -187,6 +189,15 @@ int StepSearch::probes_left_estimate() const {
 }
 
 double StepSearch::mean_unprobed_steps_per_second() const {
+  if (settings_.walk) {  // the next walk_flat_probes grid steps
+    const auto next = next_walk_probe();
+    if (!next) return 0;
+    double sum = 0;
+    int count = 0;
+    for (int k = *next; k < std::min<int>(*next + settings_.walk_flat_probes, grid_.size()); ++k, ++count)
+      sum += 1.0 / grid_[k];
+    return sum / count;
+  }
   double widest_sum = 0;
   int widest = -1, widest_count = 0;
   for (int p : predicates()) {
@@ -209,7 +220,43 @@ double StepSearch::mean_unprobed_steps_per_second() const {
   return widest_count > 0 ? widest_sum / widest_count : 0;
 }
 
+double beam_score(const ProbeResult& result, const AccuracyTolerances& tolerances) {
+  double score = kNaN;
+  for (HeadlineMetric m : kHeadlineMetrics) {
+    const auto error = result.beam_error.find(m);
+    if (error == result.beam_error.end() || std::isnan(error->second)) continue;
+    const double multiple = std::abs(error->second) / tolerance_of(tolerances, m);
+    if (std::isnan(score) || multiple > score) score = multiple;
+  }
+  return score;
+}
+
+bool StepSearch::walk_stopped_falling() const {
+  std::optional<double> best;
+  int flat = 0;
+  for (const auto& [index, result] : results_) {  // largest step first
+    if (judge(kStability, result) != Outcome3::pass) continue;
+    const double score = beam_score(result, settings_.tolerance);
+    if (!std::isnan(score) && (!best || score < *best - settings_.walk_gain)) {
+      best = score;
+      flat = 0;
+    } else {
+      if (!std::isnan(score) && score < *best) best = score;
+      ++flat;  // a stable probe without a score cannot show the error falling either
+    }
+  }
+  return flat >= settings_.walk_flat_probes;
+}
+
+std::optional<int> StepSearch::next_walk_probe() const {
+  if (results_.empty()) return 0;
+  const auto& [last, result] = *results_.rbegin();
+  if (result.timed_out || last + 1 >= static_cast<int>(grid_.size()) || walk_stopped_falling()) return std::nullopt;
+  return last + 1;
+}
+
 std::optional<int> StepSearch::next_probe() const {
+  if (settings_.walk) return next_walk_probe();
   std::optional<int> next;
   int widest = -1;
   for (int p : predicates()) {
@@ -246,7 +293,9 @@ StepSearch::Outcome StepSearch::outcome(int predicate) const {
     o.error_at_largest_pass = r.error.count(m) ? r.error.at(m) : kNaN;
     o.beam_error_at_largest_pass = r.beam_error.count(m) ? r.beam_error.at(m) : kNaN;
   }
-  if (unprobed_inside(b)) o.status = "search not finished";
+  if (settings_.walk && unprobed_inside(b) && !next_walk_probe())  // the walk ended above the bracket's end
+    o.status = b.pass ? "holds down to the walk's smallest step" : "fails down to the walk's smallest step";
+  else if (unprobed_inside(b)) o.status = "search not finished";
   else if (b.pass && *b.pass == 0) o.status = "holds at the largest step";
   else if (!b.pass && b.fail && *b.fail == last) o.status = "fails at the smallest step";
   else if (b.pass && b.fail && *b.pass - *b.fail == 1) o.status = "bracketed to one grid step";

@@ -33,6 +33,14 @@ struct StepSearchSettings {
   double min_step_s = 1e-6;   // the grid's smallest step is the last one >= this [s]
   double max_step_s = 1e-3;   // the grid's largest step [s]
   int points_per_octave = 4;  // grid steps per halving of the step (ratio 2^(1/4) = 1.19)
+  // A front's ladder instead of a bisection (issue 32, --step-walk): walk down the grid from its largest
+  // step, one grid step at a time, until the error against the beam stops falling (walk_flat_probes stable
+  // probes in a row that lower the smallest score so far by at most walk_gain; a score is the largest
+  // headline error over its tolerance), the grid ends, or a probe reaches the time limit (smaller steps cost
+  // more). The gain is a tenth of a tolerance: 1 % of error at the default 10 %.
+  bool walk = false;
+  double walk_gain = 0.1;
+  int walk_flat_probes = 2;
   // "Within tolerance" is what the verdict calls accurate: the suite's verdict tolerances
   // (Measurement::verdicts.accuracy, set by --tolerance), which run_suite copies here. Intended change
   // of issue 17: the search once had its own stricter defaults (5 % peak, 10 % duration, 0.05 impacts
@@ -55,6 +63,10 @@ struct ProbeResult {
   // errors against the accuracy reference (the engine's own chain, else the beam), and the beam's
   std::map<HeadlineMetric, double> error, beam_error;  // NaN: not measured
 };
+
+// A probe's score against the beam: its largest headline error over that metric's tolerance (the report's
+// score, without the log decrement, which the probes do not carry); NaN when it has none.
+double beam_score(const ProbeResult& result, const AccuracyTolerances& tolerances);
 
 // The facts of a reference run that decide whether a metric can be judged at all.
 struct ReferenceFacts {
@@ -87,7 +99,8 @@ class StepSearch {
              const std::string& reference_name);
 
   const std::vector<double>& grid() const { return grid_; }
-  // The next grid index to probe; none when every bracket is closed or cannot be narrowed further.
+  // The next grid index to probe; none when every bracket is closed or cannot be narrowed further (a
+  // walk: when it has stopped).
   std::optional<int> next_probe() const;
   void add(int index, const ProbeResult& result);
   bool probed(int index) const { return results_.count(index) > 0; }
@@ -117,6 +130,8 @@ class StepSearch {
   enum class Outcome3 { pass, fail, undecided };
   static constexpr int kStability = -1;   // predicate keys: -1 stability, else the metric's index
   Outcome3 judge(int predicate, const ProbeResult& r) const;
+  std::optional<int> next_walk_probe() const;
+  bool walk_stopped_falling() const;  // the last walk_flat_probes stable probes did not lower the best score
   Bracket bracket(int predicate) const;
   bool closed(const Bracket& b) const;
   std::optional<int> unprobed_inside(const Bracket& b) const;  // the next probe inside b, if any

@@ -1,6 +1,7 @@
-// The step searches' driver (suite_runner.h): each group's bisection (step_search.h) starts when its reference
-// has ended and picks its next probe when its previous one has ended; the probes share the one runner's
-// processes with every other job. Probes already in runs.jsonl (--resume) are read, not run again.
+// The step searches' driver (suite_runner.h): each group's bisection or walk (step_search.h) starts when its
+// reference has ended and picks its next probe when its previous one has ended; the probes share the one
+// runner's processes with every other job. Probes already in runs.jsonl (--resume) are read, not run again,
+// and so is a probe that is a job of the plan (the same id: a walk through a suite part's steps), once it ends.
 #include "harness/suite/suite_runner.h"
 
 #include <algorithm>
@@ -16,6 +17,7 @@ void SuiteRunner::begin_step_searches() {
   if (step_groups_.empty()) return;
   if (settings_.resume) step_rows_done_ = repair_and_list_step_rows(settings_.out);
   recorded_lines_ = recorded_run_lines(settings_.out);
+  for (const PlannedJob& job : jobs_) planned_ids_.insert(job.id);
   for (const PlannedJob& job : step_groups_) {
     SearchGroup g;
     g.job = &job;
@@ -61,9 +63,12 @@ SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
       probe.step_probe = true;
       const auto found = recorded_lines_.find(probe.id);
       if (found == recorded_lines_.end()) break;
-      g.search->add(*next, probe_from_json(found->second, g.with_chain));  // run before (--resume)
-      ++outcome_.jobs_skipped;
+      // recorded before (--resume), or the run of a job the plan holds (a walk's ladder crosses the steps a
+      // suite part runs): not run again
+      g.search->add(*next, probe_from_json(found->second, g.with_chain));
+      if (!planned_ids_.count(probe.id)) ++outcome_.jobs_skipped;
     }
+    if (next && unfinished_.count(probe.id)) continue;  // a job of the plan is this probe: its record, once it ends
     if (!next) {
       append_step_row(settings_.out, StepRow{g.info, *g.settings, g.search.get()});
       g.finished = true;

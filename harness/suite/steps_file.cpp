@@ -52,6 +52,7 @@ std::vector<Field> step_fields(const StepRow& row) {
       {"step_range_min_s", s.min_step_s, true},
       {"step_range_max_s", s.max_step_s, true},
       {"grid_points_per_octave", static_cast<double>(s.points_per_octave)},
+      {"search", s.walk ? "walk" : "bisection"},  // a walk down the grid (a front's ladder), or a bisection
   };
   const StepSearch* search = row.search;
   const auto stability = search ? search->stability() : StepSearch::Outcome{"", kNaN, kNaN, kNaN, kNaN};
@@ -79,9 +80,10 @@ std::vector<Field> step_fields(const StepRow& row) {
 }
 
 // The key's numbers exactly: a row is found again only under the same range and tolerances.
-std::string key_text(const std::string& group_id, double min_s, double max_s, double points,
+std::string key_text(const std::string& group_id, double min_s, double max_s, double points, bool walk,
                      const std::vector<double>& tolerances) {
   std::string key = group_id + "|" + exact_number_text(min_s) + "|" + exact_number_text(max_s) + "|" + exact_number_text(points);
+  if (walk) key += "|walk";
   for (double t : tolerances) key += "|" + exact_number_text(t);
   return key;
 }
@@ -104,7 +106,7 @@ void append_step_row(const std::string& folder, const StepRow& row) {
 std::string step_row_key(const StepGroup& group, const StepSearchSettings& s) {
   std::vector<double> tolerances;
   for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(tolerance_of(s.tolerance, m));
-  return key_text(group.group_id, s.min_step_s, s.max_step_s, s.points_per_octave, tolerances);
+  return key_text(group.group_id, s.min_step_s, s.max_step_s, s.points_per_octave, s.walk, tolerances);
 }
 
 RecordedStepRow read_step_row(const std::string& json_line) {
@@ -116,7 +118,7 @@ RecordedStepRow read_step_row(const std::string& json_line) {
   row.readable = true;
   row.group_id = text_or_empty(j, "group_id");
   row.key = key_text(row.group_id, number_or_nan(j, "step_range_min_s"), number_or_nan(j, "step_range_max_s"),
-                     number_or_nan(j, "grid_points_per_octave"), tolerances);
+                     number_or_nan(j, "grid_points_per_octave"), text_or_empty(j, "search") == "walk", tolerances);
   return row;
 }
 
