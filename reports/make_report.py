@@ -121,10 +121,13 @@ _CASES = {}  # what the worker processes draw from, set before they fork (nothin
 
 def _draw(task):
     """One task's figures: a case's (task ("case", index)), a law's stability map and comparison with
-    the experiment (task ("law", law)), or a frequency sweep's sections (task ("sweep", index)), figures and
-    tables."""
+    the experiment (task ("law", law)), a frequency sweep's sections (task ("sweep", index)), figures and
+    tables, or the fronts' two figures (task ("fronts", None))."""
     c = _CASES
     kind, key = task
+    if kind == "fronts":
+        return (front_figures.lead_figure(c["summary_cases"], c["folder"], c["stamp"]),
+                front_figures.cases_figure(c["summary_cases"], c["folder"], c["stamp"]))
     if kind == "case":
         scenario, law, chosen = c["cases"][key]
         return case_figures(c["suite"], scenario, law, chosen, c["steps"], c["tolerances"], c["folder"], c["stamp"])
@@ -150,16 +153,17 @@ def case_line(case):
     return "; ".join(parts) + "."
 
 
-def draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances, folder, stamp, sweeps):
-    """Every case's figures, every law's and every sweep's sections, as (paths per case, paths per law,
-    sections per sweep), spread over the machine's cores (each figure is independent, and drawing them is
-    most of the report's time); in one process where fork is not available. The costliest tasks go first
+def draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances, folder, stamp, sweeps, summary_cases):
+    """The fronts' figures (from summary.json's cases), every case's figures, every law's and every sweep's
+    sections, as (fronts' paths, paths per case, paths per law, sections per sweep), spread over the
+    machine's cores (each figure is independent, and drawing them is most of the report's time); in one
+    process where fork is not available. The costliest tasks go first
     (the cases with series: a dozen panels each), so that the two workers end together."""
     laws = sorted(chosen_by_law)
     _CASES.update(suite=suite, cases=cases, chosen_by_law=chosen_by_law, experiment=experiment, steps=steps,
-                  tolerances=tolerances, folder=folder, stamp=stamp, sweeps=sweeps)
+                  tolerances=tolerances, folder=folder, stamp=stamp, sweeps=sweeps, summary_cases=summary_cases)
     with_series = [i for i, (_, _, chosen) in enumerate(cases) if any(suite.has_series(r) for r in chosen.values())]
-    tasks = ([("case", i) for i in with_series] + [("law", law) for law in laws] +
+    tasks = ([("case", i) for i in with_series] + [("fronts", None)] + [("law", law) for law in laws] +
              [("sweep", i) for i in range(len(sweeps))] +
              [("case", i) for i in range(len(cases)) if i not in with_series])
     workers = min(len(tasks), os.cpu_count() or 1)
@@ -169,7 +173,8 @@ def draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances, fol
         with multiprocessing.get_context("fork").Pool(workers) as pool:
             drawn = pool.map(_draw, tasks, chunksize=1)
     by_task = dict(zip(tasks, drawn))
-    return ([by_task[("case", i)] for i in range(len(cases))], [by_task[("law", law)] for law in laws],
+    return (by_task[("fronts", None)], [by_task[("case", i)] for i in range(len(cases))],
+            [by_task[("law", law)] for law in laws],
             [by_task[("sweep", i)] for i in range(len(sweeps))])
 
 
@@ -227,10 +232,8 @@ def main():
             sweeps.append((name, sweep.read(folder)))
         except data.ResultsError as error:
             sys.exit(f"make_report: {error}")
-    fronts_figures = (front_figures.lead_figure(document["cases"], figures_folder, stamp),
-                      front_figures.cases_figure(document["cases"], figures_folder, stamp))
-    paths_by_case, paths_by_law, sections_by_sweep = draw_figures(suite, cases, chosen_by_law, experiment, steps,
-                                                                  tolerances, figures_folder, stamp, sweeps)
+    fronts_figures, paths_by_case, paths_by_law, sections_by_sweep = draw_figures(
+        suite, cases, chosen_by_law, experiment, steps, tolerances, figures_folder, stamp, sweeps, document["cases"])
     for (scenario, law, chosen), paths, case in zip(cases, paths_by_case, document["cases"]):
         header, rows = tables.case_table(suite, scenario, law, experiment)
         line = case_line(case)

@@ -1,7 +1,8 @@
 """The report's first figures: error against run time as fronts (fronts.py). First the lead case's front
 (the resonance, Hertz) with every engine; further down, one small panel per case and law. Each engine run is a point at its CPU time
 per simulated second and its score (the largest headline error vs the beam in tolerance multiples) in its
-engine's colour, the marker its contact path; the points on the case's Pareto front are solid, the dominated
+engine's colour, the marker its contact path, with its score's 95 % interval as a bar where an ensemble gives one;
+the points on the case's Pareto front are solid, the dominated
 ones faint, each engine's own front joined by a line; unstable and failed runs are crosses along the top at
 their cost; the beam reference's cost is a dotted line."""
 
@@ -53,6 +54,12 @@ def draw_case(ax, case, title, fontsize):
         if len(line) > 1:
             ax.plot(*zip(*line), color=colour(own[entry["front_job_ids"][0]]), linewidth=0.8, alpha=0.7, zorder=2)
     for point, cost, score in scored:
+        half_width = point.get("score_half_width")
+        if half_width:  # the score's 95 % interval, clipped at the floor (a log axis has no zero)
+            ax.errorbar([cost], [score], yerr=[[score - max(score - half_width, SCORE_FLOOR)], [half_width]],
+                        color=colour(point), alpha=0.8 if point["job_id"] in on_front else 0.25, linewidth=0.7,
+                        capsize=1.5, zorder=3)
+    for point, cost, score in scored:
         solid = point["job_id"] in on_front
         ax.scatter([cost], [score], color=colour(point), marker=PATH_MARKERS.get(analysis.contact_path(point), "o"),
                    s=30 if solid else 14, alpha=1.0 if solid else 0.3, edgecolors="black" if solid else "none",
@@ -86,6 +93,7 @@ def legend_handles(cases):
         proxy("solid, outlined: on the case's Pareto front", color="black", marker="o"),
         proxy("faint: dominated (another run is both cheaper and closer)", color="black", marker="o", alpha=0.3),
         proxy("line: an engine's own front", color="black", linestyle="-"),
+        proxy("bar: the score's 95 % interval (ensembles)", color="black", marker="|", linestyle="none"),
         proxy("ring: the engine's recommended configuration", color="black", marker="o", markerfacecolor="none",
               markersize=10),
         proxy("cross along the top: unstable or failed, at its cost", color=VERDICT_COLOURS["unstable"], marker="x"),

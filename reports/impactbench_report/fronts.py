@@ -100,7 +100,7 @@ def cheapest_within(candidates, tolerances, need, against="beam"):
 def point_entry(point, tolerances, need):
     """A point as summary.json names it: its runs.csv row's job id, configuration, step and cost, and the
     scores derived from that row (or its ensemble); the largest error vs the beam with its interval's
-    half-width where it has one."""
+    half-width, and the score's half-width in tolerance multiples, where it has one."""
     run = point.run
     scored = significance.score_interval(run, tolerances, need) if point.metric is not None else None
     step = run.number("time_step_s")
@@ -109,6 +109,7 @@ def point_entry(point, tolerances, need):
             "verdict": run["verdict"],
             "cpu_time_per_simulated_s": None if math.isnan(point.cost_s_per_s) else point.cost_s_per_s,
             "score_vs_beam": None if math.isinf(point.score) else point.score,
+            "score_half_width": None if scored is None else scored[0].half_width,
             "largest_error_vs_beam": None if point.metric is None else {
                 "metric": point.metric, "error": point.error,
                 "half_width": None if scored is None else scored[2].half_width},

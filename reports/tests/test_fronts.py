@@ -96,6 +96,15 @@ class OperatingPoints(unittest.TestCase):
         plain = fronts.operating_points(fronts.points(runs, TOLERANCES), TOLERANCES, need=None)
         self.assertEqual(plain["cheapest_within_tolerance_vs_beam"]["job_id"], "near_the_line")
 
+    def test_a_points_error_bar_is_its_errors_half_width_in_tolerance_multiples(self):
+        need = {"needed": True, "single_run_noise": {PEAK: [0.05, 11]}}
+        entry = fronts.point_entry(fronts.points([run("a", 1e-4, 0.1, 0.08)], TOLERANCES)[0], TOLERANCES, need)
+        half_width = entry["largest_error_vs_beam"]["half_width"]
+        self.assertGreater(half_width, 0)
+        self.assertAlmostEqual(entry["score_half_width"], half_width / TOLERANCES["sensor_peak_relative_error"])
+        plain = fronts.point_entry(fronts.points([run("a", 1e-4, 0.1, 0.08)], TOLERANCES)[0], TOLERANCES, None)
+        self.assertIsNone(plain["score_half_width"])
+
     def test_case_fronts_name_every_engine_with_its_own_front(self):
         runs = [run("a1", 1e-4, 0.1, 0.3), run("a2", 5e-5, 0.2, 0.05),
                 run("b1", 1e-4, 0.05, 0.5, engine="engine_b"), run("b2", 5e-5, 0.3, 0.02, engine="engine_b")]
