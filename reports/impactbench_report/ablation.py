@@ -10,14 +10,14 @@ import html
 import math
 import statistics
 
-from . import engines, tables
+from . import analysis, engines, tables
 
 SETTING_STEP = "time step [s]"
 
 
 def settings_of(point):
     """A point's settings as {name: value}: its time step, its contact path and every other option."""
-    options = dict(o.split("=", 1) for o in point["options"].split(";") if "=" in o)
+    options = analysis.options_of(point["options"])
     options.setdefault("contact", "matched")
     options[SETTING_STEP] = f"{point['time_step_s']:g}" if point["time_step_s"] is not None else ""
     return options

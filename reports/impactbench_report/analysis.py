@@ -41,14 +41,21 @@ DEFAULT_TOLERANCES = {"sensor_peak_relative_error": 0.10, "contact_duration_rela
 NATIVE, TUNED = "native", ("matched", "injected")
 
 
+def options_of(text):
+    """An options text as runs.csv and the configurations' names write it ('contact=matched;length_unit=cm')
+    as {name: value}: the one reader of that text."""
+    return dict(o.split("=", 1) for o in text.split(";") if "=" in o)
+
+
+def contact_path_of(options_text):
+    """The contact path an options text names: matched, injected or native (matched by default)."""
+    return options_of(options_text).get("contact", "matched")
+
+
 def contact_path(run):
     """The contact path of an engine run: matched, injected or native (options contact=...; matched by
     default)."""
-    for option in run["options"].split(";"):
-        name, _, value = option.partition("=")
-        if name == "contact":
-            return value
-    return "matched"
+    return contact_path_of(run["options"])
 
 
 def signed_error(run, column, against="beam"):

@@ -36,8 +36,7 @@ SPARE_COLOURS = ["#637939", "#7b4173", "#3182bd", "#31a354", "#756bb1", "#b5cf6b
 
 def colour_key(config):
     engine, _, options = config.partition(" [")
-    contact = next((o.split("=", 1)[1] for o in options.rstrip("]").split(";") if o.startswith("contact=")), "matched")
-    return engine, contact
+    return engine, analysis.contact_path_of(options.rstrip("]"))
 
 
 def colour_of(config, configs):

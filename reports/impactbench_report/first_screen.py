@@ -4,7 +4,7 @@ ran where. Every number printed here is in summary.json, which names the runs.cs
 
 import html
 
-from . import engines, operating_points
+from . import analysis, engines, operating_points
 from .answer import error_text, warning_lines
 from .tables import step_text
 
@@ -69,8 +69,7 @@ def answer_rows(document):
 def configuration_name(configuration):
     """'<display name> matched' for '<engine> [contact=matched]' (the tuned column's words)."""
     engine, _, options = configuration.partition(" [")
-    path = next((o.split("=", 1)[1] for o in options.rstrip("]").split(";") if o.startswith("contact=")), "matched")
-    return f"{engines.display_name(engine)} {path}"
+    return f"{engines.display_name(engine)} {analysis.contact_path_of(options.rstrip(']'))}"
 
 
 def tie_text(best, name):

@@ -136,7 +136,7 @@ def operating_points(candidates, tolerances, need):
 def is_recommended(run, configuration):
     """Whether a run is the recommended configuration {options, time_step_s} of its engine for its law: the
     same options (the contact path among them) at the same step."""
-    options = dict(o.split("=", 1) for o in run["options"].split(";") if "=" in o)
+    options = analysis.options_of(run["options"])
     step = run.number("time_step_s")
     return options == configuration.get("options") and math.isclose(step, configuration.get("time_step_s", math.nan),
                                                                      rel_tol=1e-9)

@@ -5,7 +5,7 @@ three operating points marked."""
 
 import math
 
-from . import engines, figures, sweep
+from . import analysis, engines, figures, sweep
 from .figures import plt
 from matplotlib.lines import Line2D
 
@@ -17,8 +17,7 @@ def engine_colour(config):
     engine, options = config[0], config[1]
     if engine == "reference":
         return "black"
-    contact = next((o.split("=", 1)[1] for o in options.split(";") if o.startswith("contact=")), "matched")
-    return engines.colour(engine, contact) or figures.SPARE_COLOURS[hash(options) % len(figures.SPARE_COLOURS)]
+    return engines.colour(engine, analysis.contact_path_of(options)) or figures.SPARE_COLOURS[hash(options) % len(figures.SPARE_COLOURS)]
 
 
 def mark_experiment(ax, label=True):
