@@ -35,6 +35,7 @@ void SuiteRunner::begin_step_searches() {
 // The first group, in planned order, whose next probe can start: its reference has ended and its previous probe
 // too. A group whose search needs no more probes writes its row to steps.csv here.
 SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
+  awaited_by_searches_.clear();
   for (SearchGroup& g : searches_) {
     if (g.finished || g.running) continue;
     if (g.next_probe) return &g;
@@ -68,7 +69,10 @@ SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
       g.search->add(*next, probe_from_json(found->second, g.with_chain));
       if (!planned_ids_.count(probe.id)) ++outcome_.jobs_skipped;
     }
-    if (next && unfinished_.count(probe.id)) continue;  // a job of the plan is this probe: its record, once it ends
+    if (next && unfinished_.count(probe.id)) {  // a job of the plan is this probe: its record, once it ends
+      awaited_by_searches_.insert(probe.id);      // (next_cost starts it before other jobs)
+      continue;
+    }
     if (!next) {
       append_step_row(settings_.out, StepRow{g.info, *g.settings, g.search.get()});
       g.finished = true;

@@ -118,8 +118,8 @@ std::vector<const PlannedJob*> SuiteRunner::ready_jobs() {
 // What waits for a unit decides its turn before its own cost does (the critical path first, so that no chain
 // of units is left to run alone at the end): a reference first, cheap, since the jobs compared with it wait for
 // it; then a step search's probe, since each probe waits for the one before it (a search is a chain whose
-// length only its probes reveal); then, of the other jobs, a kind not measured yet, then the costliest
-// (next_to_start).
+// length only its probes reveal), and a job a walk waits for as its next probe, for the same reason; then, of
+// the other jobs, a kind not measured yet, then the costliest (next_to_start).
 std::optional<double> SuiteRunner::next_cost() {
   const std::vector<const PlannedJob*> ready = ready_jobs();
   const auto reference = std::find_if(ready.begin(), ready.end(),
@@ -127,6 +127,12 @@ std::optional<double> SuiteRunner::next_cost() {
   next_ = reference != ready.end() ? *reference : nullptr;
   next_search_ = next_ ? nullptr : ready_search();
   if (next_ || next_search_) return kUnknownCost;
+  const auto awaited = std::find_if(ready.begin(), ready.end(),
+                                    [this](const PlannedJob* job) { return awaited_by_searches_.count(job->id) > 0; });
+  if (awaited != ready.end()) {
+    next_ = *awaited;
+    return kUnknownCost;
+  }
   if (ready.empty()) return std::nullopt;
   std::vector<JobWork> work;
   for (const PlannedJob* job : ready) work.push_back(work_of(*job));

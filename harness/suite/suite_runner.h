@@ -250,6 +250,7 @@ class SuiteRunner : public SuiteSource {
   std::map<std::string, std::size_t> search_of_probe_;
   std::map<std::string, std::string> recorded_lines_;  // references and probes, for the searches
   std::set<std::string> planned_ids_;                  // the plan's job ids, for the searches (a probe may be one)
+  std::set<std::string> awaited_by_searches_;          // planned jobs a walk waits for as its next probe
   std::set<std::string> step_rows_done_;               // --resume: the searches recorded before
   int finished_searches_ = 0, finished_search_probes_ = 0;  // how many probes a search takes, measured here
   std::unique_ptr<Progress> progress_;
