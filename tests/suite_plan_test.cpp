@@ -142,10 +142,14 @@ TEST_F(SuitePlan, AnEnsemblePlansEveryStartAgainstTheReferencesOfTheSameStart) {
   };
   int third_reference_starts = 0;
   for (const PlannedUnit& u : units) {
-    if (u.kind == PlannedUnit::Kind::engine) EXPECT_LT(start_of(u.id), 2) << u.id;
+    if (u.kind == PlannedUnit::Kind::engine) {
+      EXPECT_LT(start_of(u.id), 2) << u.id;
+    }
     if (start_of(u.id) == 2) ++third_reference_starts;
     for (const std::string& before : u.after) EXPECT_EQ(start_of(before), start_of(u.id)) << u.id << " waits for " << before;
-    if (!u.same_run_as.empty()) EXPECT_EQ(start_of(u.same_run_as), start_of(u.id)) << u.id << " <- " << u.same_run_as;
+    if (!u.same_run_as.empty()) {  // braces: GoogleTest's macros hold an if of their own
+      EXPECT_EQ(start_of(u.same_run_as), start_of(u.id)) << u.id << " <- " << u.same_run_as;
+    }
   }
   EXPECT_EQ(third_reference_starts, 2) << "the third start: the beam reference of each law alone";
 }
