@@ -293,8 +293,8 @@ StepSearch::Outcome StepSearch::outcome(int predicate) const {
     o.error_at_largest_pass = r.error.count(m) ? r.error.at(m) : kNaN;
     o.beam_error_at_largest_pass = r.beam_error.count(m) ? r.beam_error.at(m) : kNaN;
   }
-  if (settings_.walk && unprobed_inside(b) && !next_walk_probe())  // the walk ended above the bracket's end
-    o.status = b.pass ? "holds down to the walk's smallest step" : "fails down to the walk's smallest step";
+  // A walk probes every grid step down to where it stopped: a bracket still open there never passed.
+  if (settings_.walk && unprobed_inside(b) && !next_walk_probe()) o.status = "fails down to the walk's smallest step";
   else if (unprobed_inside(b)) o.status = "search not finished";
   else if (b.pass && *b.pass == 0) o.status = "holds at the largest step";
   else if (!b.pass && b.fail && *b.fail == last) o.status = "fails at the smallest step";

@@ -119,13 +119,11 @@ nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
                      {"reference_starts", settings.ensemble.reference_starts},
                      {"displacement_step_m", settings.ensemble.displacement_step_m}};
   if (settings.recommended) s["recommended"] = true;  // absent otherwise: older folders resume
-  if (settings.step_search && settings.step_search->walk)  // a walk's fourth item: older folders resume
-    s["step_search"] = {settings.step_search->min_step_s, settings.step_search->max_step_s,
-                        settings.step_search->points_per_octave, "walk"};
-  else if (settings.step_search)
+  if (settings.step_search) {
     s["step_search"] = {settings.step_search->min_step_s, settings.step_search->max_step_s,
                         settings.step_search->points_per_octave};
-  else
+    if (settings.step_search->walk) s["step_search"].push_back("walk");  // absent for a bisection: older folders resume
+  } else
     s["step_search"] = nullptr;
   return s;
 }

@@ -10,7 +10,7 @@ import html
 import math
 import statistics
 
-from . import analysis, engines, tables
+from . import analysis, data, engines, tables
 
 SETTING_STEP = "time step [s]"
 
@@ -29,7 +29,7 @@ def step_ratio_text(larger_s, smaller_s):
 
 
 def stable(point):
-    return point["verdict"] in ("ok", "inaccurate")
+    return point["verdict"] in data.STABLE_VERDICTS
 
 
 def scored(point):
@@ -119,13 +119,16 @@ def table_rows(rows):
         made = [f"{n} made {what}" for n, what in ((r["pairs_made_unstable"], "unstable"),
                                                    (r["pairs_made_stable"], "stable")) if n]
         return ", ".join(made) or "none"
-    return [[engines.display_name(r["engine"]),
-             f"{r['setting']}: {r['to']}" if r["setting"] == SETTING_STEP else f"{r['setting']}: {r['from']} → {r['to']}",
-             f"{r['pairs']} ({len(r['cases'])})",
-             f"{signed(r['score_vs_beam_change_median'])} [{signed((r['score_vs_beam_change_range'] or [None])[0])}, "
-             f"{signed((r['score_vs_beam_change_range'] or [None, None])[1])}]",
-             signed(r["score_vs_own_chain_change_median"]),
-             "–" if r["cost_ratio_median"] is None else f"×{r['cost_ratio_median']:.2g}", stability(r)] for r in rows]
+
+    def row(r):
+        low, high = r["score_vs_beam_change_range"] or (None, None)  # none without a pair of two stable runs
+        return [engines.display_name(r["engine"]),
+                f"{r['setting']}: {r['to']}" if r["setting"] == SETTING_STEP else f"{r['setting']}: {r['from']} → {r['to']}",
+                f"{r['pairs']} ({len(r['cases'])})",
+                f"{signed(r['score_vs_beam_change_median'])} [{signed(low)}, {signed(high)}]",
+                signed(r["score_vs_own_chain_change_median"]),
+                "–" if r["cost_ratio_median"] is None else f"×{r['cost_ratio_median']:.2g}", stability(r)]
+    return [row(r) for r in rows]
 
 
 NOTE = ("Two runs of an engine in one case that differ in one setting only are a pair: a time step and the next "

@@ -14,6 +14,8 @@ import numpy as np
 from . import engines
 
 G = 9.80665  # standard gravity [m/s^2]
+# The verdicts of a run that gave a usable trajectory (an unstable or failed one did not).
+STABLE_VERDICTS = ("ok", "inaccurate")
 
 # runs.csv columns that are text; every other column is a number (empty: not applicable).
 TEXT_COLUMNS = {"job_id", "scenario", "law", "engine", "options", "contact_path", "law_simulated", "same_run_as", "verdict",
@@ -49,7 +51,7 @@ class Run(Record):
 
     @property
     def stable(self):
-        return self.values["verdict"] in ("ok", "inaccurate")
+        return self.values["verdict"] in STABLE_VERDICTS
 
 
 @dataclass

@@ -10,7 +10,7 @@ import math
 
 import matplotlib.pyplot as plt
 
-from . import analysis, engines, fronts
+from . import analysis, data, engines, fronts
 from .figures import VERDICT_COLOURS, legend_axis, log_axis, proxy, save
 
 PATH_MARKERS = {"matched": "o", "injected": "s", "native": "^"}
@@ -32,7 +32,7 @@ def draw_case(ax, case, title, fontsize):
             cost, score = point["cpu_time_per_simulated_s"], point["score_vs_beam"]
             if cost is None or cost <= 0:
                 continue
-            if point["verdict"] in ("ok", "inaccurate") and score is not None:
+            if point["verdict"] in data.STABLE_VERDICTS and score is not None:
                 scored.append((point, cost, max(score, SCORE_FLOOR)))
             elif point["verdict"] in ("unstable", "failed"):
                 stopped.append((point, cost))
