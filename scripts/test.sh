@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# The test command (what CI's .ci/run calls): installs what is missing, builds everything in build/ and runs
-# every test (GoogleTest through ctest), then builds the code we own again with AddressSanitizer and
-# UndefinedBehaviorSanitizer (build-sanitize/) and runs their tests there. Any sanitizer report fails its
-# test (-fno-sanitize-recover; ASan aborts). Each phase's time and the ten slowest tests are printed, so
-# that a regression shows in the log (docs/budgets.md: CI at most 30 minutes).
-# IMPACTBENCH_SKIP_SANITIZE=1 skips the sanitizer phase (for a quick local run; CI never sets it).
+# The test command (what CI's .ci/run calls): installs what is missing, builds impactbench in build/ and runs
+# the tests that need the optimized build (the engines against the reference, the adapters, the report, the
+# cluster, the timings; GoogleTest through ctest), then builds the code we own again with AddressSanitizer
+# and UndefinedBehaviorSanitizer (build-sanitize/) and runs the tests of our own code there. Any sanitizer
+# report fails its test (-fno-sanitize-recover; ASan aborts). Each phase's time and the ten slowest tests are
+# printed, so that a regression shows in the log (docs/budgets.md: CI at most 30 minutes).
+# IMPACTBENCH_SKIP_SANITIZE=1 skips the sanitizer phase and runs every test in build/ (for a quick local run;
+# CI never sets it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 started=$SECONDS
@@ -48,14 +50,20 @@ run_ctest() {
   return $status
 }
 
-scripts/build.sh --tests
+# The tests of our own code run once, under the sanitizers (build-sanitize/, below); build/ builds and runs
+# the tests that need the optimized build. Skipping the sanitizers runs them all here.
+if [[ "${IMPACTBENCH_SKIP_SANITIZE:-0}" == 1 ]]; then
+  scripts/build.sh --tests
+else
+  scripts/build.sh --release-tests
+fi
 end_phase "install, configure and build"
 run_ctest build
 end_phase "tests ($(grep -c ' Test *#' build/ctest.log) in build/)"
 
 # The layers are checked in the tests above: scripts/check_layers.py (ctest "layering", every include), the
 # harness's unit tests linking the model, the physics and the harness alone (tests/CMakeLists.txt,
-# harness_unit_tests), and a copy of the tree built with a toy engine as its only engine, no real engine's
+# harness_unit_tests, in build-sanitize/ below), and a copy of the tree built with a toy engine as its only engine, no real engine's
 # headers, paths or definitions anywhere (ctest new_engine_is_its_folder_and_one_line, tests/new_engine/).
 
 if [[ "${IMPACTBENCH_SKIP_SANITIZE:-0}" == 1 ]]; then
@@ -65,7 +73,7 @@ fi
 # -O1 keeps the instrumented physics fast enough for CI; -g1 (line tables) is all a sanitizer's report
 # needs to name the file and line.
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-      -DIMPACTBENCH_SANITIZE=ON -DIMPACTBENCH_BENCH=OFF >/dev/null
+      -DIMPACTBENCH_SANITIZE=ON -DIMPACTBENCH_BENCH=OFF -DIMPACTBENCH_TESTS=ON -DIMPACTBENCH_OWN_CODE_TESTS=ON >/dev/null
 cmake --build build-sanitize -j "$(nproc)"
 end_phase "sanitizer build"
 # The engines' Debian libraries are not instrumented; ASan still checks every access our code makes, and
@@ -74,7 +82,5 @@ end_phase "sanitizer build"
 # aborting (MuJoCo's "could not allocate" error relies on it); it hides no memory error.
 export ASAN_OPTIONS="abort_on_error=1:allocator_may_return_null=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
-# Left out here: ZeroDamping1000s, whose 1000 s of simulated time runs the reference's code that the shorter
-# reference tests run too, twenty times slower under the sanitizers at -O1 (over a minute).
-run_ctest build-sanitize -E '^ZeroDamping1000s\.'
+run_ctest build-sanitize
 end_phase "sanitizer tests ($(grep -c ' Test *#' build-sanitize/ctest.log) in build-sanitize/)"
