@@ -89,6 +89,9 @@ done
 
 [[ -f build/build.ninja || -f build/Makefile ]] || die "no configured build/ (build/build.ninja or build/Makefile): run scripts/build.sh --tests first"
 [[ -f build/tests/CTestTestfile.cmake ]] || die "build/ has no tests (configured with IMPACTBENCH_TESTS=OFF: run scripts/build.sh --tests)"
+# scripts/test.sh leaves build/ without the tests of our own code (they run under the sanitizers there)
+grep -q '^IMPACTBENCH_OWN_CODE_TESTS:BOOL=OFF$' build/CMakeCache.txt &&
+  die "build/ has no tests of our own code (configured by scripts/test.sh with IMPACTBENCH_OWN_CODE_TESTS=OFF): run scripts/build.sh --tests"
 logs=build/check-mutations && mkdir -p "$logs"
 backup=$(mktemp)
 current=""  # the file mutated right now, restored on any exit
