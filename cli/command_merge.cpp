@@ -18,13 +18,19 @@ int command_merge(const std::string& out, const std::vector<std::string>& shards
   // alike; this binary's only when no shard has one (shards of an older build).
   namespace fs = std::filesystem;
   const auto made_by = std::find_if(shards.begin(), shards.end(), [](const std::string& s) { return fs::exists(s + "/engines.json"); });
-  if (made_by == shards.end()) {
-    ib::write_engines_file(out, ib::simulator_catalog());
-  } else {
+  const auto copy_from_shard = [&out](const std::string& shard, const std::string& name) {
     std::error_code error;
-    fs::copy_file(*made_by + "/engines.json", out + "/engines.json", fs::copy_options::overwrite_existing, error);
-    if (error) throw ib::OutputError(ib::output_error_text(out + "/engines.json", "copy " + *made_by + "/engines.json", error.value()));
-  }
+    fs::copy_file(shard + "/" + name, out + "/" + name, fs::copy_options::overwrite_existing, error);
+    if (error) throw ib::OutputError(ib::output_error_text(out + "/" + name, "copy " + shard + "/" + name, error.value()));
+  };
+  if (made_by == shards.end())
+    ib::write_engines_file(out, ib::simulator_catalog());
+  else
+    copy_from_shard(*made_by, "engines.json");
+  // Where they were made (provenance.json): the first shard's that has one, never this binary's (the merge
+  // made no result). Shards of one suite come from one build; their machines may differ.
+  const auto described = std::find_if(shards.begin(), shards.end(), [](const std::string& s) { return fs::exists(s + "/provenance.json"); });
+  if (described != shards.end()) copy_from_shard(*described, "provenance.json");
   if (std::filesystem::exists(out + "/sweep.json"))
     std::printf("merge: %d sweep rows in %s/sweep.csv from %zu folders\n", outcome.runs, out.c_str(), shards.size());
   else

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "harness/records/number_text.h"
+#include "harness/records/provenance_file.h"
 #include "harness/scoring/plausibility.h"
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
@@ -91,6 +92,7 @@ int run_and_print(const ib::Scenario& scenario, ib::JobSpec job, const ib::Measu
     }
   }
   const ib::RunRecord record = ib::run_job(scenario, job, measurement, beam ? &*beam : nullptr, chain ? &*chain : nullptr, out, nullptr, ib::make_simulator);
+  ib::write_provenance_file(out, ib::simulator_catalog());
   print_record(record);
   std::printf("  files in %s\n", out.c_str());
   return record.verdict == ib::Verdict::unstable || record.verdict == ib::Verdict::failed ? kExitRunNotOk : kExitOk;
@@ -126,7 +128,8 @@ std::optional<int> within_time_limit(double time_limit_s, const std::function<in
 
 int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
                 double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
-                const MeasurementOptions& measurement_options, double time_limit_s, double max_duration_s) {
+                const MeasurementOptions& measurement_options, double time_limit_s, double max_duration_s,
+                double start_offset_m) {
   ib::Scenario scenario = ib::load_scenario(path);
   const bool cut = ib::cut_run(scenario, max_duration_s);  // --duration, as a suite's
   // the run the cross checks name: the cut one's length is --duration's, not the file's
@@ -144,6 +147,8 @@ int command_run(const std::string& path, const std::string& engine, const std::s
   job.settings.series_start_s = series_start_s;
   job.settings.time_step_s = time_step_s;
   job.settings.options = parse_options(option_pairs);
+  // an ensemble's start (repro writes it): frame 1's tip displaced beyond the scenario's initial displacement
+  job.start.initial_displacement_offset_m = start_offset_m;
   if (time_step_s != 0 || engine == "reference") ib::check_run_size(scenario, job.settings);  // --dt 1e300: not 0 steps, ok
   else {  // the engine's default step is its own: the rest of the size
     ib::RunSettings sized = job.settings;
@@ -172,6 +177,7 @@ int command_run(const std::string& path, const std::string& engine, const std::s
   record.duration_s = scenario.duration_s;
   std::filesystem::create_directories(out);
   ib::write_summary_json(out + "/summary.json", record);
+  ib::write_provenance_file(out, ib::simulator_catalog());
   std::printf("%s: failed: %s\n  files in %s\n", record.job_id.c_str(), record.reason.c_str(), out.c_str());
   return kExitRunNotOk;
 }

@@ -40,7 +40,8 @@ struct SweepOptions : MatrixOptions {
 int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
                 double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
                 const MeasurementOptions& measurement_options,
-                double time_limit_s, double max_duration_s);  // max_duration_s: 0, the scenario's whole run
+                double time_limit_s, double max_duration_s,
+                double start_offset_m);  // max_duration_s: 0, the scenario's whole run
 
 int command_modes(const std::string& path, bool json, const std::vector<std::string>& option_pairs);
 
@@ -94,5 +95,23 @@ struct StudyOptions {
   bool plan = false;  // --plan: check the file and say what each part runs, run nothing
 };
 int command_study(const StudyOptions& options);
+
+// `repro RUN_FOLDER OUT`: one run of a result folder made ready to run alone and to file with an engine's
+// authors: OUT/scenario.toml (the scenario it ran), OUT/repro.sh (the one command that reruns it, with its
+// engine, law, step, options, start and length), OUT/repro.json (what it was: job, verdict, reason, engine
+// version, the folder it came from) and, where the engine exports one, its model (MuJoCo: OUT/model.xml).
+// scenario_path: the scenario file where the run's own record names one that is no longer there.
+int command_repro(const std::string& run_folder, const std::string& out, const std::string& scenario_path);
+
+// `compare BASE NEW [MORE ...]`: result folders side by side, made by reports/compare.py (docs/compare.md):
+// what differs between what made them, then what moved beyond the noise; with more than two, each folder
+// against the next (a history). Its exit code: 0 nothing moved, 1 something moved, 2 bad input.
+struct CompareOptions {
+  std::vector<std::string> folders;  // the baseline first, each next one judged against the one before
+  std::string json, markdown, html;  // files to write (html: a folder), none when empty
+  bool cost_across_machines = false;
+  double cost_noise = 0.3;  // the least relative change of CPU time told apart from a shared machine's drift
+};
+int command_compare(const CompareOptions& options);
 
 }  // namespace cli

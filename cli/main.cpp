@@ -49,6 +49,10 @@ int main(int argc, char** argv) {
   add_shared_option(run, Shared::duration, run_duration_s,
                     "run a scenario longer than this for this long only, keeping its scoring window [s]", false);
   run->add_option("--option", options, "simulator option name=value, repeatable (see 'impactbench list')");
+  double run_start_offset_m = 0;
+  run->add_option("--start-offset", run_start_offset_m,
+                  "frame 1's initial tip displacement beyond the scenario's, as an ensemble's start [m]")
+      ->check(CLI::Range(-0.01, 0.01));
   run_measurement.add_to(run, /*with_timing=*/true);
   add_shared_option(run, Shared::time_limit, run_time_limit_s,
                     "the run (its references included) is stopped past this and recorded as failed [s]");
@@ -152,6 +156,29 @@ int main(int argc, char** argv) {
   report->add_option("suite", report_folder, "a suite's output folder")->required();
   report->add_option("--out", report_out, "report folder; default: SUITE/report");
 
+  std::string repro_folder, repro_out, repro_scenario;
+  CLI::App* repro = app.add_subcommand("repro", "make one run of a result folder ready to rerun alone and to file: its "
+                                                "scenario, the one command that reruns it, its model where the engine exports one");
+  repro->add_option("run", repro_folder, "the run's folder (SUITE/runs/<job id>, or a run's --out)")->required();
+  repro->add_option("out", repro_out, "the folder to write")->required();
+  repro->add_option("--scenario", repro_scenario, "the scenario file, where the one the run names is no longer there");
+
+  CompareOptions compare_options;
+  CLI::App* compare = app.add_subcommand("compare", "put two result folders side by side: what differs between what made "
+                                                    "them, then what moved beyond the noise (exit 1 when something did)");
+  compare->add_option("folders", compare_options.folders,
+                      "BASE NEW: the baseline result folder (a suite's or a study's) and the one judged against it; "
+                      "or several in order, each judged against the one before")
+      ->required()->expected(2, -1);
+  compare->add_option("--json", compare_options.json, "write the comparison as JSON to this file");
+  compare->add_option("--markdown", compare_options.markdown, "write the comparison as Markdown to this file");
+  compare->add_option("--html", compare_options.html, "write compare.html (a figure per moved configuration) and compare.md into this folder");
+  compare->add_flag("--cost-across-machines", compare_options.cost_across_machines,
+                    "judge CPU costs timed on other machines too (not comparable by default)");
+  compare->add_option("--cost-noise", compare_options.cost_noise,
+                      "the least relative change of CPU time told apart from the machine's drift between identical runs")
+      ->check(CLI::Range(0.0, 10.0))->capture_default_str();
+
   SweepOptions sweep_options;
   MeasurementOptions sweep_measurement;
   sweep_measurement.series = "none";  // a sweep's tables and Poincare samples are its results
@@ -193,11 +220,13 @@ int main(int argc, char** argv) {
     if (modes->parsed()) return command_modes(scenario_path, json, options);
     if (run->parsed())
       return command_run(scenario_path, engine, law, out_dir, rate_hz, series_start_s, time_step_s, options, run_measurement,
-                         run_time_limit_s, run_duration_s);
+                         run_time_limit_s, run_duration_s, run_start_offset_m);
     if (suite->parsed()) return command_suite(suite_options, suite_measurement);
     if (sweep->parsed()) return command_sweep(sweep_options, sweep_measurement);
     if (study->parsed()) return command_study(study_options);
     if (report->parsed()) return command_report(report_folder, report_out);
+    if (compare->parsed()) return command_compare(compare_options);
+    if (repro->parsed()) return command_repro(repro_folder, repro_out, repro_scenario);
     if (merge->parsed()) return command_merge(merge_out, merge_inputs, merge_no_report);
     if (export_model->parsed())
       return command_export(scenario_path, export_engine, law, export_out, time_step_s, export_rate_hz, options);

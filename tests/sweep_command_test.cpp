@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <sstream>
 #include <thread>
 
 #include "command_test_support.h"
@@ -61,6 +62,32 @@ TEST(SweepCommand, WritesItsTablesAndAResumeWithOtherSettingsIsRefused) {
   const CommandOutput same = sweep(common + " --window 2 --resume");
   EXPECT_EQ(same.exit_code, 0) << same.text;
   EXPECT_NE(same.text.find("0 run now, 2 already recorded"), std::string::npos) << same.text;
+}
+
+// A sweep records its scenario file's content (sweep.json's scenario_digest): the same file name edited between
+// a sweep and its --resume is another sweep, refused, not continued into a mix of two.
+TEST(SweepCommand, AResumeAfterItsScenarioFileWasEditedIsRefused) {
+  const fs::path out = fresh_command_folder("sweep_edited_", "out");
+  const fs::path scenario = out.string() + ".toml";
+  fs::copy_file(paper_scenario("resonance"), scenario, fs::copy_options::overwrite_existing);
+  const std::string common = scenario.string() + " --engines reference --ratios 0.99:1.0:0.01 --start up --duration 3 "
+                             "--rest-duration 3 --window 2 --out " + out.string();
+  const CommandOutput first = sweep(common);
+  ASSERT_EQ(first.exit_code, 0) << first.text;
+  std::stringstream text;
+  text << std::ifstream(scenario).rdbuf();
+  const std::string original = text.str();
+  const std::size_t at = original.find("damping_ratio = 0.003");
+  ASSERT_NE(at, std::string::npos);
+  std::ofstream(scenario) << std::string(original).replace(at, 21, "damping_ratio = 0.004");
+  const CommandOutput edited = sweep(common + " --resume");
+  EXPECT_EQ(edited.exit_code, 2) << edited.text;
+  EXPECT_NE(edited.text.find("scenario_digest differ"), std::string::npos) << edited.text;
+  std::ofstream(scenario) << original;
+  const CommandOutput same = sweep(common + " --resume");
+  EXPECT_EQ(same.exit_code, 0) << same.text;
+  fs::remove_all(out);
+  fs::remove(scenario);
 }
 
 }  // namespace sweep_command_test

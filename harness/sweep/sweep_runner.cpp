@@ -19,6 +19,7 @@
 #include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
 #include "harness/sweep/sweep_internal.h"
+#include "harness/jobs/shard_plan.h"
 #include "harness/jobs/unit_source.h"
 #include "harness/jobs/worker_process.h"
 #include "model/scenario_toml.h"
@@ -35,6 +36,8 @@ nlohmann::ordered_json settings_record(const SweepSettings& s, const Scenario& s
   nlohmann::ordered_json j;
   j["scenario"] = scenario.name;
   j["scenario_file"] = s.scenario_path;
+  // its content (a file of the same name edited between two sweeps is another sweep; compare says so)
+  j["scenario_digest"] = plan_digest({read_text_file(s.scenario_path)});
   j["ratios"] = s.ratios;
   std::vector<std::string> starts;
   for (SweepStart start : s.starts) starts.push_back(to_string(start));
@@ -113,7 +116,10 @@ void SweepRunner::prepare_folder() {
     if (!s_.resume) throw std::invalid_argument(s_.out + " holds a sweep already (sweep.json); continue it with --resume or choose another --out");
     const auto held = nlohmann::ordered_json::parse(read_text_file(path), nullptr, false);
     if (held.is_discarded()) throw std::invalid_argument(path + ": not a sweep's settings (not JSON); remove the folder to start again");
-    const std::string keys = differing_keys(held, record);
+    // a sweep recorded before the scenario's digest was kept is resumed on its other settings
+    nlohmann::ordered_json now = record;
+    if (!held.contains("scenario_digest")) now.erase("scenario_digest");
+    const std::string keys = differing_keys(held, now);
     if (!keys.empty())
       throw std::invalid_argument(s_.out + " holds a sweep with other settings (" + keys + " differ, see " + path +
                                   "): --resume continues the same sweep only; choose another --out");

@@ -1,0 +1,152 @@
+#include "cli/commands.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/records/number_text.h"
+#include "harness/records/run_files.h"
+#include "model/scenario_toml.h"
+#include "simulators/catalog.h"
+
+namespace cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+// A run's record (RUN/summary.json, written by every run), or bad input naming what is wrong.
+Json read_summary(const std::string& run_folder) {
+  const std::string path = run_folder + "/summary.json";
+  if (!fs::is_directory(run_folder))
+    throw std::invalid_argument(run_folder + ": " + (fs::exists(run_folder) ? "not a folder" : "no such folder") +
+                                "; expected a run's folder (SUITE/runs/<job id>, or a run's --out)");
+  std::ifstream in(path);
+  if (!in)
+    throw std::invalid_argument(run_folder + ": not a run's folder: it has no summary.json (a suite keeps one per run in "
+                                "SUITE/runs/<job id>/)");
+  const Json summary = Json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (!summary.is_object() || !summary.contains("engine") || !summary.contains("law") || !summary.contains("scenario_file"))
+    throw std::invalid_argument(path + ": not a run's record (expected a JSON object with engine, law and scenario_file); "
+                                "the folder is damaged");
+  return summary;
+}
+
+std::string text_of(const Json& summary, const char* key) {
+  const auto found = summary.find(key);
+  return found != summary.end() && found->is_string() ? found->get<std::string>() : "";
+}
+
+double number_of(const Json& summary, const char* key) {
+  const auto found = summary.find(key);
+  return found != summary.end() && found->is_number() ? found->get<double>() : NAN;
+}
+
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string this_executable() {
+  char path[PATH_MAX];
+  const ssize_t length = readlink("/proc/self/exe", path, sizeof path - 1);
+  return length > 0 ? std::string(path, static_cast<std::size_t>(length)) : "impactbench";
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream file(path);
+  if (!file) throw ib::OutputError(ib::output_error_text(path, "create", errno));
+  file << text;
+  file.close();
+  if (!file) throw ib::OutputError(ib::output_error_text(path, "write", errno));
+}
+
+// The `impactbench run` arguments that rerun the recorded run from OUT/scenario.toml, into OUT/rerun.
+std::vector<std::string> rerun_arguments(const Json& summary, const ib::Scenario& scenario) {
+  std::vector<std::string> arguments = {"run", "scenario.toml", "--engine", text_of(summary, "engine"), "--law",
+                                        text_of(summary, "law")};
+  const double step_s = number_of(summary, "time_step_s");
+  if (step_s > 0) arguments.insert(arguments.end(), {"--dt", ib::exact_number_text(step_s)});
+  std::stringstream options(text_of(summary, "options"));
+  for (std::string option; std::getline(options, option, ';');)
+    if (!option.empty()) arguments.insert(arguments.end(), {"--option", option});
+  const double duration_s = number_of(summary, "duration_s");
+  if (duration_s > 0 && duration_s < scenario.duration_s)
+    arguments.insert(arguments.end(), {"--duration", ib::exact_number_text(duration_s)});
+  const double window_s = number_of(summary, "window_end_s") - number_of(summary, "window_start_s");
+  if (window_s > 0) arguments.insert(arguments.end(), {"--window", ib::exact_number_text(window_s)});
+  const double offset_m = number_of(summary, "initial_displacement_offset_m");
+  if (offset_m != 0 && std::isfinite(offset_m))
+    arguments.insert(arguments.end(), {"--start-offset", ib::exact_number_text(offset_m)});
+  arguments.insert(arguments.end(), {"--out", "rerun"});
+  return arguments;
+}
+
+}  // namespace
+
+int command_repro(const std::string& run_folder, const std::string& out, const std::string& scenario_path) {
+  const Json summary = read_summary(run_folder);
+  const std::string recorded = text_of(summary, "scenario_file");
+  const std::string scenario_file = scenario_path.empty() ? recorded : scenario_path;
+  if (!fs::exists(scenario_file))
+    throw std::invalid_argument(run_folder + "/summary.json: scenario_file '" + recorded +
+                                "' is not there (a path as the suite was given it); name it with --scenario");
+  const ib::Scenario scenario = ib::load_scenario(scenario_file);
+  const std::string engine = text_of(summary, "engine");
+  require_engine(engine);
+
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error) throw ib::OutputError(ib::output_error_text(out, "create the folder", error.value()));
+  fs::copy_file(scenario_file, out + "/scenario.toml", fs::copy_options::overwrite_existing, error);
+  if (error) throw ib::OutputError(ib::output_error_text(out + "/scenario.toml", "copy " + scenario_file, error.value()));
+
+  const std::vector<std::string> arguments = rerun_arguments(summary, scenario);
+  std::string command = quoted(this_executable());
+  for (const std::string& a : arguments) command += " " + quoted(a);
+  write_file(out + "/repro.sh", "#!/bin/sh\n# Reruns " + text_of(summary, "job_id") + " alone (impactbench repro; repro.json "
+                                    "says what it was). Run it in this folder: the run goes to ./rerun.\ncd \"$(dirname \"$0\")\"\n" +
+                                    command + "\n");
+  fs::permissions(out + "/repro.sh", fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                  fs::perm_options::add, error);
+
+  ib::RunSettings settings;
+  settings.law = parse_law(text_of(summary, "law"));
+  settings.time_step_s = std::max(0.0, number_of(summary, "time_step_s"));
+  std::vector<std::string> option_pairs;
+  std::stringstream options(text_of(summary, "options"));
+  for (std::string option; std::getline(options, option, ';');)
+    if (!option.empty()) option_pairs.push_back(option);
+  settings.options = parse_options(option_pairs);
+  const std::string model = ib::make_simulator(engine)->export_model(scenario, settings);
+  const std::string model_file = model.empty() ? "" : model.front() == '<' ? "model.xml" : "model.json";
+  if (!model.empty()) write_file(out + "/" + model_file, model);
+
+  const Json record = {{"job_id", text_of(summary, "job_id")},
+                       {"engine", engine},
+                       {"engine_version", text_of(summary, "engine_version")},
+                       {"verdict", text_of(summary, "verdict")},
+                       {"reason", text_of(summary, "reason")},
+                       {"from_run_folder", fs::absolute(run_folder).lexically_normal().string()},
+                       {"scenario_file", scenario_file},
+                       {"command", arguments},
+                       {"model_file", model_file}};
+  write_file(out + "/repro.json", record.dump(2) + "\n");
+  std::printf("repro: %s (%s%s) in %s\n  rerun it with: sh %s/repro.sh\n", text_of(summary, "job_id").c_str(),
+              text_of(summary, "verdict").c_str(), text_of(summary, "reason").empty() ? "" : (": " + text_of(summary, "reason")).c_str(),
+              out.c_str(), out.c_str());
+  return kExitOk;
+}
+
+}  // namespace cli

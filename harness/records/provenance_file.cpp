@@ -1,0 +1,73 @@
+#include "harness/records/provenance_file.h"
+
+#include <sys/utsname.h>
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/records/run_files.h"
+#include "impactbench_build_info.h"  // generated at build time (cmake/provenance_header.cmake)
+
+namespace ib {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// The text after "KEY:" on the first line of FILE that starts with KEY, trimmed ("" when there is none).
+std::string proc_field(const std::string& file, const std::string& key) {
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind(key, 0) != 0) continue;
+    const std::size_t colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const std::size_t start = line.find_first_not_of(" \t", colon + 1);
+    return start == std::string::npos ? "" : line.substr(start);
+  }
+  return "";
+}
+
+Json machine_json() {
+  // /proc/meminfo gives "MemTotal:  24576000 kB"
+  long long memory_bytes = 0;
+  try {
+    memory_bytes = std::stoll(proc_field("/proc/meminfo", "MemTotal")) * 1024;
+  } catch (const std::exception&) {
+    memory_bytes = 0;  // not Linux, or unreadable: said as 0, not guessed
+  }
+  utsname system{};
+  const std::string os = uname(&system) == 0 ? std::string(system.sysname) + " " + system.release : "";
+  return {{"cpu_model", proc_field("/proc/cpuinfo", "model name")},
+          {"logical_cores", std::thread::hardware_concurrency()},
+          {"memory_bytes", memory_bytes},
+          {"os", os}};
+}
+
+Json build_json() {
+  return {{"git_commit", build_info::kGitCommit},
+          {"tracked_files_modified", build_info::kTrackedFilesModified},
+          {"compiler", build_info::kCompiler},
+          {"build_type", build_info::kBuildType},
+          {"flags", build_info::kFlags}};
+}
+
+}  // namespace
+
+std::string provenance_json(const SimulatorCatalog& catalog) {
+  Json engines = Json::object();
+  for (const std::string& name : catalog.names) {
+    const std::unique_ptr<Simulator> simulator = catalog.make ? catalog.make(name) : nullptr;
+    engines[name] = simulator ? simulator->version() : "";
+  }
+  return Json{{"build", build_json()}, {"machine", machine_json()}, {"engines", engines}}.dump(2) + "\n";
+}
+
+void write_provenance_file(const std::string& dir, const SimulatorCatalog& catalog) {
+  replace_text_file(dir + "/provenance.json", provenance_json(catalog));
+}
+
+}  // namespace ib

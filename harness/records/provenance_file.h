@@ -1,0 +1,22 @@
+// DIR/provenance.json: what made a result folder's numbers, beside them, so that two folders can be put
+// side by side knowing what differs between them before what moved (impactbench compare):
+//   {"build": {"git_commit", "tracked_files_modified", "compiler", "build_type", "flags"},
+//    "machine": {"cpu_model", "logical_cores", "memory_bytes", "os"},
+//    "engines": {"<name>": "<its library's version>", ...}}
+// The scenario files' digests are in the folder's suite.jsonl (a suite's settings) and sweep records.
+#pragma once
+
+#include <string>
+
+#include "model/simulator.h"
+
+namespace ib {
+
+// The provenance of results this process makes with the simulators of `catalog`, as JSON text.
+std::string provenance_json(const SimulatorCatalog& catalog);
+
+// Writes provenance_json(catalog) to DIR/provenance.json (replacing an older one: the last command that
+// wrote into the folder). Throws OutputError when the file cannot be written.
+void write_provenance_file(const std::string& dir, const SimulatorCatalog& catalog);
+
+}  // namespace ib

@@ -1,0 +1,1 @@
+"""impactbench compare: two result folders side by side (reports/compare.py)."""

@@ -1,0 +1,259 @@
+"""What moved between two result folders, judged against the noise: each configuration's headline metrics
+(and so its errors against the reference), its CPU cost, its verdicts; and the configurations that
+appeared or disappeared.
+
+The noise a metric's change is judged against, in this order:
+- both folders ran the configuration as an ensemble: Welch's 95 % interval of the difference of the means;
+- single runs of a case whose reference ran as an ensemble: the reference's scatter of one start (95 %
+  prediction half-width) on each side, sqrt(2) of it for the difference of two single runs;
+- single runs and nothing measured: the runs are deterministic (the same build and inputs give the same
+  numbers to the bit), so a change beyond rounding is a change.
+The cost's noise: the spread of a run's repeated timings (--repeat) or of an ensemble's starts, and at least
+COST_NOISE_FLOOR, the drift between identical runs on a shared machine; costs timed on other machines are
+not comparable unless asked, and a run under MIN_TIMED_CPU_S is too short to time."""
+
+import math
+from collections import Counter
+from dataclasses import dataclass, field
+
+from impactbench_report import analysis, ensemble_groups, ensembles
+from impactbench_report.ensembles import Interval
+
+# The relative drift of the same run's CPU time between two runs of a study on a shared machine: 15 to 30 %
+# (docs/budgets.md). A smaller change of cost is not told apart from it without instruction counts.
+COST_NOISE_FLOOR = 0.30
+# A run shorter than this (CPU time of its stepping) is not timed well enough to judge its cost: the clock's
+# resolution, start-up and caches weigh as much as the stepping.
+MIN_TIMED_CPU_S = 0.1
+# Two deterministic runs differ by rounding alone: a relative change below this is none.
+ROUNDING = 1e-9
+FAILING = ("unstable", "failed")
+
+
+@dataclass
+class MetricChange:
+    label: str
+    column: str
+    kind: str  # "relative" (shown as a fraction of the base value) or "difference"
+    base: float
+    new: float
+    change: float  # (new - base) / |base| for a relative metric, new - base for a difference
+    noise: float  # the half-width the change is judged against, in the change's unit
+    noise_method: str
+    moved: bool
+    base_error: float  # the error against the beam, base and new (NaN where not defined)
+    new_error: float
+
+
+@dataclass
+class CostChange:
+    base_s_per_s: float  # CPU time per simulated second
+    new_s_per_s: float
+    ratio: float
+    noise: float  # relative
+    judgement: str  # "moved", "within the noise", or why it is not judged
+    moved: bool = False
+
+
+@dataclass
+class ConfigurationChange:
+    job_id: str  # member 0's: the configuration in both folders
+    scenario: str
+    law: str
+    engine: str
+    time_step_s: float
+    options: str
+    presence: str  # "both", "appeared" (in NEW only), "disappeared" (in BASE only)
+    base_verdicts: dict = field(default_factory=dict)  # {verdict: members}
+    new_verdicts: dict = field(default_factory=dict)
+    newly_failing: bool = False
+    metrics: list = field(default_factory=list)
+    cost: CostChange = None
+
+    @property
+    def moved_metrics(self):
+        return [m for m in self.metrics if m.moved]
+
+    @property
+    def verdicts_changed(self):
+        return self.presence == "both" and self.base_verdicts != self.new_verdicts
+
+    @property
+    def moved(self):
+        return (self.presence != "both" or self.verdicts_changed or bool(self.moved_metrics)
+                or (self.cost is not None and self.cost.moved))
+
+
+def metric_interval(run, column):
+    """A configuration's metric: its ensemble's Interval, or the run's own value (a single run)."""
+    ensemble = run.ensemble
+    if ensemble is not None and ensemble.n > 1 and column in ensemble.metrics:
+        return ensemble.metrics[column]
+    return Interval(run.number(column), 1, "single run")
+
+
+def single_run_noise(suite, run, column, kind):
+    """The reference's one-start scatter of a metric in the run's case, as an absolute half-width around
+    the run's value; None when the case's reference ran once."""
+    _, intervals = ensemble_groups.reference_intervals(suite, run["scenario"], run["law"])
+    interval = intervals.get(column)
+    half = ensembles.single_run_noise(interval, kind) if interval is not None else None
+    if half is None:
+        return None
+    return half * abs(interval.mean) if kind == "relative" else half
+
+
+def judge_metric(base_suite, base_run, new_suite, new_run, label, column, error_column, kind):
+    a, b = metric_interval(base_run, column), metric_interval(new_run, column)
+    if math.isnan(a.mean) and math.isnan(b.mean):
+        return None
+    scale = abs(a.mean) if kind == "relative" and a.mean else 1.0
+    errors = [analysis.signed_error(r, error_column, "beam") for r in (base_run, new_run)]
+    if math.isnan(a.mean) != math.isnan(b.mean):  # measured in one folder only (impacts that stopped, say)
+        return MetricChange(label, column, kind, a.mean, b.mean, math.nan, 0.0, "defined in one folder only", True, *errors)
+    change = (b.mean - a.mean) / scale
+    difference = ensembles.welch_difference(b, a)
+    if difference is not None:
+        noise, method = difference.half_width / scale, "the ensembles' 95 % intervals (Welch)"
+    else:
+        halves = [h for h in (single_run_noise(base_suite, base_run, column, kind),
+                              single_run_noise(new_suite, new_run, column, kind)) if h is not None]
+        if halves:
+            noise, method = math.sqrt(2) * max(halves) / scale, "the reference's one-start scatter, for two single runs (95 %)"
+        else:
+            noise = ROUNDING * max(abs(a.mean), abs(b.mean)) / scale
+            method = "none measured: deterministic single runs, any change beyond rounding"
+    return MetricChange(label, column, kind, a.mean, b.mean, change, noise, method, abs(change) > noise, *errors)
+
+
+def cost_values(suite, run):
+    """(CPU time per simulated second, the relative spread of its timings: repeated timings of the run,
+    or the ensemble's starts; 0 when it was timed once)."""
+    value = run.number("cpu_time_per_simulated_s")
+    spread = 0.0
+    low, high = run.number("cpu_time_min_s"), run.number("cpu_time_max_s")
+    if run.number("timed_runs") >= 2 and low > 0 and high >= low:
+        spread = (high - low) / low
+    members = [m.number("cpu_time_per_simulated_s") for m in suite.members.get(run["job_id"], [run])]
+    members = [m for m in members if m > 0]
+    if len(members) >= 2:
+        spread = max(spread, (max(members) - min(members)) / min(members))
+    return value, spread
+
+
+def judge_cost(base_suite, base_run, new_suite, new_run, comparable, floor):
+    (a, spread_a), (b, spread_b) = cost_values(base_suite, base_run), cost_values(new_suite, new_run)
+    if not (a > 0 and b > 0):
+        return CostChange(a, b, math.nan, math.nan, "not timed in both folders")
+    if min(base_run.number("cpu_time_s"), new_run.number("cpu_time_s")) < MIN_TIMED_CPU_S:
+        return CostChange(a, b, b / a, math.nan, f"too short to time (under {MIN_TIMED_CPU_S:g} s of CPU)")
+    noise = max(spread_a, spread_b, floor)
+    ratio = b / a
+    if not comparable:
+        return CostChange(a, b, ratio, noise, "not comparable: timed on other machines (--cost-across-machines compares them)")
+    moved = abs(ratio - 1) > noise
+    return CostChange(a, b, ratio, noise, "moved" if moved else "within the noise", moved)
+
+
+def verdict_counts(suite, run):
+    return dict(Counter(m["verdict"] for m in suite.members.get(run["job_id"], [run])))
+
+
+def configuration(run, presence):
+    return ConfigurationChange(run["job_id"], run["scenario"], run["law"], run["engine"], run.number("time_step_s"),
+                               run["options"], presence)
+
+
+def compare(base, new, comparable_cost, cost_floor=COST_NOISE_FLOOR):
+    """Every configuration of either folder (folders.ResultFolder) as a ConfigurationChange, moved ones first:
+    the suite's runs, then each sweep's rows."""
+    found = compare_runs(base, new, comparable_cost, cost_floor) if base.suite and new.suite else []
+    for prefix in sorted(set(base.sweeps) | set(new.sweeps)):
+        found += compare_sweep_rows(prefix, base.sweeps.get(prefix), new.sweeps.get(prefix), comparable_cost, cost_floor)
+    found.sort(key=lambda c: (not c.moved, c.job_id))
+    return found
+
+
+# A sweep row's measured numbers (sweep.csv): single, deterministic runs continued from ratio to ratio.
+SWEEP_METRICS = [("impacts per cycle", "impacts_per_cycle", "difference"),
+                 ("frame 1 sensor peak", "frame1_sensor_peak_acceleration_g", "relative"),
+                 ("frame 2 sensor peak", "frame2_sensor_peak_acceleration_g", "relative"),
+                 ("contact duration", "contact_duration_mean_s", "relative")]
+
+
+def sweep_metric(row_a, row_b, label, column, kind):
+    a, b = row_a.get(column, math.nan), row_b.get(column, math.nan)
+    if math.isnan(a) and math.isnan(b):
+        return None
+    if math.isnan(a) != math.isnan(b):
+        return MetricChange(label, column, kind, a, b, math.nan, 0.0, "defined in one folder only", True, math.nan, math.nan)
+    scale = abs(a) if kind == "relative" and a else 1.0
+    change, noise = (b - a) / scale, ROUNDING * max(abs(a), abs(b)) / scale
+    return MetricChange(label, column, kind, a, b, change, noise, "none measured: deterministic single runs, any change "
+                        "beyond rounding", abs(change) > noise, math.nan, math.nan)
+
+
+def sweep_cost(row_a, row_b, comparable, floor):
+    a, b = (r["cpu_time_s"] / r["duration_s"] if r["duration_s"] > 0 else math.nan for r in (row_a, row_b))
+    if not (a > 0 and b > 0):
+        return CostChange(a, b, math.nan, math.nan, "not timed in both folders")
+    if min(row_a["cpu_time_s"], row_b["cpu_time_s"]) < MIN_TIMED_CPU_S:
+        return CostChange(a, b, b / a, math.nan, f"too short to time (under {MIN_TIMED_CPU_S:g} s of CPU)")
+    if not comparable:
+        return CostChange(a, b, b / a, floor, "not comparable: timed on other machines (--cost-across-machines compares them)")
+    moved = abs(b / a - 1) > floor
+    return CostChange(a, b, b / a, floor, "moved" if moved else "within the noise", moved)
+
+
+def sweep_verdict(row):
+    return {f"{row['verdict']}, {row['regime'] or 'no regime'}": 1} if row else {}
+
+
+def compare_sweep_rows(prefix, base_sweep, new_sweep, comparable, floor):
+    """Each row of a sweep (an id: configuration, start and ratio) as a ConfigurationChange; its regime is part
+    of its verdict (a row that changed regime moved)."""
+    rows_a = {r["id"]: r for r in base_sweep.rows} if base_sweep else {}
+    rows_b = {r["id"]: r for r in new_sweep.rows} if new_sweep else {}
+    found = []
+    for row_id in sorted(set(rows_a) | set(rows_b)):
+        a, b = rows_a.get(row_id), rows_b.get(row_id)
+        row = a or b
+        presence = "both" if a and b else ("disappeared" if a else "appeared")
+        change = ConfigurationChange(prefix + row_id, row["scenario"], row["law"], row["engine"], row["time_step_s"],
+                                     row["options"], presence)
+        change.base_verdicts, change.new_verdicts = sweep_verdict(a), sweep_verdict(b)
+        change.newly_failing = bool(b) and b["verdict"] in FAILING and not (a and a["verdict"] in FAILING)
+        if a and b:
+            change.metrics = [m for m in (sweep_metric(a, b, *metric) for metric in SWEEP_METRICS) if m is not None]
+            change.cost = sweep_cost(a, b, comparable, floor)
+        found.append(change)
+    return found
+
+
+def compare_runs(base, new, comparable_cost, cost_floor):
+    base_runs = {r["job_id"]: r for r in base.suite.runs if r["engine"]}
+    new_runs = {r["job_id"]: r for r in new.suite.runs if r["engine"]}
+    found = []
+    for job_id in sorted(set(base_runs) | set(new_runs)):
+        a, b = base_runs.get(job_id), new_runs.get(job_id)
+        if a is None or b is None:
+            change = configuration(a or b, "disappeared" if b is None else "appeared")
+            if a is not None:
+                change.base_verdicts = verdict_counts(base.suite, a)
+            if b is not None:
+                change.new_verdicts = verdict_counts(new.suite, b)
+                change.newly_failing = any(v in FAILING for v in change.new_verdicts)
+            found.append(change)
+            continue
+        change = configuration(a, "both")
+        change.base_verdicts, change.new_verdicts = verdict_counts(base.suite, a), verdict_counts(new.suite, b)
+        change.newly_failing = (sum(n for v, n in change.new_verdicts.items() if v in FAILING) >
+                                sum(n for v, n in change.base_verdicts.items() if v in FAILING))
+        if a.stable or b.stable or a["engine"] == "reference":
+            for label, column, error_column, kind, _ in analysis.SCORED:
+                metric = judge_metric(base.suite, a, new.suite, b, label, column, error_column, kind)
+                if metric is not None:
+                    change.metrics.append(metric)
+        change.cost = judge_cost(base.suite, a, new.suite, b, comparable_cost, cost_floor)
+        found.append(change)
+    return found

@@ -1,0 +1,116 @@
+"""A result folder as compare reads it: its runs (impactbench_report.data: one run per configuration, with
+its ensemble's statistics) and its sweeps' rows (a study's sweeps/NAME/, or a sweep's own folder), what made
+them (provenance.json, engines.json) and the scenario files it ran (the digests in suite.jsonl). Anything it
+cannot read is a CompareInputError naming the file."""
+
+import glob
+import json
+import os
+from dataclasses import dataclass, field
+
+from impactbench_report import data, sweep
+
+
+class CompareInputError(ValueError):
+    """A folder compare cannot read: the message names the folder or file, the line where there is one,
+    and what was expected."""
+
+
+@dataclass
+class ResultFolder:
+    path: str
+    suite: data.Suite  # None for a sweep's folder
+    sweeps: dict = field(default_factory=dict)  # {job id prefix ("sweeps/NAME/", "" for a sweep's folder): sweep.Sweep}
+    provenance: dict = field(default_factory=dict)  # provenance.json, {} for a folder made before it existed
+    engine_versions: dict = field(default_factory=dict)  # engines.json: {engine: its library's version}
+    scenario_digests: dict = field(default_factory=dict)  # {scenario file as the suite named it: digest}
+
+
+def read_json(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except json.JSONDecodeError as e:
+        raise CompareInputError(f"{path}:{e.lineno}: not JSON ({e.msg}); the folder is damaged") from None
+
+
+def read_scenario_digests(path):
+    """{scenario file: digest} over every suite.jsonl line (a study runs several suites into one folder).
+    A line cut short by a kill (the last, without its line break) is skipped, as the suite does."""
+    digests = {}
+    if not os.path.exists(path):
+        return digests
+    with open(path) as f:
+        text = f.read()
+    lines = text.split("\n")
+    for number, line in enumerate(lines[:-1], start=1):  # the part after the last line break is cut short
+        try:
+            record = json.loads(line)
+        except json.JSONDecodeError as e:
+            raise CompareInputError(f"{path}:{number}: not a suite's settings record ({e.msg}); the folder is damaged") from None
+        files = record.get("settings", {}).get("scenario_files", {}) if isinstance(record, dict) else {}
+        digests.update(files if isinstance(files, dict) else {})
+    return digests
+
+
+def read_folder(path):
+    """The folder at `path`, or CompareInputError: not a folder, no runs.csv, a damaged record."""
+    if not os.path.isdir(path):
+        what = "not a folder" if os.path.exists(path) else "no such folder"
+        raise CompareInputError(f"{path}: {what}; expected a result folder (a suite's or a study's, with runs.csv)")
+    has_runs = os.path.exists(os.path.join(path, "runs.csv"))
+    if not has_runs and not sweep.is_sweep(path):
+        raise CompareInputError(f"{path}: not a result folder: it has no runs.csv (a suite's or a study's folder has "
+                                "one) nor sweep.json (a sweep's)")
+    try:
+        folder = ResultFolder(path, data.read_runs(path) if has_runs else None)
+        sweep_folders = {"": path} if not has_runs else {
+            os.path.relpath(s, path) + "/": s for s in sorted(glob.glob(os.path.join(path, "sweeps", "*"))) if sweep.is_sweep(s)}
+        folder.sweeps = {prefix: sweep.read(s) for prefix, s in sweep_folders.items()}
+    except data.ResultsError as e:
+        raise CompareInputError(str(e)) from None
+    provenance = os.path.join(path, "provenance.json")
+    if os.path.exists(provenance):
+        folder.provenance = read_json(provenance)
+    engines = os.path.join(path, "engines.json")
+    if os.path.exists(engines):
+        folder.engine_versions = {s.get("name", ""): s.get("version", "") for s in read_json(engines).get("simulators", [])}
+    folder.scenario_digests = read_scenario_digests(os.path.join(path, "suite.jsonl"))
+    for s in folder.sweeps.values():  # a sweep's settings (sweep.json) name its scenario file and its digest
+        if s.settings.get("scenario_file") and s.settings.get("scenario_digest"):
+            folder.scenario_digests[s.settings["scenario_file"]] = s.settings["scenario_digest"]
+    return folder
+
+
+def differences(base, new):
+    """What differs between what made two folders, before what moved: [(what, base's, new's)], scenario
+    files first (a file of the same name with other content makes every comparison of its runs moot)."""
+    found = []
+    for name in sorted(set(base.scenario_digests) & set(new.scenario_digests)):
+        if base.scenario_digests[name] != new.scenario_digests[name]:
+            found.append((f"scenario file {name}: its content differs", base.scenario_digests[name],
+                          new.scenario_digests[name]))
+    for name in sorted(set(base.engine_versions) | set(new.engine_versions)):
+        a, b = base.engine_versions.get(name), new.engine_versions.get(name)
+        if a != b:
+            found.append((f"{name}'s library version", a or "not in the build", b or "not in the build"))
+    if not base.provenance or not new.provenance:
+        if base.provenance or new.provenance:
+            found.append(("provenance.json", "present" if base.provenance else "missing (an older folder)",
+                          "present" if new.provenance else "missing (an older folder)"))
+        return found
+    for part in ("build", "machine"):
+        a, b = base.provenance.get(part, {}), new.provenance.get(part, {})
+        for key in sorted(set(a) | set(b)):
+            if a.get(key) != b.get(key):
+                found.append((f"{part} {key}", a.get(key), b.get(key)))
+    return found
+
+
+def same_machine(base, new):
+    """Whether the two folders' runs were timed on machines alike (CPU model and cores); False when either
+    folder does not say."""
+    a, b = base.provenance.get("machine"), new.provenance.get("machine")
+    if not a or not b:
+        return False
+    return all(a.get(k) == b.get(k) for k in ("cpu_model", "logical_cores"))
