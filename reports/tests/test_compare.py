@@ -1,8 +1,8 @@
 """`impactbench compare BASE NEW` as an engine's author meets it (reports/compare.py, docs/compare.md): a small
-suite run twice, with an ensemble so that the noise bands are the ensembles' intervals, then compared with
-itself, with its rerun, with a copy in which one engine's contact durations were raised by 30 % in every file
-that holds them, with a suite run against a scenario file of the same name and other content, and with a
-damaged copy.
+study (a suite with an ensemble, so that the noise bands are the ensembles' intervals, and a sweep) run twice,
+then compared with itself, with its rerun, with a copy in which one engine's contact durations were raised by
+30 % in every file that holds them, with a suite run against a scenario file of the same name and other
+content, and with a damaged copy; a sweep's folder alone; several folders in order.
 
     /usr/bin/python3 reports/tests/test_compare.py IMPACTBENCH_EXECUTABLE SCENARIO_FOLDER
 """
@@ -34,6 +34,32 @@ def run_suite(scenarios, out, engine):
     run = subprocess.run([EXECUTABLE, "suite", scenarios, "--engines", f"reference,{engine}", "--laws", "hertz",
                           "--dt", "1e-5", "--ensemble", "3", "--jobs", "2", "--out", out], capture_output=True, text=True)
     assert run.returncode in (0, 1), run.stderr  # an unstable run (exit 1) is a finding, compared like any other
+
+
+def run_study(folder, scenarios, out, engine):
+    """The suite of run_suite and a coarse sweep of the short resonance (reference only), as one study."""
+    study = os.path.join(folder, "study.toml")
+    with open(study, "w") as f:
+        f.write(f"""[[suite]]
+scenarios = ["{scenarios}"]
+engines = ["reference", "{engine}"]
+laws = ["hertz"]
+dt_s = [1e-5]
+ensemble_starts = 3
+
+[[sweep]]
+name = "coarse"
+scenario = "{os.path.join(SCENARIOS, 'short_resonance.toml')}"
+ratios = "0.95:1.00:0.05"
+starts = ["up"]
+engines = ["reference"]
+laws = ["hertz"]
+rest_duration_s = 3
+duration_s = 3
+window_s = 2
+""")
+    run = subprocess.run([EXECUTABLE, "study", study, "--no-report", "--jobs", "2", "--out", out], capture_output=True, text=True)
+    assert run.returncode in (0, 1), run.stdout + run.stderr
 
 
 def compare(base, new, *options):
@@ -105,8 +131,8 @@ class Compare(unittest.TestCase):
         shutil.copy(os.path.join(SCENARIOS, "short_free_vibration.toml"), cls.scenarios)
         cls.engine = first_engine()
         cls.base, cls.rerun = os.path.join(cls.folder, "base"), os.path.join(cls.folder, "rerun")
-        run_suite(cls.scenarios, cls.base, cls.engine)
-        run_suite(cls.scenarios, cls.rerun, cls.engine)
+        run_study(cls.folder, cls.scenarios, cls.base, cls.engine)
+        run_study(cls.folder, cls.scenarios, cls.rerun, cls.engine)
 
     @classmethod
     def tearDownClass(cls):
@@ -124,7 +150,7 @@ class Compare(unittest.TestCase):
         self.assertIn("made alike", result.stdout)
         self.assertIn("nothing moved beyond the noise", result.stdout)
 
-    def test_the_same_suite_run_twice_moves_nothing_beyond_the_noise(self):
+    def test_the_same_study_run_twice_moves_nothing_beyond_the_noise(self):
         out = os.path.join(self.folder, "rerun.json")
         result = compare(self.base, self.rerun, "--json", out)
         self.assertEqual(result.returncode, EXIT_NOTHING_MOVED, result.stdout + result.stderr)
@@ -134,6 +160,8 @@ class Compare(unittest.TestCase):
         methods = {m["noise"] for c in comparison["configurations"] for m in c["metrics"]}
         self.assertTrue(any("ensembles" in m for m in methods), methods)
         self.assertTrue(all(c["presence"] == "both" for c in comparison["configurations"]))
+        # the study's sweep rows are compared too
+        self.assertTrue(any(c["job_id"].startswith("sweeps/coarse/") for c in comparison["configurations"]))
 
     def test_one_engines_contact_durations_raised_30_percent_are_named(self):
         changed = os.path.join(self.folder, "changed")
