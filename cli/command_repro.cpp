@@ -72,15 +72,23 @@ void write_file(const std::string& path, const std::string& text) {
   if (!file) throw ib::OutputError(ib::output_error_text(path, "write", errno));
 }
 
+// The run's options ("a=b;c=d" in its record) as the name=value pairs --option takes.
+std::vector<std::string> option_pairs_of(const Json& summary) {
+  std::vector<std::string> pairs;
+  std::stringstream options(text_of(summary, "options"));
+  for (std::string option; std::getline(options, option, ';');)
+    if (!option.empty()) pairs.push_back(option);
+  return pairs;
+}
+
 // The `impactbench run` arguments that rerun the recorded run from OUT/scenario.toml, into OUT/rerun.
-std::vector<std::string> rerun_arguments(const Json& summary, const ib::Scenario& scenario) {
+std::vector<std::string> rerun_arguments(const Json& summary, const ib::Scenario& scenario,
+                                         const std::vector<std::string>& option_pairs) {
   std::vector<std::string> arguments = {"run", "scenario.toml", "--engine", text_of(summary, "engine"), "--law",
                                         text_of(summary, "law")};
   const double step_s = number_of(summary, "time_step_s");
   if (step_s > 0) arguments.insert(arguments.end(), {"--dt", ib::exact_number_text(step_s)});
-  std::stringstream options(text_of(summary, "options"));
-  for (std::string option; std::getline(options, option, ';');)
-    if (!option.empty()) arguments.insert(arguments.end(), {"--option", option});
+  for (const std::string& option : option_pairs) arguments.insert(arguments.end(), {"--option", option});
   const double duration_s = number_of(summary, "duration_s");
   if (duration_s > 0 && duration_s < scenario.duration_s)
     arguments.insert(arguments.end(), {"--duration", ib::exact_number_text(duration_s)});
@@ -112,7 +120,8 @@ int command_repro(const std::string& run_folder, const std::string& out, const s
   fs::copy_file(scenario_file, out + "/scenario.toml", fs::copy_options::overwrite_existing, error);
   if (error) throw ib::OutputError(ib::output_error_text(out + "/scenario.toml", "copy " + scenario_file, error.value()));
 
-  const std::vector<std::string> arguments = rerun_arguments(summary, scenario);
+  const std::vector<std::string> option_pairs = option_pairs_of(summary);
+  const std::vector<std::string> arguments = rerun_arguments(summary, scenario, option_pairs);
   std::string command = quoted(this_executable());
   for (const std::string& a : arguments) command += " " + quoted(a);
   write_file(out + "/repro.sh", "#!/bin/sh\n# Reruns " + text_of(summary, "job_id") + " alone (impactbench repro; repro.json "
@@ -124,10 +133,6 @@ int command_repro(const std::string& run_folder, const std::string& out, const s
   ib::RunSettings settings;
   settings.law = parse_law(text_of(summary, "law"));
   settings.time_step_s = std::max(0.0, number_of(summary, "time_step_s"));
-  std::vector<std::string> option_pairs;
-  std::stringstream options(text_of(summary, "options"));
-  for (std::string option; std::getline(options, option, ';');)
-    if (!option.empty()) option_pairs.push_back(option);
   settings.options = parse_options(option_pairs);
   const std::string model = ib::make_simulator(engine)->export_model(scenario, settings);
   const std::string model_file = model.empty() ? "" : model.front() == '<' ? "model.xml" : "model.json";

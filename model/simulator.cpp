@@ -1,5 +1,7 @@
 #include "model/simulator.h"
 
+#include <memory>
+
 namespace ib {
 
 double series_start_s(const RunSettings& settings, const Scenario& scenario) {
@@ -14,6 +16,11 @@ SimulatorDescriptor descriptor_of(const SimulatorCatalog& catalog, const std::st
   bare.name = name;
   bare.display_name = name;
   return bare;
+}
+
+std::string version_of(const SimulatorCatalog& catalog, const std::string& name) {
+  const std::unique_ptr<Simulator> simulator = catalog.make ? catalog.make(name) : nullptr;
+  return simulator ? simulator->version() : "";
 }
 
 }  // namespace ib

@@ -92,4 +92,8 @@ struct SimulatorCatalog {
 // The descriptor of `name` in the catalog, or one holding the name alone when the catalog has none.
 SimulatorDescriptor descriptor_of(const SimulatorCatalog& catalog, const std::string& name);
 
+// The library version of `name` as the simulator reports it at run time (Simulator::version), "" when the
+// catalog cannot make it: what a result folder records (engines.json, provenance.json).
+std::string version_of(const SimulatorCatalog& catalog, const std::string& name);
+
 }  // namespace ib

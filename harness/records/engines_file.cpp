@@ -1,7 +1,5 @@
 #include "harness/records/engines_file.h"
 
-#include <memory>
-
 #include <nlohmann/json.hpp>
 
 #include "harness/records/run_files.h"
@@ -35,11 +33,9 @@ nlohmann::ordered_json descriptor_json(const SimulatorDescriptor& d, const std::
 
 std::string engines_json(const SimulatorCatalog& catalog) {
   nlohmann::ordered_json simulators = nlohmann::ordered_json::array();
-  for (const std::string& name : catalog.names) {
-    // the version is the library's own answer at run time, not the descriptor file's (which has none)
-    const std::unique_ptr<Simulator> simulator = catalog.make ? catalog.make(name) : nullptr;
-    simulators.push_back(descriptor_json(descriptor_of(catalog, name), simulator ? simulator->version() : ""));
-  }
+  // the version is the library's own answer at run time, not the descriptor file's (which has none)
+  for (const std::string& name : catalog.names)
+    simulators.push_back(descriptor_json(descriptor_of(catalog, name), version_of(catalog, name)));
   return nlohmann::ordered_json{{"simulators", simulators}}.dump(2) + "\n";
 }
 

@@ -3,7 +3,6 @@
 #include <sys/utsname.h>
 
 #include <fstream>
-#include <memory>
 #include <string>
 #include <thread>
 
@@ -59,10 +58,7 @@ Json build_json() {
 
 std::string provenance_json(const SimulatorCatalog& catalog) {
   Json engines = Json::object();
-  for (const std::string& name : catalog.names) {
-    const std::unique_ptr<Simulator> simulator = catalog.make ? catalog.make(name) : nullptr;
-    engines[name] = simulator ? simulator->version() : "";
-  }
+  for (const std::string& name : catalog.names) engines[name] = version_of(catalog, name);
   return Json{{"build", build_json()}, {"machine", machine_json()}, {"engines", engines}}.dump(2) + "\n";
 }
 

@@ -92,43 +92,57 @@ def metric_interval(run, column):
     return Interval(run.number(column), 1, "single run")
 
 
-def single_run_noise(suite, run, column, kind):
-    """The reference's one-start scatter of a metric in the run's case, as an absolute half-width around
-    the run's value; None when the case's reference ran once."""
-    _, intervals = ensemble_groups.reference_intervals(suite, run["scenario"], run["law"])
-    interval = intervals.get(column)
+def case_noise(suite):
+    """{(scenario, law): the case's beam reference intervals {metric column: Interval}}, read once per case."""
+    cases = {}
+    for run in suite.runs:
+        key = (run["scenario"], run["law"])
+        if key not in cases:
+            cases[key] = ensemble_groups.reference_intervals(suite, *key)[1]
+    return cases
+
+
+def single_run_noise(cases, run, column, kind):
+    """The reference's one-start scatter of a metric in the run's case (cases: case_noise), as an absolute
+    half-width around the run's value; None when the case's reference ran once."""
+    interval = cases.get((run["scenario"], run["law"]), {}).get(column)
     half = ensembles.single_run_noise(interval, kind) if interval is not None else None
     if half is None:
         return None
     return half * abs(interval.mean) if kind == "relative" else half
 
 
-def judge_metric(base_suite, base_run, new_suite, new_run, label, column, error_column, kind):
-    a, b = metric_interval(base_run, column), metric_interval(new_run, column)
+def judge(label, column, kind, a, b, single_run_halves=(), errors=(math.nan, math.nan)):
+    """A metric's change from Interval a to Interval b against its noise (the module's rules, in order);
+    single_run_halves: the cases' one-start scatter where the runs are single. None when neither has it."""
     if math.isnan(a.mean) and math.isnan(b.mean):
         return None
-    scale = abs(a.mean) if kind == "relative" and a.mean else 1.0
-    errors = [analysis.signed_error(r, error_column, "beam") for r in (base_run, new_run)]
     if math.isnan(a.mean) != math.isnan(b.mean):  # measured in one folder only (impacts that stopped, say)
         return MetricChange(label, column, kind, a.mean, b.mean, math.nan, 0.0, "defined in one folder only", True, *errors)
+    scale = abs(a.mean) if kind == "relative" and a.mean else 1.0
     change = (b.mean - a.mean) / scale
     difference = ensembles.welch_difference(b, a)
+    halves = [h for h in single_run_halves if h is not None]
     if difference is not None:
         noise, method = difference.half_width / scale, "the ensembles' 95 % intervals (Welch)"
+    elif halves:
+        noise, method = math.sqrt(2) * max(halves) / scale, "the reference's one-start scatter, for two single runs (95 %)"
     else:
-        halves = [h for h in (single_run_noise(base_suite, base_run, column, kind),
-                              single_run_noise(new_suite, new_run, column, kind)) if h is not None]
-        if halves:
-            noise, method = math.sqrt(2) * max(halves) / scale, "the reference's one-start scatter, for two single runs (95 %)"
-        else:
-            noise = ROUNDING * max(abs(a.mean), abs(b.mean)) / scale
-            method = "none measured: deterministic single runs, any change beyond rounding"
+        noise = ROUNDING * max(abs(a.mean), abs(b.mean)) / scale
+        method = "none measured: deterministic single runs, any change beyond rounding"
     return MetricChange(label, column, kind, a.mean, b.mean, change, noise, method, abs(change) > noise, *errors)
 
 
-def cost_values(suite, run):
-    """(CPU time per simulated second, the relative spread of its timings: repeated timings of the run,
-    or the ensemble's starts; 0 when it was timed once)."""
+def judge_metric(base_cases, base_run, new_cases, new_run, label, column, error_column, kind):
+    a, b = metric_interval(base_run, column), metric_interval(new_run, column)
+    halves = (single_run_noise(base_cases, base_run, column, kind), single_run_noise(new_cases, new_run, column, kind))
+    errors = [analysis.signed_error(r, error_column, "beam") for r in (base_run, new_run)]
+    return judge(label, column, kind, a, b, halves, errors)
+
+
+def run_cost(suite, run):
+    """(CPU time per simulated second, the CPU time of the stepping, the relative spread of its timings:
+    repeated timings of the run, or the ensemble's starts; 0 when it was timed once)."""
     value = run.number("cpu_time_per_simulated_s")
     spread = 0.0
     low, high = run.number("cpu_time_min_s"), run.number("cpu_time_max_s")
@@ -138,14 +152,15 @@ def cost_values(suite, run):
     members = [m for m in members if m > 0]
     if len(members) >= 2:
         spread = max(spread, (max(members) - min(members)) / min(members))
-    return value, spread
+    return value, run.number("cpu_time_s"), spread
 
 
-def judge_cost(base_suite, base_run, new_suite, new_run, comparable, floor):
-    (a, spread_a), (b, spread_b) = cost_values(base_suite, base_run), cost_values(new_suite, new_run)
+def judge_cost(base, new, comparable, floor):
+    """The cost's change from base to new, each (CPU s per simulated s, CPU s, relative spread)."""
+    (a, cpu_a, spread_a), (b, cpu_b, spread_b) = base, new
     if not (a > 0 and b > 0):
         return CostChange(a, b, math.nan, math.nan, "not timed in both folders")
-    if min(base_run.number("cpu_time_s"), new_run.number("cpu_time_s")) < MIN_TIMED_CPU_S:
+    if min(cpu_a, cpu_b) < MIN_TIMED_CPU_S:
         return CostChange(a, b, b / a, math.nan, f"too short to time (under {MIN_TIMED_CPU_S:g} s of CPU)")
     noise = max(spread_a, spread_b, floor)
     ratio = b / a
@@ -181,28 +196,9 @@ SWEEP_METRICS = [("impacts per cycle", "impacts_per_cycle", "difference"),
                  ("contact duration", "contact_duration_mean_s", "relative")]
 
 
-def sweep_metric(row_a, row_b, label, column, kind):
-    a, b = row_a.get(column, math.nan), row_b.get(column, math.nan)
-    if math.isnan(a) and math.isnan(b):
-        return None
-    if math.isnan(a) != math.isnan(b):
-        return MetricChange(label, column, kind, a, b, math.nan, 0.0, "defined in one folder only", True, math.nan, math.nan)
-    scale = abs(a) if kind == "relative" and a else 1.0
-    change, noise = (b - a) / scale, ROUNDING * max(abs(a), abs(b)) / scale
-    return MetricChange(label, column, kind, a, b, change, noise, "none measured: deterministic single runs, any change "
-                        "beyond rounding", abs(change) > noise, math.nan, math.nan)
-
-
-def sweep_cost(row_a, row_b, comparable, floor):
-    a, b = (r["cpu_time_s"] / r["duration_s"] if r["duration_s"] > 0 else math.nan for r in (row_a, row_b))
-    if not (a > 0 and b > 0):
-        return CostChange(a, b, math.nan, math.nan, "not timed in both folders")
-    if min(row_a["cpu_time_s"], row_b["cpu_time_s"]) < MIN_TIMED_CPU_S:
-        return CostChange(a, b, b / a, math.nan, f"too short to time (under {MIN_TIMED_CPU_S:g} s of CPU)")
-    if not comparable:
-        return CostChange(a, b, b / a, floor, "not comparable: timed on other machines (--cost-across-machines compares them)")
-    moved = abs(b / a - 1) > floor
-    return CostChange(a, b, b / a, floor, "moved" if moved else "within the noise", moved)
+def sweep_cost(row):
+    """A sweep row's (CPU s per simulated s, CPU s, spread): timed once."""
+    return (row["cpu_time_s"] / row["duration_s"] if row["duration_s"] > 0 else math.nan), row["cpu_time_s"], 0.0
 
 
 def sweep_verdict(row):
@@ -224,8 +220,10 @@ def compare_sweep_rows(prefix, base_sweep, new_sweep, comparable, floor):
         change.base_verdicts, change.new_verdicts = sweep_verdict(a), sweep_verdict(b)
         change.newly_failing = bool(b) and b["verdict"] in FAILING and not (a and a["verdict"] in FAILING)
         if a and b:
-            change.metrics = [m for m in (sweep_metric(a, b, *metric) for metric in SWEEP_METRICS) if m is not None]
-            change.cost = sweep_cost(a, b, comparable, floor)
+            metrics = (judge(label, column, kind, Interval(a.get(column, math.nan), 1, "single run"),
+                             Interval(b.get(column, math.nan), 1, "single run")) for label, column, kind in SWEEP_METRICS)
+            change.metrics = [m for m in metrics if m is not None]
+            change.cost = judge_cost(sweep_cost(a), sweep_cost(b), comparable, floor)
         found.append(change)
     return found
 
@@ -233,6 +231,7 @@ def compare_sweep_rows(prefix, base_sweep, new_sweep, comparable, floor):
 def compare_runs(base, new, comparable_cost, cost_floor):
     base_runs = {r["job_id"]: r for r in base.suite.runs if r["engine"]}
     new_runs = {r["job_id"]: r for r in new.suite.runs if r["engine"]}
+    base_cases, new_cases = case_noise(base.suite), case_noise(new.suite)
     found = []
     for job_id in sorted(set(base_runs) | set(new_runs)):
         a, b = base_runs.get(job_id), new_runs.get(job_id)
@@ -251,9 +250,9 @@ def compare_runs(base, new, comparable_cost, cost_floor):
                                 sum(n for v, n in change.base_verdicts.items() if v in FAILING))
         if a.stable or b.stable or a["engine"] == "reference":
             for label, column, error_column, kind, _ in analysis.SCORED:
-                metric = judge_metric(base.suite, a, new.suite, b, label, column, error_column, kind)
+                metric = judge_metric(base_cases, a, new_cases, b, label, column, error_column, kind)
                 if metric is not None:
                     change.metrics.append(metric)
-        change.cost = judge_cost(base.suite, a, new.suite, b, comparable_cost, cost_floor)
+        change.cost = judge_cost(run_cost(base.suite, a), run_cost(new.suite, b), comparable_cost, cost_floor)
         found.append(change)
     return found

@@ -25,6 +25,17 @@ class ResultFolder:
     engine_versions: dict = field(default_factory=dict)  # engines.json: {engine: its library's version}
     scenario_digests: dict = field(default_factory=dict)  # {scenario file as the suite named it: digest}
 
+    @property
+    def configurations(self):
+        """{job id: its run (member 0 of an ensemble), or a sweep's row under its prefix}, built once."""
+        if self._configurations is None:
+            self._configurations = {r["job_id"]: r for r in self.suite.runs} if self.suite else {}
+            for prefix, s in self.sweeps.items():
+                self._configurations.update({prefix + r["id"]: r for r in s.rows})
+        return self._configurations
+
+    _configurations: dict = None
+
 
 def read_json(path):
     try:

@@ -9,15 +9,21 @@ import os
 
 from impactbench_report import analysis
 
-from . import page, writers
+from . import changes, page, writers
 from .page import plt
 
 
 def series(folders, job_id):
     """{label: [value per folder]} for a configuration: each headline error against the beam (NaN where the
-    folder lacks the configuration or the error) and the CPU time per simulated second."""
-    runs = [{r["job_id"]: r for r in f.suite.runs}.get(job_id) for f in folders]
+    folder lacks the configuration or the error) and the CPU time per simulated second. A sweep's row (its id
+    under its prefix) gives its measured values instead, which have no error of their own."""
+    runs = [folder.configurations.get(job_id) for folder in folders]
     out = {}
+    if any(isinstance(r, dict) for r in runs):  # a sweep's row
+        for label, column, kind in changes.SWEEP_METRICS:
+            out[label] = [r.get(column, math.nan) if r is not None else math.nan for r in runs]
+        out["CPU s per simulated s"] = [changes.sweep_cost(r)[0] if r is not None else math.nan for r in runs]
+        return out
     for label, _, error_column, kind, _ in analysis.SCORED:
         values = [analysis.signed_error(r, error_column, "beam") if r is not None else math.nan for r in runs]
         if any(not math.isnan(v) for v in values):
@@ -41,10 +47,10 @@ def figure_svg(folders, job_id):
 
 
 def summary_lines(folders, steps):
-    """steps: [(base, new, differences, changes)] for each folder and the next."""
+    """steps: [(base, new, differences, found)] for each folder and the next (found: changes.compare's)."""
     lines = [f"compare: {len(folders)} folders in order: " + " -> ".join(f.path for f in folders)]
-    for base, new, differences, changes in steps:
-        moved = [c for c in changes if c.moved]
+    for base, new, differences, found in steps:
+        moved = [c for c in found if c.moved]
         lines.append(f"{base.path} -> {new.path}: " + (f"{len(moved)} configurations moved beyond the noise" if moved
                                                        else "nothing moved beyond the noise"))
         lines += [f"  differs: {what}: {a} -> {b}" for what, a, b in differences]
@@ -56,7 +62,7 @@ def summary_lines(folders, steps):
 
 def write_page(folder, folders, steps):
     os.makedirs(folder, exist_ok=True)
-    moved_ids = sorted({c.job_id for _, _, _, changes in steps for c in changes if c.moved})
+    moved_ids = sorted({c.job_id for _, _, _, found in steps for c in found if c.moved})
     e = html.escape
     parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>impactbench history</title>",
              "<style>body{font-family:sans-serif;max-width:70em;margin:1em auto}</style></head><body>",

@@ -66,24 +66,40 @@ def compare(base, new, *options):
     return subprocess.run([EXECUTABLE, "compare", base, new, *options], capture_output=True, text=True)
 
 
-def raise_contact_durations(folder, engine):
-    """Every contact duration of `engine`'s runs times RAISE, in every file of the folder that holds one:
-    runs.csv, runs.jsonl, each run's summary.json and events.csv."""
-    jobs = set()
-    path = os.path.join(folder, "runs.csv")
+def rewrite_csv(path, edit):
+    """The CSV file at path with its rows (dicts) changed in place by edit(rows), header and order kept."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
-    columns = [c for c in rows[0] if c.startswith("contact_duration_") and c.endswith("_s")]
-    for row in rows:
-        if row["engine"] == engine:
-            jobs.add(row["job_id"])
-            for c in columns:
-                if row[c]:
-                    row[c] = repr(float(row[c]) * RAISE)
+    if not rows:
+        return rows
+    edit(rows)
     with open(path, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
+    return rows
+
+
+def raise_contact_durations(folder, engine):
+    """Every contact duration of `engine`'s runs times RAISE, in every file of the folder that holds one:
+    runs.csv, runs.jsonl, each run's summary.json and events.csv."""
+    jobs = set()
+
+    def raise_runs(rows):
+        columns = [c for c in rows[0] if c.startswith("contact_duration_") and c.endswith("_s")]
+        for row in rows:
+            if row["engine"] == engine:
+                jobs.add(row["job_id"])
+                for c in columns:
+                    if row[c]:
+                        row[c] = repr(float(row[c]) * RAISE)
+
+    def raise_events(rows):
+        for e in rows:
+            for c in (c for c in rows[0] if c.startswith("duration")):
+                e[c] = repr(float(e[c]) * RAISE) if e[c] else e[c]
+
+    rewrite_csv(os.path.join(folder, "runs.csv"), raise_runs)
 
     def raised(record):
         for key, value in record.items():
@@ -108,17 +124,7 @@ def raise_contact_durations(folder, engine):
                 json.dump(raised(record), f)
         events = os.path.join(folder, "runs", job, "events.csv")
         if os.path.exists(events):
-            with open(events, newline="") as f:
-                event_rows = list(csv.DictReader(f))
-            if event_rows:
-                durations = [c for c in event_rows[0] if c.startswith("duration")]
-                for e in event_rows:
-                    for c in durations:
-                        e[c] = repr(float(e[c]) * RAISE) if e[c] else e[c]
-                with open(events, "w", newline="") as f:
-                    writer = csv.DictWriter(f, fieldnames=list(event_rows[0]))
-                    writer.writeheader()
-                    writer.writerows(event_rows)
+            rewrite_csv(events, raise_events)
     return jobs
 
 
@@ -206,18 +212,20 @@ class Compare(unittest.TestCase):
         self.assertEqual(result.returncode, EXIT_NOTHING_MOVED, result.stdout + result.stderr)
         changed = os.path.join(self.folder, "sweep_changed")
         shutil.copytree(sweep, changed)
-        path = os.path.join(changed, "sweep.csv")
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-        rows[-1]["regime"] = "period-9" if rows[-1]["regime"] != "period-9" else "period-8"
-        with open(path, "w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-            writer.writeheader()
-            writer.writerows(rows)
+
+        def change_last_regime(rows):
+            rows[-1]["regime"] = "period-9" if rows[-1]["regime"] != "period-9" else "period-8"
+
+        rows = rewrite_csv(os.path.join(changed, "sweep.csv"), change_last_regime)
         result = compare(sweep, changed)
         self.assertEqual(result.returncode, EXIT_MOVED, result.stdout + result.stderr)
         self.assertIn(f"  {rows[-1]['id']}: verdict ", result.stdout)
         self.assertIn(f", {rows[-1]['regime']}", result.stdout)
+        page = os.path.join(self.folder, "sweep_history")  # a history of sweeps: the moved row drawn along them
+        result = compare(sweep, changed, sweep, "--html", page)
+        self.assertEqual(result.returncode, EXIT_MOVED, result.stdout + result.stderr)
+        with open(os.path.join(page, "history.html")) as f:
+            self.assertEqual(f.read().count("<svg"), 1)
 
     def test_a_scenario_file_of_the_same_name_and_other_content_is_said_first(self):
         other = os.path.join(self.folder, "other_scenarios")
