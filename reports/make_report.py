@@ -23,8 +23,8 @@ import zlib
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from impactbench_report import ablation, analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
-from impactbench_report import front_figures, step_figures, zoom_figures  # noqa: E402
-from impactbench_report import dynamics, spectral, sweep  # noqa: E402
+from impactbench_report import budget_figures, convergence_table, front_figures, step_figures, zoom_figures  # noqa: E402
+from impactbench_report import dynamics, named_runs, spectral, sweep  # noqa: E402
 
 CAVEATS = [
     "The experiment's figures (rig.md section 7) are data shown beside the simulators, not targets: the "
@@ -100,10 +100,12 @@ DYNAMICS = [dynamics.acceleration_histories, dynamics.phase_portraits, dynamics.
             spectral.scalograms, dynamics.impact_distributions, dynamics.amplitude_decay]
 
 
-def case_figures(suite, scenario, law, chosen, steps, tolerances, folder, stamp):
-    """A case's figures in reading order: error against cost, the impact zoom, the researcher's views
-    (dynamics.py, spectral.py), the step search's limits."""
+def case_figures(suite, scenario, law, chosen, steps, tolerances, folder, stamp, summary_case):
+    """A case's figures in reading order: error against cost, its error budget (budget_figures.py, from
+    summary.json's case), the impact zoom, the researcher's views (dynamics.py, spectral.py), the step search's
+    limits."""
     paths = [figures.error_against_cost(suite, scenario, law, folder, stamp, tolerances),
+             budget_figures.case_figure(summary_case, tolerances, folder, budget_figures.figure_name(summary_case), stamp),
              zoom_figures.impact_zoom(suite, scenario, law, chosen, folder, stamp)]
     # The researcher's views compare series: only the runs that kept one (a step search's probes keep
     # none), and none at all when no engine run did (a panel per simulator saying "no series" is no view).
@@ -127,10 +129,12 @@ def _draw(task):
     kind, key = task
     if kind == "fronts":
         return (front_figures.lead_figure(c["summary_cases"], c["folder"], c["stamp"]),
-                front_figures.cases_figure(c["summary_cases"], c["folder"], c["stamp"]))
+                front_figures.cases_figure(c["summary_cases"], c["folder"], c["stamp"]),
+                budget_figures.lead_figure(c["summary_cases"], c["tolerances"], c["folder"], c["stamp"]))
     if kind == "case":
         scenario, law, chosen = c["cases"][key]
-        return case_figures(c["suite"], scenario, law, chosen, c["steps"], c["tolerances"], c["folder"], c["stamp"])
+        return case_figures(c["suite"], scenario, law, chosen, c["steps"], c["tolerances"], c["folder"], c["stamp"],
+                            c["summary_cases"][key])
     if kind == "sweep":
         name, data_of_sweep = c["sweeps"][key]
         return sweep.sections(data_of_sweep, c["folder"], c["stamp"], f"Frequency sweep ({name})")
@@ -211,13 +215,8 @@ def main():
     sections = []  # (title, markdown text, html text, [figure paths])
     chosen_by_law = {}
     cases = []
-    for scenario, law in suite.cases():
-        runs = suite.runs_of(scenario, law)
-        chosen = {}
-        for config in analysis.configurations(runs):
-            run = analysis.best_step(runs, config, tolerances)
-            if run is not None:
-                chosen[config] = run
+    for (scenario, law), case in zip(suite.cases(), document["cases"]):
+        chosen = named_runs.drawn_runs(suite, case)  # the runs the answers name
         chosen_by_law.setdefault(law, {})[scenario] = chosen
         cases.append((scenario, law, chosen))
     # A study's frequency sweeps (a study file's [[sweep]] parts: SUITE/sweeps/NAME/), read here and drawn with the
@@ -247,6 +246,9 @@ def main():
             markdown_text += "\n\n" + STEPS_NOTE + "\n\n" + tables.markdown(steps_header, steps_rows)
             html_text += f"<p>{STEPS_NOTE}</p>" + tables.html_table(steps_header, steps_rows)
         sections.append((f"{scenario}, {law}", markdown_text, html_text, paths))
+    convergence = convergence_table.section(document)
+    if convergence:
+        sections.insert(0, (*convergence, []))
     for law, paths in zip(sorted(chosen_by_law), paths_by_law):
         sections.append((f"{law}: stability and the experiment", "", "", paths))
 
@@ -318,9 +320,9 @@ def sweep_report(folder, out):
     print(f"report: {os.path.join(out, 'index.html')}, {os.path.join(out, 'summary.md')}")
 
 
-def write_markdown(path, document, facts, sections, out, fronts_figures=(None, None)):
-    lead, by_case = (f"![{os.path.basename(p)}]({os.path.relpath(p, out)})" if p else "" for p in fronts_figures)
-    lines = [first_screen.markdown(document, facts, lead, by_case)] + [f"\n{a}" for a in document.get("sweep_answers", [])]
+def write_markdown(path, document, facts, sections, out, fronts_figures=(None, None, None)):
+    lead, by_case, budget = (f"![{os.path.basename(p)}]({os.path.relpath(p, out)})" if p else "" for p in fronts_figures)
+    lines = [first_screen.markdown(document, facts, lead, by_case, budget)] + [f"\n{a}" for a in document.get("sweep_answers", [])]
     lines += ["", "## Caveats", ""] + [f"- {c}" for c in CAVEATS]
     for title, text, _, paths in sections:
         lines += ["", f"## {title}", ""]
@@ -368,7 +370,7 @@ def figure_html(path, out):
             f"alt='{html.escape(caption)}'></a></figure>")
 
 
-def write_html(path, document, facts, sections, out, fronts_figures=(None, None)):
+def write_html(path, document, facts, sections, out, fronts_figures=(None, None, None)):
     import html
     parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
              "<meta name='viewport' content='width=device-width, initial-scale=1'>",

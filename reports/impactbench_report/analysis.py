@@ -80,11 +80,14 @@ def error(run, column, against="vs_reference_"):
     return abs(signed_error(run, column, against))
 
 
-def score(run, tolerances, against="beam"):
-    """(largest |error| / tolerance over the headline metrics, that metric's label, its signed error):
-    errors of different kinds compare through their tolerances. (inf, None, NaN) without any error."""
+def score(run, tolerances, against="beam", skip=()):
+    """(largest |error| / tolerance over the headline metrics but those in `skip` (labels: a case's metrics its
+    chain convergence flags, chain_convergence.py), that metric's label, its signed error): errors of different
+    kinds compare through their tolerances. (inf, None, NaN) without any error."""
     worst = (math.inf, None, math.nan)
     for label, _, column, _, key in SCORED:
+        if label in skip:
+            continue
         value = signed_error(run, column, against)
         if math.isnan(value):
             continue
@@ -107,18 +110,26 @@ def runs_of_config(runs, config):
     return sorted((r for r in runs if r.config == config), key=lambda r: r.number("time_step_s"))
 
 
-def best_run(runs, tolerances):
-    """The stable run with the smallest score against the beam, then the cheapest CPU time per simulated
-    second; None when no run is stable or scored."""
-    scored = [r for r in runs if r.stable and not math.isinf(score(r, tolerances)[0])]
+def ranking_key(run, tolerances, skip=()):
+    """How runs of an engine are ranked (issue 46): a run that passes its own verdict before one that fails it,
+    then the error the engine controls (its score against its own chain, the beam's where it has no chain), then
+    the cheaper."""
+    own = score(run, tolerances, "own chain", skip)[0]
+    by = own if not math.isinf(own) else score(run, tolerances, "beam", skip)[0]
+    return (run["verdict"] != "ok", by, run.number("cpu_time_per_simulated_s"))
+
+
+def best_run(runs, tolerances, skip=()):
+    """The best stable, scored run by ranking_key; None when no run is stable or scored."""
+    scored = [r for r in runs if r.stable and not math.isinf(score(r, tolerances, "beam", skip)[0])]
     if not scored:
         return None
-    return min(scored, key=lambda r: (score(r, tolerances)[0], r.number("cpu_time_per_simulated_s")))
+    return min(scored, key=lambda r: ranking_key(r, tolerances, skip))
 
 
-def best_step(runs, config, tolerances=DEFAULT_TOLERANCES):
+def best_step(runs, config, tolerances=DEFAULT_TOLERANCES, skip=()):
     """A configuration's best run (see best_run)."""
-    return best_run(runs_of_config(runs, config), tolerances)
+    return best_run(runs_of_config(runs, config), tolerances, skip)
 
 
 def step_limits(runs, config):

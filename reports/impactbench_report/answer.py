@@ -11,10 +11,11 @@ ensemble's intervals beside it, each naming the job ids of the members it was co
 
 import math
 
-from . import ablation, analysis, data, engines, fronts, settings, significance
+from . import ablation, analysis, answer_sentence, budget, chain_convergence, data, engines, ensemble_groups, fronts, \
+    settings, significance
 from .tables import percent
 
-SCHEMA_VERSION = 3
+SCHEMA_VERSION = 4
 
 RUN_COLUMNS = ["time_step_s", "verdict", "reason", "same_run_as", "chain_links", "duration_s", "window_start_s",
                "window_end_s", "frame1_sensor_peak_acceleration_g", "frame2_sensor_peak_acceleration_g",
@@ -30,10 +31,11 @@ def value(run, column):
     return cell
 
 
-def run_entry(run, tolerances, experiment_peak_g=None, need=None):
+def run_entry(run, tolerances, experiment_peak_g=None, need=None, skip=()):
     """One run as the summary names it: its job_id, its runs.csv values, its errors against each
-    reference, its score and (where the experiment measured one) its error against the measured peak;
-    with an ensemble, its intervals (`ensemble`); `need`: the case's ensemble_need."""
+    reference, its score (over the metrics but `skip`, the case's flagged ones) and (where the experiment
+    measured one) its error against the measured peak; with an ensemble, its intervals (`ensemble`); `need`:
+    the case's ensemble_need."""
     entry = {"job_id": run["job_id"], "configuration": run.config, "engine": run["engine"], "options": run["options"]}
     if run["engine"] != "reference":
         entry["contact_path"] = analysis.contact_path(run)
@@ -43,10 +45,10 @@ def run_entry(run, tolerances, experiment_peak_g=None, need=None):
                   if prefix + column in run.values}
         entry["errors_vs_" + name.replace(" ", "_")] = errors
     for against in analysis.AGAINST:
-        multiple, label, error = analysis.score(run, tolerances, against)
+        multiple, label, error = analysis.score(run, tolerances, against, skip)
         entry["largest_error_vs_" + against.replace(" ", "_")] = None if label is None else {
             "metric": label, "error": error, "tolerance": tolerance_of(label, tolerances), "tolerance_multiple": multiple,
-            **largest_error_interval(run, tolerances, need, against)}
+            **largest_error_interval(run, tolerances, need, against, skip)}
     entry["ensemble"] = ensemble_entry(run)
     peak = run.number("frame1_sensor_peak_acceleration_g")
     if experiment_peak_g and not math.isnan(peak):
@@ -54,17 +56,17 @@ def run_entry(run, tolerances, experiment_peak_g=None, need=None):
     return entry
 
 
-def largest_error_interval(run, tolerances, need, against):
+def largest_error_interval(run, tolerances, need, against, skip=()):
     """The largest error's interval: half_width (null for a single run without a measured noise), method,
     and the verdict against the tolerances over every scored error (within / beyond / undecided, null for
     such a single run)."""
-    scored = significance.score_interval(run, tolerances, need, against)
+    scored = significance.score_interval(run, tolerances, need, against, skip)
     error = scored[2] if scored else None
     interval = error is not None and error.n > 1
     return {"half_width": error.half_width if interval else None,
             "interval_method": None if error is None else error.method,
             "single_run_noise": error.half_width if error is not None and not interval else None,
-            "verdict": significance.verdict(run, tolerances, need, against)}
+            "verdict": significance.verdict(run, tolerances, need, against, skip)}
 
 
 def ensemble_entry(run):
@@ -117,6 +119,9 @@ def case_answer(suite, steps, scenario, law, experiment, tolerances):
     measured = experiment.get(scenario, {}).get("frame1_peak_acceleration_g")
     reference = suite.beam_reference(scenario, law)
     need = significance.case_need(suite, scenario, law, tolerances)
+    convergence = chain_convergence.case_convergence(suite, scenario, law, tolerances)
+    flagged = chain_convergence.flagged_metrics(convergence)
+    skip = tuple(flagged)
     any_run = reference or next((r for r in runs if r["engine"]), None)
     case = {"scenario": scenario, "law": law,
             "duration_s": value(any_run, "duration_s") if any_run else None,
@@ -126,43 +131,50 @@ def case_answer(suite, steps, scenario, law, experiment, tolerances):
             "restitution": restitution(any_run, law),
             "experiment_frame1_peak_acceleration_g": measured,
             "reference": run_entry(reference, tolerances, measured) if reference else None,
-            "ensemble_need": need, "configurations": []}
+            "ensemble_need": need, "chain_convergence": convergence,
+            "reference_numerical_error": budget.reference_numerical_error(suite, scenario, law),
+            "metrics_not_ranked": [{"metric": m, "why": "; ".join(w)} for m, w in flagged.items()],
+            "configurations": []}
     best, chosen_runs = {}, {}
     for config in analysis.configurations(runs):
         config_runs = analysis.runs_of_config(runs, config)
-        chosen = analysis.best_run(config_runs, tolerances)
+        chosen = analysis.best_run(config_runs, tolerances, skip)
         entry = {"configuration": config, "runs": len(config_runs),
                  "unstable_runs": sum(r["verdict"] == "unstable" for r in config_runs),
                  "failed_runs": sum(r["verdict"] == "failed" for r in config_runs),
-                 "best_run": run_entry(chosen, tolerances, measured, need) if chosen else None,
+                 "best_run": run_entry(chosen, tolerances, measured, need, skip) if chosen else None,
                  "step_limit": step_limit(suite, steps, scenario, law, config)}
         case["configurations"].append(entry)
         if chosen:
             kind = "out_of_box" if analysis.contact_path(chosen) == analysis.NATIVE else "tuned"
             incumbent = best.get(kind)
-            if incumbent is None or ranking(chosen, tolerances) < ranking(incumbent[0], tolerances):
+            if incumbent is None or analysis.ranking_key(chosen, tolerances, skip) < analysis.ranking_key(incumbent[0], tolerances, skip):
                 best[kind] = (chosen, entry)
         if chosen:
             chosen_runs[config] = chosen
-    case["fronts"] = fronts.case_fronts(runs, tolerances, need, law)
+    index = ensemble_groups.reference_index(suite.runs)
+    budgets = {r["job_id"]: budget.run_budget(suite, index, r, need) for r in runs
+               if r["engine"] not in ("reference", "") and not r["same_run_as"]}
+    case["fronts"] = fronts.case_fronts(runs, tolerances, need, law, skip, budgets)
     for kind in ("out_of_box", "tuned"):
         if kind in best:
             run, entry = best[kind]
             others = [(c, r) for c, r in chosen_runs.items() if c != entry["configuration"]
                       and (analysis.contact_path(r) == analysis.NATIVE) == (kind == "out_of_box")]
-            tied, significant = significance.ties(run, others, tolerances, need)
+            against = "own chain" if run.number("chain_links") > 0 else "beam"
+            tied, significant = significance.ties(run, others, tolerances, need, against, skip)
             case["best_" + kind] = {"configuration": entry["configuration"], "job_id": run["job_id"],
-                                    "tied_with": tied, "significant": significant, "test": significance.TEST}
+                                    "ranked_by": f"error vs {against}, a run that passes its verdict first",
+                                    "tied_with": tied,
+                                    "tied_with_job_ids": [chosen_runs[c]["job_id"] for c in tied],
+                                    "significant": significant, "test": significance.TEST}
         else:
             ran = any((analysis.contact_path(r) == analysis.NATIVE) == (kind == "out_of_box")
                       for r in runs if r["engine"] not in ("reference", ""))
             case["best_" + kind] = {"configuration": None,
                                     "why": "no stable run" if ran else "not run in this suite"}
+    case["answer"] = answer_sentence.case_answer(case)
     return case
-
-
-def ranking(run, tolerances):
-    return (analysis.score(run, tolerances)[0], run.number("cpu_time_per_simulated_s"))
 
 
 def contact_stiffness(run, law):
@@ -287,6 +299,18 @@ def error_text(largest):
     if largest.get("half_width") is not None:
         text += " " + half_width_text(largest["half_width"], kind)
     return text
+
+
+def error_cell(largest, intervals_exist=True):
+    """What a table prints of a largest error, the same in every table: error_text, then for a single run where
+    intervals exist its noise or that it has none: '(single run; noise ± 2.1 %)', '(single run (12 vs 1 starts))'."""
+    text = error_text(largest)
+    if not largest or largest.get("half_width") is not None or not intervals_exist or not largest.get("interval_method"):
+        return text
+    kind = next(k for name, _, _, k, _ in analysis.SCORED if name == largest["metric"])
+    if largest.get("single_run_noise") is not None:
+        return text + f" (single run; noise {half_width_text(largest['single_run_noise'], kind)})"
+    return text + " (" + largest["interval_method"].split(";")[0] + ")"
 
 
 def half_width_text(half_width, kind):

@@ -4,13 +4,14 @@ ran where. Every number printed here is in summary.json, which names the runs.cs
 
 import html
 
-from . import analysis, engines, operating_points
-from .answer import error_text, warning_lines
+from . import analysis, engines, fronts, operating_points
+from .answer import error_cell, warning_lines
 from .tables import step_text
 
-ANSWER_HEADER = ["case, law", "best out of the box: engine, step [s]", "largest error vs beam",
-                 "largest stable step [s]", "CPU [s/s]", "best tuned: engine, contact, step [s]",
-                 "largest error vs beam", "largest stable step [s]", "CPU [s/s]"]
+ANSWER_HEADER = ["case, law", "best contact handling out of the box: engine, step [s] (largest stable)",
+                 "largest error vs own chain", "vs beam (the chain's share)", "CPU [s/s]",
+                 "best contact handling tuned: engine, contact, step [s] (largest stable)",
+                 "largest error vs own chain", "vs beam (the chain's share)", "CPU [s/s]"]
 
 
 def limit_text(limit):
@@ -51,13 +52,13 @@ def answer_rows(document):
             name = engines.display_name(run["engine"])
             if kind == "tuned":
                 name += " " + run["contact_path"]
-            cell = error_text(run["largest_error_vs_beam"]) + single_run_mark(case, run) + verdict_mark(run)
-            note = own_chain_note(run)
-            if note:
-                notes.append(f"[{len(notes) + 1}] {case['scenario']}, {case['law']}, {name}: {note}")
-                cell += f" [{len(notes)}]"
-            row += [f"{name}, {step_text(run['runs_csv']['time_step_s'])}" + tie_text(case["best_" + kind], name),
-                    cell, limit_text(entry["step_limit"]), "–" if cost is None else f"{cost:.3g}"]
+            own = run.get("largest_error_vs_own_chain")
+            measured = intervals_measured(case, run)
+            own_cell = (error_cell(own, measured) + verdict_mark(run, "own_chain")) if own else "no chain"
+            cell = error_cell(run["largest_error_vs_beam"], measured) + verdict_mark(run)
+            cell += chain_share_text(case, run)
+            row += [f"{name}, {step_text(run['runs_csv']['time_step_s'])} ({limit_text(entry['step_limit'])})"
+                    + tie_text(case["best_" + kind], name), own_cell, cell, "–" if cost is None else f"{cost:.3g}"]
         rows.append(row)
         line = ensemble_line(case)
         if line:
@@ -93,31 +94,25 @@ def ensemble_line(case):
     return text
 
 
-def own_chain_note(run):
-    """The run's largest error vs its own chain where it is beyond tolerance and not the one vs beam
-    already shown: an engine error that the chain's own discretisation error hides (an engine's excess
-    damping in the free vibration, say, cancelling the chain's deficit against the beam)."""
-    own = run.get("largest_error_vs_own_chain")
-    beam = run["largest_error_vs_beam"]
-    if not own or own["tolerance_multiple"] <= 1:
-        return ""
-    if beam and own["metric"] == beam["metric"] and abs(own["error"] - beam["error"]) <= 0.1 * abs(beam["error"]) + 0.02:
-        return ""
-    return f"vs its own chain {error_text(own)} ✗ (the engine's contact and stepping alone)"
+def intervals_measured(case, run):
+    """Whether intervals exist in the case (its reference ran from several starts, or the run did)."""
+    return bool((case.get("ensemble_need") or {}).get("needed") is not None or run.get("ensemble"))
 
 
-def single_run_mark(case, run):
-    """' (single run (1 vs 12 starts))' where the error has no interval in a case where intervals exist."""
+def chain_share_text(case, run):
+    """' (chain +24 %)': the chain's share of the largest error vs beam, from the point's budget (fronts)."""
     largest = run["largest_error_vs_beam"]
-    measured = (case.get("ensemble_need") or {}).get("needed") is not None or run.get("ensemble")
-    if not largest or largest.get("half_width") is not None or not measured:
+    point = next((p for e in case["fronts"]["engines"].values() for p in e["points"] if p["job_id"] == run["job_id"]), None)
+    entry = ((point or {}).get("budget") or {}).get("metrics", {}).get(largest["metric"]) if largest else None
+    if not entry or entry.get("chain") is None:
         return ""
-    return " (" + largest["interval_method"].split(";")[0] + ")"
+    kind = next(k for name, _, _, k, _ in analysis.SCORED if name == largest["metric"])
+    return " (chain " + (f"{100 * entry['chain']:+.2g} %" if kind == "relative" else f"{entry['chain']:+.2g}") + ")"
 
 
-def verdict_mark(run):
+def verdict_mark(run, against="beam"):
     """✗ beyond the tolerances; with intervals, ? where one straddles its tolerance (undecided)."""
-    largest = run["largest_error_vs_beam"]
+    largest = run["largest_error_vs_" + against]
     if not largest:
         return ""
     decided = largest.get("verdict")
@@ -126,18 +121,37 @@ def verdict_mark(run):
     return "" if largest["tolerance_multiple"] <= 1 else " ✗"
 
 
-def html_page_top(document, facts, lead_front_html="", cases_fronts_html=""):
-    """The page's first screen: the lead case's front (front_figures.py), what to use (operating_points.py,
-    the element with id "answer"), every other case's front, then the table of the best configuration per case
-    (id "cases"), the engines' lines, the warnings and the error convention."""
-    parts = ["<h1>impactbench: which engine, which setting, what error, at what cost</h1>", lead_front_html,
-             operating_points.html_section(document), cases_fronts_html,
-             "<p class='lede'>For each case and contact law: the configuration that comes closest to the "
-             "continuous-beam reference out of the box (the engine's own contact and defaults) and once tuned "
-             "(the law matched in or injected into the engine), its largest headline error against the beam "
-             "(✗: beyond the verdict's tolerance; ?: an interval straddles it), its largest stable time step and its CPU cost per simulated "
-             "second (CPU [s/s]). ≥: the largest step tried was stable. The configurations' settings and every run are below; report/summary.json holds the "
-             "same, each number with the runs.csv row it came from.</p>",
+def lead_sentence(document):
+    """The lead case's answer sentence (answer_sentence.py), '' without a case."""
+    case = fronts.lead_case(document["cases"])
+    return (case.get("answer") or {}).get("sentence", "") if case else ""
+
+
+def other_sentences(document):
+    """Every other case's answer sentence, in the cases' order."""
+    lead = fronts.lead_case(document["cases"])
+    return [c["answer"]["sentence"] for c in document["cases"] if c is not lead and c.get("answer")]
+
+
+def html_page_top(document, facts, lead_front_html="", cases_fronts_html="", budget_html=""):
+    """The page's first screen: the lead case's answer sentence (id "answer-sentence"), its front
+    (front_figures.py) and its error budget (budget_figures.py), what to use (operating_points.py, the element
+    with id "answer"), every other case's sentence (id "answers") and front, then the table of the best contact
+    handling per case (id "cases"), the engines' lines, the warnings and the error convention."""
+    sentence = lead_sentence(document)
+    parts = ["<h1>impactbench: which engine, which setting, what error, at what cost</h1>",
+             f"<p class='answer-sentence' id='answer-sentence'><b>{html.escape(sentence)}</b></p>" if sentence else "",
+             lead_front_html, budget_html, operating_points.html_section(document),
+             "<ul id='answers' class='answers'>" + "".join(f"<li>{html.escape(s)}</li>" for s in other_sentences(document))
+             + "</ul>", cases_fronts_html,
+             "<p class='lede'>For each case and contact law: the configuration whose contact handling comes closest to "
+             "the reference on its own chain out of the box (the engine's own contact and defaults) and once tuned "
+             "(the law matched in or injected into the engine), a run that passes its verdict first: its largest "
+             "error against its own chain (what the engine controls), its largest error against the beam (what a "
+             "user sees at that chain) with the chain's own share of it, (✗: beyond the verdict's tolerance; ?: an "
+             "interval straddles it), its largest stable time step and its CPU cost per simulated second (CPU [s/s]). "
+             "≥: the largest step tried was stable. The configurations' settings and every run are below; "
+             "report/summary.json holds the same, each number with the runs.csv row it came from.</p>",
              table(ANSWER_HEADER, answer_rows(document)[0], "cases"),
              "<p class='notes'>" + "<br>".join(html.escape(n) for n in answer_rows(document)[1]) + "</p>",
              "<ul class='engines'>"]
@@ -153,8 +167,10 @@ def html_page_top(document, facts, lead_front_html="", cases_fronts_html=""):
                  f"{100 * tolerances['contact_duration_relative_error']:g} % in the contact duration, "
                  f"{tolerances['impacts_per_cycle_difference']:g} in impacts per cycle or "
                  f"{100 * tolerances['log_decrement_relative_error']:g} % in the free decay's log decrement. "
-                 "The best configuration is the one with the smallest largest error vs beam, measured in "
-                 "multiples of these tolerances, then the cheaper. References carry no accuracy verdict."
+                 "An engine's contact handling is ranked by its largest error vs its own chain, in multiples of "
+                 "these tolerances (a run that passes its verdict before one that fails it), then the cheaper; the "
+                 "error vs beam is the total a user sees, of which the chain's share is the same for every engine "
+                 "on that chain. References carry no accuracy verdict."
                  + (ENSEMBLES_NOTE if has_ensembles(document) else "") + "</p>")
 
     return "\n".join(parts)
@@ -209,11 +225,14 @@ def table(header, rows, element_id=None):
     return f"<table{attribute}><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
-def markdown(document, facts, lead_front="", cases_fronts=""):
+def markdown(document, facts, lead_front="", cases_fronts="", budget=""):
     from .tables import markdown as markdown_table
     lines = ["# impactbench: which engine, which setting, what error, at what cost", ""]
+    lines += [f"**{lead_sentence(document)}**", ""] if lead_sentence(document) else []
     lines += [lead_front, ""] if lead_front else []
+    lines += [budget, ""] if budget else []
     lines += operating_points.markdown(document)
+    lines += [f"- {s}" for s in other_sentences(document)] + [""]
     lines += [cases_fronts, ""] if cases_fronts else []
     lines += [markdown_table(ANSWER_HEADER, answer_rows(document)[0]), ""]
     lines += answer_rows(document)[1] + [""]

@@ -23,6 +23,13 @@ class Point:
     score_vs_chain: float  # vs the engine's own chain
     metric: str = None  # the metric of the score vs the beam, and its signed error
     error: float = math.nan
+    skip: tuple = ()  # metric labels the case's chain convergence flags: they rank no point
+
+    @property
+    def passes(self):
+        """Whether the run passes its own verdict (ok: stable and every metric within its tolerance of the
+        reference it is judged against, its own chain where it has one)."""
+        return self.run["verdict"] == "ok"
 
     @property
     def engine(self):
@@ -37,16 +44,25 @@ class Point:
         return self.stable and not math.isinf(self.score) and not math.isnan(self.cost_s_per_s)
 
 
-def points(runs, tolerances):
-    """The engine runs of a case (no reference, no run that only repeats another), as Points."""
+def points(runs, tolerances, skip=()):
+    """The engine runs of a case (no reference, no run that only repeats another), as Points; `skip`: the
+    metric labels that rank nothing in this case."""
     found = []
+    skip = tuple(skip)
     for run in runs:
         if run["engine"] in ("reference", "") or run["same_run_as"]:
             continue
-        score, metric, error = analysis.score(run, tolerances)
+        score, metric, error = analysis.score(run, tolerances, "beam", skip)
         found.append(Point(run, run.number("cpu_time_per_simulated_s"), score,
-                           analysis.score(run, tolerances, "own chain")[0], metric, error))
+                           analysis.score(run, tolerances, "own chain", skip)[0], metric, error, skip))
     return found
+
+
+def passing_first(candidates):
+    """The points that pass their own verdict where there is one, else all: no answer names a run that fails
+    its verdict while one that passes exists."""
+    passing = [p for p in candidates if p.passes]
+    return passing or list(candidates)
 
 
 def dominates(a, b, against="beam"):
@@ -65,26 +81,34 @@ def pareto(candidates, against="beam"):
 def within_tolerances(point, tolerances, need, against="beam"):
     """Whether a point's errors are within the verdict tolerances: by their intervals where it has them,
     else by its score."""
-    verdict = significance.verdict(point.run, tolerances, need, against)
+    verdict = significance.verdict(point.run, tolerances, need, against, point.skip)
     if verdict is not None:
         return verdict == "within"
     score = point.score if against == "beam" else point.score_vs_chain
     return score <= 1
 
 
+def own_score(point):
+    """What ranks an engine's contact handling: its score against its own chain (the beam's without a chain)."""
+    return point.score if math.isinf(point.score_vs_chain) else point.score_vs_chain
+
+
 def most_accurate(candidates, tolerances, need):
-    """(the point with the smallest score vs the beam, the cheaper first among equal scores; the other points
-    whose score the noise cannot tell from it), or (None, []) without a scored point."""
-    scored = [p for p in candidates if p.scored]
+    """(the point with the smallest score against its own chain among those that pass their verdict where one
+    does, the cheaper first among equal scores; the other such points whose score the noise cannot tell from
+    it), or (None, []) without a scored point. The error against the beam is the total a user sees, not what
+    ranks the engine: the chain's share is the same for every engine on that chain."""
+    scored = passing_first([p for p in candidates if p.scored])
     if not scored:
         return None, []
-    best = min(scored, key=lambda p: (p.score, p.cost_s_per_s))
-    best_interval = significance.score_interval(best.run, tolerances, need)
+    best = min(scored, key=lambda p: (own_score(p), p.cost_s_per_s))
+    against = "beam" if math.isinf(best.score_vs_chain) else "own chain"
+    best_interval = significance.score_interval(best.run, tolerances, need, against, best.skip)
     tied = []
     for p in scored:
         if p is best:
             continue
-        other = significance.score_interval(p.run, tolerances, need)
+        other = significance.score_interval(p.run, tolerances, need, against, p.skip)
         if (other is not None and significance.like_with_like(best_interval, other)
                 and ensembles.compare(best_interval[0], other[0]) == "tie"):
             tied.append(p)
@@ -92,17 +116,22 @@ def most_accurate(candidates, tolerances, need):
 
 
 def cheapest_within(candidates, tolerances, need, against="beam"):
-    """The cheapest stable point within the tolerances against the beam or the own chain, or None."""
-    within = [p for p in candidates if p.scored and within_tolerances(p, tolerances, need, against)]
+    """The cheapest stable point within the tolerances against the beam or the own chain, or None; a point
+    that fails its own verdict only where no point passes (its errors may offset the chain's by chance)."""
+    scored = [p for p in candidates if p.scored]
+    pool = [p for p in scored if p.passes] if any(p.passes for p in scored) else scored
+    within = [p for p in pool if within_tolerances(p, tolerances, need, against)]
     return min(within, key=lambda p: (p.cost_s_per_s, p.score), default=None)
 
 
-def point_entry(point, tolerances, need):
+def point_entry(point, tolerances, need, budgets=None):
     """A point as summary.json names it: its runs.csv row's job id, configuration, step and cost, and the
     scores derived from that row (or its ensemble); the largest error vs the beam with its interval's
-    half-width, and the score's half-width in tolerance multiples, where it has one."""
+    half-width, and the score's half-width in tolerance multiples, where it has one; its error budget
+    (budget.py) where `budgets` ({job id: budget}) holds one."""
     run = point.run
-    scored = significance.score_interval(run, tolerances, need) if point.metric is not None else None
+    scored = significance.score_interval(run, tolerances, need, "beam", point.skip) if point.metric is not None else None
+    own = significance.score_interval(run, tolerances, need, "own chain", point.skip)
     step = run.number("time_step_s")
     return {"job_id": run["job_id"], "configuration": run.config, "engine": point.engine,
             "options": run["options"], "time_step_s": None if math.isnan(step) else step,
@@ -110,23 +139,38 @@ def point_entry(point, tolerances, need):
             "cpu_time_per_simulated_s": None if math.isnan(point.cost_s_per_s) else point.cost_s_per_s,
             "score_vs_beam": None if math.isinf(point.score) else point.score,
             "score_half_width": None if scored is None else scored[0].half_width,
-            "largest_error_vs_beam": None if point.metric is None else {
-                "metric": point.metric, "error": point.error,
-                "half_width": None if scored is None else scored[2].half_width},
-            "score_vs_own_chain": None if math.isinf(point.score_vs_chain) else point.score_vs_chain}
+            "largest_error_vs_beam": None if point.metric is None else error_entry(point.metric, point.error, scored),
+            "score_vs_own_chain": None if math.isinf(point.score_vs_chain) else point.score_vs_chain,
+            "score_vs_own_chain_half_width": None if own is None else own[0].half_width,
+            "largest_error_vs_own_chain": None if own is None else error_entry(own[1], own[2].mean, own),
+            "chain_links": None if math.isnan(run.number("chain_links")) or run.number("chain_links") <= 0
+            else int(run.number("chain_links")),
+            "passes_its_verdict": point.passes,
+            "within_tolerances_vs_beam": point.scored and within_tolerances(point, tolerances, need, "beam"),
+            "budget": (budgets or {}).get(run["job_id"])}
 
 
-def operating_points(candidates, tolerances, need):
+def error_entry(metric, error, scored):
+    """{metric, error, half_width, interval_method, single_run_noise} as answer.run_entry writes a largest error:
+    the half-width of an interval of more than one start, else the reference's single-start scatter as the noise."""
+    interval = None if scored is None else scored[2]
+    several = interval is not None and interval.n > 1
+    return {"metric": metric, "error": error, "half_width": interval.half_width if several else None,
+            "interval_method": None if interval is None else interval.method,
+            "single_run_noise": interval.half_width if interval is not None and not several else None}
+
+
+def operating_points(candidates, tolerances, need, budgets=None):
     """An engine's two operating points in a case, each its point entry or null with why."""
     accurate, tied = most_accurate(candidates, tolerances, need)
     result = {"most_accurate": None if accurate is None else
-              point_entry(accurate, tolerances, need) | {"tied_with_job_ids": [p.run["job_id"] for p in tied]}}
+              point_entry(accurate, tolerances, need, budgets) | {"tied_with_job_ids": [p.run["job_id"] for p in tied]}}
     if accurate is None:
         result["most_accurate_why_none"] = "no stable run with a scored error"
     for against, key in (("beam", "cheapest_within_tolerance_vs_beam"),
                          ("own chain", "cheapest_within_tolerance_vs_own_chain")):
         point = cheapest_within(candidates, tolerances, need, against)
-        result[key] = None if point is None else point_entry(point, tolerances, need)
+        result[key] = None if point is None else point_entry(point, tolerances, need, budgets)
         if point is None:
             result[key + "_why_none"] = (f"no stable run with every error within its verdict tolerance of the "
                                          f"{against}" + (" (with its interval)" if need and need.get("needed") else ""))
@@ -142,7 +186,7 @@ def is_recommended(run, configuration):
                                                                      rel_tol=1e-9)
 
 
-def recommended_entry(own, law, tolerances, need):
+def recommended_entry(own, law, tolerances, need, budgets=None):
     """The engine's recommended configuration in this case: its point and the settings with their sources
     (engines.recommended), or null with why."""
     recommended = engines.recommended(own[0].engine) if own else {}
@@ -153,21 +197,23 @@ def recommended_entry(own, law, tolerances, need):
     point = next((p for p in own if is_recommended(p.run, configuration)), None)
     if point is None:
         return {"recommended": None, "recommended_why_none": "not run in this suite"}
-    return {"recommended": point_entry(point, tolerances, need) | {"settings": recommended.get("settings", [])}}
+    return {"recommended": point_entry(point, tolerances, need, budgets) | {"settings": recommended.get("settings", [])}}
 
 
-def case_fronts(runs, tolerances, need, law=None):
+def case_fronts(runs, tolerances, need, law=None, skip=(), budgets=None):
     """A case's fronts as summary.json holds them: the Pareto front over every engine (job ids, cheapest
     first), and per engine its points, its own front, its operating points and its recommended
-    configuration's point (`law`: the case's)."""
-    every = points(runs, tolerances)
+    configuration's point (`law`: the case's); `skip`: the metrics that rank nothing in the case; `budgets`:
+    {job id: error budget} for every point."""
+    every = points(runs, tolerances, skip)
     result = {"pareto_front_job_ids": [p.run["job_id"] for p in pareto(every)], "engines": {}}
     for engine in dict.fromkeys(p.engine for p in every):
         own = [p for p in every if p.engine == engine]
         result["engines"][engine] = {
-            "points": [point_entry(p, tolerances, need) for p in sorted(own, key=lambda p: (p.run.config, -p.run.number("time_step_s")))],
+            "points": [point_entry(p, tolerances, need, budgets)
+                       for p in sorted(own, key=lambda p: (p.run.config, -p.run.number("time_step_s")))],
             "front_job_ids": [p.run["job_id"] for p in pareto(own)],
-            **operating_points(own, tolerances, need), **recommended_entry(own, law, tolerances, need)}
+            **operating_points(own, tolerances, need, budgets), **recommended_entry(own, law, tolerances, need, budgets)}
     return result
 
 

@@ -88,10 +88,10 @@ def error_with_interval(run, column, against, noise):
     return interval if interval is not None else Interval(value, 1, "single run")
 
 
-def score_interval(run, tolerances, need=None, against="beam"):
+def score_interval(run, tolerances, need=None, against="beam", skip=()):
     """(score as an Interval of tolerance multiples, its metric's label, its error as an Interval), or None
-    when the run has no scored error."""
-    multiple, label, _ = analysis.score(run, tolerances, against)
+    when the run has no scored error; `skip`: metric labels left out (analysis.score)."""
+    multiple, label, _ = analysis.score(run, tolerances, against, skip)
     if label is None:
         return None
     _, _, column, _, key = next(m for m in analysis.SCORED if m[0] == label)
@@ -108,12 +108,14 @@ def score_interval(run, tolerances, need=None, against="beam"):
                      error.half_width / tolerance), label, error)
 
 
-def verdict(run, tolerances, need=None, against="beam"):
-    """within / beyond / undecided against the tolerances over every scored error, from the intervals;
-    None for a single run without a measured noise (its ✗ is its error's own)."""
+def verdict(run, tolerances, need=None, against="beam", skip=()):
+    """within / beyond / undecided against the tolerances over every scored error but those in `skip`, from
+    the intervals; None for a single run without a measured noise (its ✗ is its error's own)."""
     noise = noise_of(run, need)
     errors = []
     for label, _, column, _, key in analysis.SCORED:
+        if label in skip:
+            continue
         if math.isnan(analysis.signed_error(run, column, against)):
             continue
         errors.append((label, error_with_interval(run, column, against, noise)))
@@ -121,8 +123,8 @@ def verdict(run, tolerances, need=None, against="beam"):
     return ensembles.verdict(errors, tolerance_of)
 
 
-TEST = ("Welch's 95 % interval of the difference of the two configurations' scores (largest |error| vs beam in "
-        "tolerance multiples) excludes 0")
+TEST = ("Welch's 95 % interval of the difference of the two configurations' scores (largest |error| vs the engine's own "
+        "chain in tolerance multiples) excludes 0")
 
 
 def like_with_like(a, b):
@@ -133,15 +135,15 @@ def like_with_like(a, b):
     return a[1] == b[1] and math.copysign(1, a[2].mean) == math.copysign(1, b[2].mean)
 
 
-def ties(best_run, others, tolerances, need):
-    """(configurations [(name, run)] whose score is not distinguishable from best_run's, whether the best
-    is significant: True, False, or None when no comparison had intervals)."""
-    best = score_interval(best_run, tolerances, need)
+def ties(best_run, others, tolerances, need, against="beam", skip=()):
+    """(configurations [(name, run)] whose score `against` is not distinguishable from best_run's, whether the
+    best is significant: True, False, or None when no comparison had intervals)."""
+    best = score_interval(best_run, tolerances, need, against, skip)
     if best is None:
         return [], None
     tied, decided = [], []
     for name, run in others:
-        other = score_interval(run, tolerances, need)
+        other = score_interval(run, tolerances, need, against, skip)
         if other is None:
             continue
         if not like_with_like(best, other):

@@ -99,7 +99,9 @@ class OperatingPoints(unittest.TestCase):
     def test_a_points_error_bar_is_its_errors_half_width_in_tolerance_multiples(self):
         need = {"needed": True, "single_run_noise": {PEAK: [0.05, 11]}}
         entry = fronts.point_entry(fronts.points([run("a", 1e-4, 0.1, 0.08)], TOLERANCES)[0], TOLERANCES, need)
-        half_width = entry["largest_error_vs_beam"]["half_width"]
+        # a single run: its noise is the reference's single-start scatter, written as such (as a run object's)
+        self.assertIsNone(entry["largest_error_vs_beam"]["half_width"])
+        half_width = entry["largest_error_vs_beam"]["single_run_noise"]
         self.assertGreater(half_width, 0)
         self.assertAlmostEqual(entry["score_half_width"], half_width / TOLERANCES["sensor_peak_relative_error"])
         plain = fronts.point_entry(fronts.points([run("a", 1e-4, 0.1, 0.08)], TOLERANCES)[0], TOLERANCES, None)

@@ -34,15 +34,22 @@ def path_of(row):
     return options.get("contact", "matched")
 
 
-def independent_score(row, tolerances):
-    """The largest |error vs beam| / tolerance of a runs.csv row, written here from the columns alone."""
-    pairs = [("vs_reference_frame1_sensor_peak_relative_error", "sensor_peak_relative_error"),
-             ("vs_reference_frame2_sensor_peak_relative_error", "sensor_peak_relative_error"),
-             ("vs_reference_contact_duration_relative_error", "contact_duration_relative_error"),
-             ("vs_reference_impacts_per_cycle_difference", "impacts_per_cycle_difference"),
-             ("vs_reference_frame1_log_decrement_relative_error", "log_decrement_relative_error")]
-    multiples = [abs(float(row[c])) / tolerances[t] for c, t in pairs if row.get(c)]
+def independent_score(row, tolerances, prefix="vs_reference_"):
+    """The largest |error vs beam| / tolerance of a runs.csv row (prefix vs_chain_reference_: vs its own chain),
+    written here from the columns alone."""
+    pairs = [("frame1_sensor_peak_relative_error", "sensor_peak_relative_error"),
+             ("frame2_sensor_peak_relative_error", "sensor_peak_relative_error"),
+             ("contact_duration_relative_error", "contact_duration_relative_error"),
+             ("impacts_per_cycle_difference", "impacts_per_cycle_difference"),
+             ("frame1_log_decrement_relative_error", "log_decrement_relative_error")]
+    multiples = [abs(float(row[prefix + c])) / tolerances[t] for c, t in pairs if row.get(prefix + c)]
     return max(multiples) if multiples else math.inf
+
+
+def metric_of(column):
+    """The scored metric's label (analysis.SCORED) of an error column, or None."""
+    from impactbench_report import analysis
+    return next((label for label, _, error, _, _ in analysis.SCORED if column.endswith(error)), None)
 
 
 class Report(unittest.TestCase):
@@ -183,13 +190,16 @@ class Report(unittest.TestCase):
 
     def test_every_point_of_a_front_traces_to_runs_csv(self):
         """summary.json's fronts: each point is its runs.csv row (step, cost, verdict) with its score
-        computed from that row; each engine's most accurate point scores no worse than its other stable
-        points (this suite's runs are single, without a measured noise)."""
+        computed from that row; each engine's most accurate point scores no worse against its own chain than its
+        other stable points that pass their verdict as it does (this suite's runs are single, without a measured
+        noise), and passes its verdict where one of them does."""
         summary, by_id, tolerances = self.summary_and_rows()
         checked = 0
         for case in summary["cases"]:
+            if case["metrics_not_ranked"]:
+                continue  # scored over fewer metrics than independent_score reads
             for engine, entry in case["fronts"]["engines"].items():
-                stable_scores = []
+                stable_scores, own_scores = [], {True: [], False: []}
                 for point in entry["points"]:
                     row = by_id[point["job_id"]]
                     self.assertEqual((row["engine"], row["verdict"]), (engine, point["verdict"]))
@@ -200,11 +210,61 @@ class Report(unittest.TestCase):
                         self.assertAlmostEqual(point["score_vs_beam"], score, places=12)
                         if row["verdict"] in ("ok", "inaccurate"):
                             stable_scores.append(score)
+                            own_scores[row["verdict"] == "ok"].append(independent_score(row, tolerances, "vs_chain_reference_"))
                     checked += 1
-                if entry["most_accurate"] is not None:
-                    self.assertAlmostEqual(entry["most_accurate"]["score_vs_beam"], min(stable_scores), places=12)
+                accurate = entry["most_accurate"]
+                if accurate is not None:
+                    passes = accurate["verdict"] == "ok"
+                    self.assertEqual(passes, bool(own_scores[True]), f"{engine}: a failing run named over a passing one")
+                    self.assertAlmostEqual(accurate["score_vs_own_chain"], min(own_scores[passes]), places=12)
                 self.assertTrue(set(entry["front_job_ids"]) <= {p["job_id"] for p in entry["points"]})
         self.assertGreater(checked, 20)
+
+    def test_every_point_has_a_budget_whose_parts_add_up(self):
+        """summary.json: each front point's budget, per scored metric: its total is the row's error vs the beam,
+        its engine part the row's error vs its own chain in the beam's units, and chain + engine = total."""
+        from impactbench_report import budget
+        summary, by_id, _ = self.summary_and_rows()
+        checked = 0
+        for case in summary["cases"]:
+            for entry in case["fronts"]["engines"].values():
+                for point in entry["points"]:
+                    row = by_id[point["job_id"]]
+                    self.assertIsNotNone(point["budget"], point["job_id"])
+                    for metric, part in point["budget"]["metrics"].items():
+                        column = next(c for c in row if c.startswith("vs_reference_") and metric_of(c) == metric)
+                        self.assertAlmostEqual(part["total"], float(row[column]), places=12)
+                        if part["residual"] is None:
+                            self.assertTrue(part["why_not_additive"], point["job_id"])
+                            continue
+                        # runs.csv's nine significant digits: the parts agree to budget.ADDITIVE_TOLERANCE
+                        self.assertLessEqual(abs(part["chain"] + part["engine"] - part["total"]), budget.ADDITIVE_TOLERANCE)
+                        own = float(row[column.replace("vs_reference_", "vs_chain_reference_")])
+                        expected = own * (1 + part["chain"]) if part["kind"] == "relative" else own
+                        self.assertAlmostEqual(part["engine"], expected, places=12)
+                        checked += 1
+        self.assertGreater(checked, 20)
+
+    def test_the_sensor_files_hold_the_peaks_the_metrics_measured(self):
+        """What the figures draw is what the metrics measured: each frame's largest reading inside the scoring
+        window of a run's sensor.csv.gz (read as the figures read it) is that frame's sensor peak in the run's
+        summary.json, within 1e-6 (the file's nine significant digits)."""
+        from impactbench_report import data
+        checked = 0
+        for folder, _, files in os.walk(os.path.join(self.suite, "runs")):
+            if "sensor.csv.gz" not in files:
+                continue
+            with open(os.path.join(folder, "summary.json")) as f:
+                summary = json.load(f)
+            sensor = data.read_series(os.path.join(folder, "sensor.csv.gz"))
+            time = sensor["time_s"]
+            inside = (time >= summary["window_start_s"] - 1e-12) & (time <= summary["window_end_s"] + 1e-12)
+            for frame in (1, 2):
+                reading_g = max(abs(sensor[f"frame{frame}_sensor_acceleration_m_s2"][inside])) / data.G
+                peak_g = summary[f"frame{frame}_sensor_peak_acceleration_g"]
+                self.assertLessEqual(abs(reading_g - peak_g), 1e-6 * max(peak_g, 1e-9), f"{folder}, frame {frame}")
+                checked += 1
+        self.assertGreater(checked, 10)
 
     def test_a_suite_without_native_runs_says_not_run_rather_than_no_stable_run(self):
         self.assertFalse(any(path_of(r) == "native" for r in self.rows if r["engine"] != "reference"))

@@ -1,0 +1,96 @@
+"""An engine run's error against the beam split into what it is made of (issue 46):
+
+- the chain: the reference on the run's own K-link chain against the beam (the model's share, the same for every
+  engine on that chain; chain_convergence.py says how it falls with K);
+- the engine: the run against that chain (contact handling and time stepping), in the beam's units so that the
+  parts add: (E - C) / B = (E / C - 1) (C / B) for a relative error, E - C for a difference;
+- the noise: the total's 95 % half-width (an ensemble's interval, or the reference's single-start scatter for a
+  single run of a case that needed an ensemble); null where nothing measured it.
+
+With E, C and B the run's, its chain's and the beam's values (an ensemble's means where there is one), chain +
+engine = total exactly; `residual` keeps what rounding leaves, and `why_not_additive` says why where a part is
+missing. The reference's own numerical error sits beside them (reference_numerical_error)."""
+
+import math
+
+from . import analysis, ensemble_groups, significance
+
+# Residual below which the parts are said to add up: runs.csv writes each error with nine significant digits
+# (harness/records/number_text.h), so three of them, each up to order one, agree to about 1e-9.
+ADDITIVE_TOLERANCE = 1e-8
+
+
+def none_if_nan(x):
+    return None if x is None or (isinstance(x, float) and math.isnan(x)) else x
+
+
+def metric_budget(run, chain_run, column, kind, noise):
+    """One scored metric's budget for a run; None where the run has no error against the beam in it."""
+    total = analysis.signed_error(run, column, "beam")
+    if math.isnan(total):
+        return None
+    chain = analysis.signed_error(chain_run, column, "beam") if chain_run is not None else math.nan
+    own = analysis.signed_error(run, column, "own chain")
+    engine = own * (1 + chain) if kind == "relative" else own
+    entry = {"total": total, "chain": none_if_nan(chain), "engine": none_if_nan(engine),
+             "engine_vs_own_chain": none_if_nan(own)}
+    interval = significance.error_with_interval(run, column, "beam", noise)
+    entry["noise_half_width"] = interval.half_width
+    entry["noise_method"] = interval.method
+    if math.isnan(chain) or math.isnan(own):
+        entry["residual"] = None
+        entry["why_not_additive"] = ("no reference on the run's own chain" if chain_run is None or math.isnan(chain)
+                                     else "no error against the run's own chain")
+    else:
+        entry["residual"] = total - chain - engine
+        if abs(entry["residual"]) > ADDITIVE_TOLERANCE * max(1.0, abs(total)):
+            entry["why_not_additive"] = ("the run's errors come from its row, not from the ensembles' means the chain's "
+                                         "share is measured with")
+    return entry
+
+
+def run_budget(suite, index, run, need):
+    """A run's budget over the scored metrics: {chain_links, chain_reference_job_id, metrics: {label: ...}}."""
+    chain_run = ensemble_groups.reference_of(index, run, "own chain")
+    noise = significance.noise_of(run, need)
+    metrics = {}
+    for label, _, column, kind, _ in analysis.SCORED:
+        entry = metric_budget(run, chain_run, column, kind, noise)
+        if entry is not None:
+            metrics[label] = {"kind": kind, **entry}
+    links = run.number("chain_links")
+    return {"chain_links": None if math.isnan(links) or links <= 0 else int(links),
+            "chain_reference_job_id": chain_run["job_id"] if chain_run is not None else None, "metrics": metrics}
+
+
+def largest_parts(budget, metric):
+    """(total, chain, engine, noise) of one metric of a budget, NaN where missing."""
+    entry = budget["metrics"].get(metric) if budget else None
+    if entry is None:
+        return (math.nan,) * 4
+    return tuple(math.nan if entry[k] is None else entry[k] for k in ("total", "chain", "engine", "noise_half_width"))
+
+
+def tight_reference(suite, scenario, law):
+    """The case's beam reference rerun at tighter tolerances (options rtol and atol only), or None."""
+    for run in suite.runs_of(scenario, law):
+        options = analysis.options_of(run["options"])
+        if run["engine"] == "reference" and options and set(options) <= {"rtol", "atol"} and run["verdict"] == "ok":
+            return run
+    return None
+
+
+def reference_numerical_error(suite, scenario, law):
+    """The beam reference's own numerical error per scored metric: its first start's value against the same start
+    at tighter tolerances (relative, or a difference for impacts per cycle); None without that rerun."""
+    beam, tight = suite.beam_reference(scenario, law), tight_reference(suite, scenario, law)
+    if beam is None or tight is None:
+        return None
+    metrics = {}
+    for label, column, _, kind, _ in analysis.SCORED:
+        value, exact = beam.number(column), tight.number(column)
+        if math.isnan(value) or math.isnan(exact) or (kind == "relative" and exact == 0):
+            continue
+        metrics[label] = {"kind": kind, "error": value / exact - 1 if kind == "relative" else value - exact}
+    return {"against_job_id": tight["job_id"], "against": f"the beam reference at {tight['options'].replace(';', ', ')}",
+            "beam_job_id": beam["job_id"], "metrics": metrics}
