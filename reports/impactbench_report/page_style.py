@@ -2,7 +2,7 @@
 wider than the page, checked in Chromium by reports/tests/test_page_in_chromium.py. So nothing here keeps a
 cell from wrapping or lets a table scroll sideways (a scrolled table hides its last columns, the verdicts and
 costs, from a reader who does not know to scroll): every table is at most the page's width, its cells wrap at
-spaces and, for a word longer than its column, inside the word; a dense table (tables.DENSE_COLUMNS columns or
+spaces (a word longer than the whole table can be is broken inside); a dense table (tables.DENSE_COLUMNS columns or
 more, class "dense") is set smaller; every image scales down to the page's width."""
 
 STYLE = """
@@ -19,7 +19,6 @@ table { border-collapse: collapse; font-size: 0.85em; margin: 0.8em 0; max-width
 th, td { border: 1px solid #ccc; padding: 0.25em 0.5em; text-align: right; overflow-wrap: break-word; }
 th { background: #f2f2f2; } td:first-child, th:first-child { text-align: left; }
 table.dense { font-size: 0.72em; } table.dense th, table.dense td { padding: 0.15em 0.3em; }
-table.dense th { overflow-wrap: anywhere; hyphens: auto; }  /* long headers break, the numbers below stay whole */
 #answer table.dense { font-size: 1em; }  /* already set smaller by #answer */
 figure { margin: 1em 0; } figure img, figure svg { width: 100%; height: auto; }
 img, svg, object, video { max-width: 100%; height: auto; }
