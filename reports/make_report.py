@@ -25,6 +25,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from impactbench_report import ablation, analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
 from impactbench_report import budget_figures, convergence_table, front_figures, step_figures, zoom_figures  # noqa: E402
 from impactbench_report import dynamics, named_runs, spectral, sweep  # noqa: E402
+from impactbench_report.page_style import STYLE  # noqa: E402
 
 CAVEATS = [
     "The experiment's figures (rig.md section 7) are data shown beside the simulators, not targets: the "
@@ -331,28 +332,6 @@ def write_markdown(path, document, facts, sections, out, fronts_figures=(None, N
         lines += [f"![{os.path.basename(p)}]({os.path.relpath(p, out)})" for p in paths]
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
-
-
-STYLE = """
-body { font-family: sans-serif; margin: 1.5em auto; max-width: 1340px; padding: 0 1em; color: #222; }
-h1 { font-size: 1.35em; margin: 0.3em 0; } .lede { font-size: 0.85em; margin: 0.3em 0; }
-#answer, #cases { font-size: 0.8em; } #answer td, #cases td { white-space: nowrap; padding: 0.15em 0.4em; }
-#answer th, #cases th { font-size: 0.9em; } #answer td { white-space: normal; min-width: 6em; }
-#answer td:nth-child(3n+2) { text-align: left; } #answer td:nth-child(3n+1) { white-space: nowrap; min-width: 0; }
-#cases td:nth-child(3), #cases td:nth-child(7) { white-space: normal; }
-#cases td:nth-child(2), #cases td:nth-child(6) { text-align: left; }
-#cases td:nth-child(2), #cases td:nth-child(6) { white-space: normal; min-width: 9em; }  /* ties wrap */
-.notes { font-size: 0.75em; color: #444; margin: 0.2em 0; } .engines { font-size: 0.8em; margin: 0.4em 0; } .convention { font-size: 0.8em; color: #444; }
-p + table { display: block; overflow-x: auto; max-width: 100%; }
-p.case + table td { white-space: nowrap; } p.case + table td:last-child { white-space: normal; min-width: 30em; }
-nav { font-size: 0.85em; margin: 1em 0; } figure img { width: 100%; height: auto; } h2 { font-size: 1.2em; border-bottom: 1px solid #ccc; margin-top: 2em; }
-table { border-collapse: collapse; font-size: 0.85em; margin: 0.8em 0; }
-th, td { border: 1px solid #ccc; padding: 0.25em 0.5em; text-align: right; }
-th { background: #f2f2f2; } td:first-child, th:first-child { text-align: left; }
-figure { margin: 1em 0; } figure svg { width: 100%; height: auto; }
-dl { display: grid; grid-template-columns: max-content auto; gap: 0.2em 1em; font-size: 0.9em; }
-dt { font-weight: bold; } .caveats li { margin: 0.3em 0; }
-"""
 
 
 def figure_html(path, out):

@@ -17,6 +17,7 @@ from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from . import analysis, engines, svg_saving  # noqa: E402
+from .label_placement import POSITIONS, label_point, place_labels  # noqa: E402
 from .tables import step_text  # noqa: E402
 
 svg_saving.install_text_metrics_cache()
@@ -54,6 +55,7 @@ def save(figure, folder, name, caption):
     """Saves a figure as SVG with its caption (what it shows and what produced it) on top, and as the
     SVG's title; returns the path."""
     figure.suptitle(textwrap.fill(caption, max(60, int(17 * figure.get_figwidth()))), fontsize=7)
+    place_labels(figure)  # once the caption's room is known: the layout it makes moves the points
     path = os.path.join(folder, name + ".svg")
     svg_saving.save_svg(figure, path, {"Title": caption})
     plt.close(figure)
@@ -170,7 +172,7 @@ def error_against_cost(suite, scenario, law, folder, provenance, tolerances=None
     handles += [proxy("filled, solid: |error| vs beam", color="black", marker="o", linestyle="-"),
                 proxy("hollow, dashed: |error| vs own chain", color="black", marker="o", markerfacecolor="none",
                       linestyle="--"),
-                proxy("5e-5 beside a point: its time step [s]", color="none"),
+                proxy("5e-5 beside a point: its time step [s], where\nit fits (every run's in the case's table)", color="none"),
                 proxy("tolerance of the verdict", color="#555555", linestyle="-.")]
     if most_zeros:
         handles.append(proxy("bottom strip: error exactly 0", marker="v", color="black"))
@@ -203,8 +205,8 @@ def draw_stopped(strip, stopped, stopped_configs, configs):
             continue
         strip.plot([cost], [row], "x", color=VERDICT_COLOURS.get(run["verdict"], "black"), markersize=7,
                    markeredgewidth=1.6)
-        strip.annotate(f"{run['verdict']} {step_text(run.number('time_step_s'))}", (cost, row), xytext=(5, 0),
-                       textcoords="offset points", fontsize=6, va="center", color=colour_of(run.config, configs))
+        label_point(strip, f"{run['verdict']} {step_text(run.number('time_step_s'))}", (cost, row), ROW_POSITIONS,
+                    fontsize=6, color=colour_of(run.config, configs))
     for (row, verdict), steps in never.items():
         strip.text(0.01, row, f"{verdict} before any step (no cost): {', '.join(steps)} s",
                    transform=transforms.blended_transform_factory(strip.transAxes, strip.transData), fontsize=6,
@@ -216,6 +218,14 @@ def draw_stopped(strip, stopped, stopped_configs, configs):
 
 
 CHAIN = "8-link chain reference"
+# Where a point's label may go (label_placement.py): in a strip's row, beside the point only (above or below
+# it would read as the next row's); in a panel, a filled point's label first above it, a hollow one's below.
+ROW_POSITIONS = [(5, 0, "left", "center"), (-5, 0, "right", "center")]
+ABOVE_FIRST = POSITIONS
+BELOW_FIRST = [p for p in POSITIONS if p[1] < 0] + [p for p in POSITIONS if p[1] >= 0]
+# A vertical line's label, turned along it: beside its middle, else further up or down the line.
+ALONG_A_LINE = [(side, along, "right" if side < 0 else "left", "center") for along in (0, 40, -40, 80, -80)
+                for side in (-2, 2)]
 
 
 def error_points(column, kind, engine_runs, configs, chains):
@@ -243,8 +253,7 @@ def draw_zeros(strip, points, rows, configs):
                    markerfacecolor=colour if filled else "none")
         if filled or not any(p[2] is run and p[1] and p[4] == 0 for p in points):  # one label per run
             text = "chain reference" if label == CHAIN else step_text(run.number("time_step_s"))
-            strip.annotate(text, (cost, row), xytext=(5, 0), textcoords="offset points", fontsize=6, va="center",
-                           color=colour)
+            label_point(strip, text, (cost, row), ROW_POSITIONS, fontsize=6, color=colour)
     strip.set_ylim(len(rows) - 0.5, -0.5)
     strip.set_yticks([])
     strip.set_ylabel("exactly 0", fontsize=7, rotation=0, ha="right", va="center")
@@ -258,6 +267,10 @@ def draw_error_panel(ax, column, kind, tolerance, points, configs, beam, xlim):
     log_axis(ax, "x", *xlim)
     log_axis(ax, "y", *padded(positive, 2.5))
     edge = transforms.blended_transform_factory(ax.transData, ax.transAxes)
+    if beam is not None and run_cost(beam) > 0:  # first: its label goes before the points' labels
+        ax.axvline(run_cost(beam), color="black", linestyle=":", linewidth=1)
+        label_point(ax, f"beam reference {run_cost(beam):.2g} s/s", (run_cost(beam), 0.5), ALONG_A_LINE,
+                    xycoords=edge, rotation=90, fontsize=6)
     for config in configs:
         colour = colour_of(config, configs)
         for filled in (True, False):
@@ -268,8 +281,8 @@ def draw_error_panel(ax, column, kind, tolerance, points, configs, beam, xlim):
             for p in mine:
                 if not filled and any(q[2] is p[2] and q[1] and 0 < q[4] and 0.6 < p[4] / q[4] < 1.6 for q in points):
                     continue  # the filled point of the same run is labelled, right beside it
-                ax.annotate(step_text(p[2].number("time_step_s")), (p[3], p[4]), xytext=(4, 2 if filled else -7),
-                            textcoords="offset points", fontsize=6, color=colour)
+                label_point(ax, step_text(p[2].number("time_step_s")), (p[3], p[4]),
+                            ABOVE_FIRST if filled else BELOW_FIRST, fontsize=6, color=colour)
     for p in points:
         if p[0] == CHAIN and p[4] > 0:
             ax.plot([p[3]], [p[4]], "*", color="black", markersize=9, zorder=5)
@@ -277,10 +290,6 @@ def draw_error_panel(ax, column, kind, tolerance, points, configs, beam, xlim):
     ax.annotate(f"tolerance {tolerance * scale:g}{' %' if scale == 100 else ''}", (0.01, tolerance * scale),
                 xycoords=transforms.blended_transform_factory(ax.transAxes, ax.transData), xytext=(0, 2),
                 textcoords="offset points", fontsize=6, color="#555555")
-    if beam is not None and run_cost(beam) > 0:
-        ax.axvline(run_cost(beam), color="black", linestyle=":", linewidth=1)
-        ax.annotate(f"beam reference {run_cost(beam):.2g} s/s", (run_cost(beam), 0.5), xycoords=edge, rotation=90,
-                    xytext=(-2, 0), textcoords="offset points", va="center", ha="right", fontsize=6)
     ax.set_xlabel("CPU time per simulated second [s/s]")
     ax.set_ylabel("|relative error| [%]" if scale == 100 else "|difference| [impacts per cycle]")
     ax.grid(True, which="major", linewidth=0.4)

@@ -112,10 +112,16 @@ def markdown(header, rows):
     return "\n".join(lines)
 
 
+# From this many columns a table is "dense" (page_style.py): set smaller, so that it fits the page's width
+# without breaking its numbers (a case table has three columns per metric).
+DENSE_COLUMNS = 9
+
+
 def html_table(header, rows):
     head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
     body = "".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in row) + "</tr>" for row in rows)
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    dense = " class='dense'" if len(header) >= DENSE_COLUMNS else ""
+    return f"<table{dense}><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
 def step_cell(row, prefix):

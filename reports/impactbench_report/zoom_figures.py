@@ -7,7 +7,7 @@ import textwrap
 import numpy as np
 
 from . import analysis, data
-from .figures import colour_of, legend_axis, plt, proxy, save
+from .figures import colour_of, label_point, legend_axis, plt, proxy, save
 from .tables import step_text
 from matplotlib import transforms
 
@@ -134,6 +134,12 @@ def impact_zoom(suite, scenario, law, chosen, folder, provenance):
     return save(figure, folder, f"impact_{scenario}_{law}", caption + f"; {provenance}")
 
 
+# Where a point's label may go (label_placement.py): an impulse's beside its stem, a bar's beyond its end.
+BESIDE = [(6, 0, "left", "center"), (-6, 0, "right", "center")]
+BAR_END_UP = [(0, 3, "center", "bottom")]
+BAR_END_DOWN = [(0, -3, "center", "top")]
+
+
 def draw_impulses(ax, impulses):
     for x, (label, colour, impulse) in enumerate(impulses):
         if isinstance(impulse, str) or math.isnan(impulse):
@@ -142,8 +148,7 @@ def draw_impulses(ax, impulses):
             continue
         ax.vlines(x, 0, impulse, color=colour, linewidth=2)
         ax.plot([x], [impulse], "o", color=colour)
-        ax.annotate(f"{impulse * 1e3:.2f} mN s", (x, impulse), xytext=(6, 0), textcoords="offset points",
-                    fontsize=7, va="center")
+        label_point(ax, f"{impulse * 1e3:.2f} mN s", (x, impulse), BESIDE, fontsize=7)
     ax.set_xticks(range(len(impulses)))
     ax.set_xticklabels([textwrap.fill(label, 18) for label, _, _ in impulses], fontsize=7)
     ax.set_xlim(-0.6, len(impulses) - 0.4)
@@ -184,8 +189,8 @@ def against_experiment(suite, law, chosen_by_case, experiment, folder, provenanc
                 continue
             error = 100 * (simulated - measured) / measured
             ax.bar([x], [error], width, color="black" if i == 0 else colour_of(label, configs))
-            ax.annotate(f"{error:+.0f} %\n{simulated:.3g} g", (x, error), xytext=(0, 3 if error >= 0 else -3),
-                        textcoords="offset points", ha="center", va="bottom" if error >= 0 else "top", fontsize=6)
+            label_point(ax, f"{error:+.0f} %\n{simulated:.3g} g", (x, error), BAR_END_UP if error >= 0 else BAR_END_DOWN,
+                        fontsize=6)
     ax.axhline(0, color="black", linewidth=0.8)
     ax.use_sticky_edges = False  # room above and below the bars for their labels
     ax.margins(y=0.2)

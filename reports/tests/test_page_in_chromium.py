@@ -2,14 +2,17 @@
 it loads with no console error, every <img> is drawn, every file of report/figures/ is shown on the page, it
 opens with the fronts (figures/fronts.svg, the first image, above the answer), and the answer (the element
 with id "answer": what to use) lies on the first screen of a 1366 x 768 window. The first screen
-is saved as first-screen.png beside index.html, for the closing note.
+is saved as first-screen.png beside index.html, for the closing note. In a 1400 x 1000 window (page_layout.py)
+no table or figure is wider than the window, none hides columns by scrolling sideways, and no two texts of any
+SVG figure overlap: tick labels included, since a tick label under a step label is as unreadable as any.
 
     /usr/bin/python3 reports/tests/test_page_in_chromium.py REPORT_FOLDER
     /usr/bin/python3 reports/tests/test_page_in_chromium.py --build IMPACTBENCH SCENARIO_FOLDER OUT_FOLDER
     /usr/bin/python3 reports/tests/test_page_in_chromium.py                 (only the self-tests)
 
 --build makes the page first, from the same small suite as test_report.py, in OUT_FOLDER/suite. The
-self-tests open hand-made pages (a broken image, a console error, the answer below the first screen) and
+self-tests open hand-made pages (a broken image, a console error, the answer below the first screen, a table
+too wide, a scrolled table, a too wide image, overlapping and rotated labels) and
 require that each fault is reported: a check that cannot fail checks nothing.
 """
 
@@ -23,6 +26,7 @@ import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from page_in_chromium import Chromium  # noqa: E402
+from page_layout import label_problems, look_at_layout, width_problems  # noqa: E402
 
 WIDTH, HEIGHT = 1366, 768  # a common laptop screen: what "the first screen" means here
 REPORT = None
@@ -126,6 +130,7 @@ class ReportPage(unittest.TestCase):
     def setUpClass(cls):
         cls.screenshot = os.path.join(REPORT, "first-screen.png")
         cls.seen = look_at(REPORT, cls.screenshot)
+        cls.layout = look_at_layout(REPORT)
         print(f"\nfirst screen: {cls.screenshot}", file=sys.stderr)
 
     def test_it_loads_without_console_errors(self):
@@ -144,19 +149,40 @@ class ReportPage(unittest.TestCase):
     def test_it_opens_with_the_fronts_above_the_answer(self):
         self.assertNoProblems(fronts_problems(self.seen))
 
+    def test_no_table_or_figure_is_wider_than_the_reading_window(self):
+        self.assertNoProblems(width_problems(self.layout))
+
+    def test_no_two_labels_of_a_figure_overlap(self):
+        self.assertGreater(sum(f["texts"] for f in self.layout["labels"].values()), 0)  # texts were measured
+        self.assertNoProblems(label_problems(self.layout))
+
 
 GOOD_IMAGE = '<svg xmlns="http://www.w3.org/2000/svg" width="200" height="100"><rect width="200" height="100"/></svg>'
 
 
-def hand_made(folder, body, figures=("drawn.svg",)):
-    """A report folder with index.html holding `body` and the given figure files."""
+
+
+def labelled_image(*labels):
+    """An SVG with a text at each (x, y, text), 6 pt like a step label of the figures."""
+    texts = "".join(f'<g id="text_{i}"><text x="{x}" y="{y}" style="font: 6px sans-serif">{t}</text></g>'
+                    for i, (x, y, t) in enumerate(labels))
+    return f'<svg xmlns="http://www.w3.org/2000/svg" width="300" height="100"><g id="axes_1">{texts}</g></svg>'
+
+
+def hand_made(folder, body, figures=("drawn.svg",), style=""):
+    """A report folder with index.html holding `body` and the given figure files (names, drawn as GOOD_IMAGE,
+    or a dict of name: SVG text)."""
     os.makedirs(os.path.join(folder, "figures"))
     for name in figures:
         with open(os.path.join(folder, "figures", name), "w") as f:
-            f.write(GOOD_IMAGE)
+            f.write(figures[name] if isinstance(figures, dict) else GOOD_IMAGE)
     with open(os.path.join(folder, "index.html"), "w") as f:
-        f.write(f'<!doctype html><html><head><meta charset="utf-8"><title>hand-made</title></head><body>{body}</body></html>')
+        f.write(f'<!doctype html><html><head><meta charset="utf-8"><title>hand-made</title><style>{style}</style>'
+                f'</head><body>{body}</body></html>')
     return folder
+
+
+WIDE_CELL = "<td style='white-space:nowrap'>" + "a long cell that will not wrap " * 12 + "</td>"
 
 
 class TheChecksCanFail(unittest.TestCase):
@@ -196,6 +222,62 @@ class TheChecksCanFail(unittest.TestCase):
         self.assertRegex(" ".join(answer_problems(seen)), r"starts at 1\d\d\d px, below the first screen.*Report / Caveats")
         self.assertEqual(fronts_problems(seen), ["the first image is figures/drawn.svg, not the fronts (figures/fronts.svg)"])
 
+    def test_a_page_that_fits_with_labels_apart_passes(self):
+        report = hand_made(os.path.join(self.folder, "fits"), '<h2>Case</h2><table><tr><td>short</td></tr></table>'
+                           '<figure><img src="figures/apart.svg" style="max-width:100%"></figure>',
+                           figures={"apart.svg": labelled_image((10, 20, "5e-5"), (10, 27, "1e-4"), (60, 20, "2e-4"))})
+        seen = look_at_layout(report)
+        self.assertEqual(width_problems(seen) + label_problems(seen), [])
+        self.assertEqual(seen["labels"]["apart.svg"]["texts"], 3)
+
+    def test_too_wide_tables_and_figures_are_named(self):
+        report = hand_made(os.path.join(self.folder, "wide"),
+                           f'<h2>Resonance</h2><table id="spilling"><tr><th>configuration</th></tr><tr>{WIDE_CELL}</tr>'
+                           f'</table><h2>Scrolled</h2><div style="overflow-x:auto"><table id="scrolled"><tr>{WIDE_CELL}'
+                           '</tr></table></div><figure><img src="figures/drawn.svg" style="width:1500px"></figure>')
+        problems = "\n".join(width_problems(look_at_layout(report)))
+        self.assertRegex(problems, r"the page is \d{4} px wide, wider than the 1400 px window")
+        self.assertRegex(problems, r'<table id=spilling> \(header: configuration ...\) under "Resonance" spans 8 to '
+                                   r'\d{4} px in a 1400 px window')
+        self.assertRegex(problems, r'<div> under "Scrolled" spans 8 to 1392 px in a 1400 px window, its content '
+                                   r'\d{4} px in a box of 1384 px')
+        self.assertRegex(problems, r'<img src=figures/drawn.svg> under "Scrolled" spans \d+ to 15\d\d px')
+
+    def test_the_report_style_fits_a_wide_table_and_figure(self):
+        sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        import make_report
+        from impactbench_report import tables
+        header = [f"metric {i} [unit]" for i in range(20)]
+        rows = [[f"engine_{r} [contact=matched, option=value_{r}]"] + ["+12.5 % ± 0.57 %"] * 18
+                + ["inaccurate: frame 1's sensor peak −14.9 % from its own chain, beyond the tolerance"]
+                for r in range(3)]
+        report = hand_made(os.path.join(self.folder, "styled"), f"<h2>Case</h2><p class='case'>a case</p>"
+                           f"{tables.html_table(header, rows)}<figure><img src='figures/broad.svg'></figure>",
+                           figures={"broad.svg": GOOD_IMAGE.replace('"200"', '"3000"')}, style=make_report.STYLE)
+        self.assertEqual(width_problems(look_at_layout(report)), [])
+
+    def test_overlapping_labels_are_named(self):
+        report = hand_made(os.path.join(self.folder, "overlapping"), '<img src="figures/crowded.svg">',
+                           figures={"crowded.svg": labelled_image((10, 20, "5e-5"), (14, 21, "1e-4"),
+                                                                  (100, 20, "2e-4"), (100, 26.5, "4e-4"))})
+        problems = label_problems(look_at_layout(report))
+        self.assertEqual(len(problems), 1, problems)  # 2e-4 and 4e-4 only touch, within OVERLAP_PX
+        self.assertRegex(problems[0], r'^crowded.svg: "5e-5" \(axes_1\) and "1e-4" \(axes_1\) overlap by \d\.\d px$')
+
+    def test_rotated_labels_are_measured_as_drawn_and_lines_of_one_text_are_one_label(self):
+        font = 'style="font: 8px sans-serif"'
+        svg = ('<svg xmlns="http://www.w3.org/2000/svg" width="300" height="200"><g id="axes_1">'
+               f'<g id="text_1"><text x="100" y="100" {font} transform="rotate(45 100 100)">a rotated label</text></g>'
+               f'<g id="text_2"><text x="115" y="125" {font}>crossed</text></g>'
+               f'<g id="text_3"><text x="96" y="146" {font}>off</text></g>'  # in the rotated one's upright box
+               f'<g id="text_4"><text x="40" y="20" {font}>first line</text><text x="40" y="26" {font}>second</text>'
+               '</g></g></svg>')
+        report = hand_made(os.path.join(self.folder, "rotated"), '<img src="figures/rotated.svg">',
+                           figures={"rotated.svg": svg})
+        problems = label_problems(look_at_layout(report))
+        self.assertEqual(len(problems), 1, problems)
+        self.assertRegex(problems[0], r'^rotated.svg: "a rotated label" \(axes_1\) and "crossed" \(axes_1\) overlap')
+
     def test_a_page_without_the_answer_is_reported(self):
         report = hand_made(os.path.join(self.folder, "no_answer"), '<img src="figures/drawn.svg">')
         self.assertIn('no element with id="answer"', " ".join(answer_problems(look_at(report, os.devnull))))
@@ -219,7 +301,10 @@ def build_report(executable, scenarios, out):
                           "--laws", "viscoelastic,newton", "--dt", "1e-4,5e-5", "--jobs", "2", "--out", suite],
                          capture_output=True, text=True)
     assert run.returncode in (0, 1), run.stderr  # 1: some runs unstable, a finding the report shows
-    report = subprocess.run([executable, "report", suite], capture_output=True, text=True)
+    # the report of this checkout's make_report.py, which `impactbench report` runs only from the checkout
+    # the executable was built from: the page tested is the one these sources make
+    make_report = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "make_report.py")
+    report = subprocess.run([sys.executable, make_report, suite], capture_output=True, text=True)
     assert report.returncode == 0, report.stderr
     return os.path.join(suite, "report")
 
