@@ -42,10 +42,14 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
     const std::string starts = s.ensemble.reference_starts == 1 ? ""
                                : "; starts " + std::to_string(s.ensemble.engine_starts) + " (references " +
                                      std::to_string(s.ensemble.reference_starts) + ")";
-    std::printf("%s \"%s\": %s; engines %s; laws %s; paths %s; dt_s %s%s\n", s.step_search ? "search" : "suite",
+    std::vector<std::string> links;
+    for (int k : s.reference_chain_links) links.push_back(std::to_string(k));
+    const std::string chains = links.empty() ? "" : "; the reference on chains of " + list_text(links) + " links";
+    std::printf("%s \"%s\": %s; engines %s; laws %s; paths %s; dt_s %s%s%s\n", s.step_search ? "search" : "suite",
                 suite_names[i].c_str(), list_text(s.inputs).c_str(), list_text(s.engines).c_str(), laws(s.laws).c_str(),
                 s.recommended ? "recommended" : s.contact_paths.empty() ? "default" : list_text(s.contact_paths).c_str(),
-                s.step_search ? "searched" : s.recommended ? "recommended" : steps(s.time_steps_s).c_str(), starts.c_str());
+                s.step_search ? "searched" : s.recommended ? "recommended" : steps(s.time_steps_s).c_str(), starts.c_str(),
+                chains.c_str());
   }
   for (std::size_t i = 0; i < sweeps.size(); ++i) {
     const ib::SweepSettings& s = sweeps[i];

@@ -109,6 +109,26 @@ ib::SuiteSettings::Ensemble ensemble_from(const SuiteOptions& o) {
   return e;
 }
 
+// --reference-chains K,K,...: each K as the engines' option links takes it (1..64), in increasing order, once.
+std::vector<int> reference_chains_from(const std::string& text) {
+  std::vector<int> links;
+  if (text.empty()) return links;
+  const char* allowed = "integers 1 <= K <= 64 (links per frame, as the engines' option links), increasing, comma-separated";
+  for (const std::string& item : split_list(text, "--reference-chains", allowed)) {
+    std::size_t used = 0;
+    int k = 0;
+    try {
+      k = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || k < 1 || k > 64 || (!links.empty() && k <= links.back()))
+      throw std::invalid_argument("--reference-chains '" + text + "': " + item + " is not allowed; allowed: " + allowed);
+    links.push_back(k);
+  }
+  return links;
+}
+
 }  // namespace
 
 ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
@@ -119,6 +139,9 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
   s.extend = o.extend;
   s.reference_cache = o.reference_cache;
   s.ensemble = ensemble_from(o);
+  s.reference_chain_links = reference_chains_from(o.reference_chains);
+  if (!s.reference_chain_links.empty() && o.find_steps)
+    throw std::invalid_argument("--reference-chains cannot be combined with --find-steps (a search plans its engines' probes only)");
   if (o.recommended) {
     // the configuration sets the contact path and the step of every law: a path or step beside it is a mistake
     if (!o.paths.empty() || !s.time_steps_s.empty() || o.find_steps)

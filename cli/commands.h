@@ -29,6 +29,7 @@ struct SuiteOptions : MatrixOptions {
   int ensemble_starts = 1;            // --ensemble: starts of every configuration
   int reference_ensemble_starts = 0;  // --reference-ensemble: the references' starts; 0: --ensemble's
   double ensemble_step_m = 1e-7;      // --ensemble-step: frame 1's tip displacement between starts [m]
+  std::string reference_chains;       // --reference-chains K,K,...: the reference alone on K-link chains
 };
 
 // `sweep`'s options: the shared ones (MatrixOptions, arguments.h) and its own.

@@ -87,6 +87,9 @@ int main(int argc, char** argv) {
                     "N: the references' starts (at least --ensemble; 0: --ensemble's): their spread says whether a "
                     "case needs an ensemble")
       ->capture_default_str();
+  suite->add_option("--reference-chains", suite_options.reference_chains,
+                    "K,K,...: the reference alone on the K-link chain of every scenario, law and reference start, "
+                    "scored against the beam: how the chain's resolution alone moves each metric (1 <= K <= 64)");
   suite->add_option("--ensemble-step", suite_options.ensemble_step_m,
                     "frame 1's initial tip displacement between two starts of an ensemble [m]")
       ->capture_default_str();

@@ -64,6 +64,7 @@ const std::vector<KeySpec> kSuiteKeys = {
     {"reference_ensemble_starts", Type::integer, "--reference-ensemble", "the references' starts (at least ensemble_starts)"},
     {"ensemble_step_m", Type::number, "--ensemble-step", "frame 1's initial tip displacement between two starts [m]"},
     {"recommended", Type::boolean, "--recommended", "each engine in its authors' recommended configuration per law (not with paths or dt_s)"},
+    {"reference_chains", Type::numbers, "--reference-chains", "links K per frame: the reference alone on each K-link chain, every start"},
 };
 const std::vector<KeySpec> kSearchKeys = {
     {"scenarios", Type::texts, "scenarios", "scenario files or folders"},
@@ -268,6 +269,7 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
   if (given.count("reference_ensemble_starts")) s.reference_ensemble_starts = std::stoi(given["reference_ensemble_starts"]);
   if (given.count("ensemble_step_m")) s.ensemble_step_m = std::stod(given["ensemble_step_m"]);
   if (given.count("recommended")) s.recommended = given["recommended"] == "true";
+  if (given.count("reference_chains")) s.reference_chains = given["reference_chains"];
   if (kind == StudyPart::Kind::search) {
     s.find_steps = true;
     if (given.count("steps_per_octave")) s.steps_per_octave = std::stoi(given["steps_per_octave"]);

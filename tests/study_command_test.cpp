@@ -132,6 +132,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadStudy{"recommended_beside_a_step",
                  "[[suite]]\nscenarios = [\"scenarios/paper\"]\ndt_s = [1e-4]\nrecommended = true\n",
                  {":4:", "recommended", "--recommended cannot be combined with --paths, --dt or --find-steps"}},
+        BadStudy{"reference_chains_beyond_the_engines_links",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\nreference_chains = [8, 65]\n",
+                 {":3:", "reference_chains", "--reference-chains", "65 is not allowed", "1 <= K <= 64"}},
+        BadStudy{"reference_chains_out_of_order",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\nreference_chains = [16, 8]\n",
+                 {":3:", "reference_chains", "8 is not allowed", "increasing"}},
+        BadStudy{"reference_chains_not_integers",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\nreference_chains = [8.5]\n",
+                 {":3:", "reference_chains", "8.5 is not allowed"}},
         BadStudy{"syntax", "[[suite]\nscenarios = [\"scenarios/paper\"]\n", {":1:", "TOML syntax error"}}),
     [](const ::testing::TestParamInfo<BadStudy>& info) { return std::string(info.param.name); });
 

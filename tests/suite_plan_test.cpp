@@ -169,6 +169,34 @@ TEST_F(SuitePlan, AnEnginesChainDampingIsItsChainReferences) {
   EXPECT_GT(engines, 0);
 }
 
+// The reference alone on K-link chains (--reference-chains): one chain reference per K, law and reference start,
+// each compared with the beam reference of its start; the chain an engine of the same K builds is the same job.
+TEST_F(SuitePlan, ReferenceChainsPlanTheReferenceOnEachChainForEveryStart) {
+  settings_.engines = {"reference"};
+  settings_.reference_chain_links = {4, 16};
+  settings_.ensemble.reference_starts = 3;
+  const std::vector<PlannedUnit> units = plan_suites({settings_});
+  const auto plan = by_id(units);
+  EXPECT_EQ(count(units, PlannedUnit::Kind::engine), 0);
+  EXPECT_EQ(count(units, PlannedUnit::Kind::beam_reference), 2 * 3);
+  EXPECT_EQ(count(units, PlannedUnit::Kind::chain_reference), 2 * 2 * 3) << "laws x K x starts";
+  for (const PlannedUnit& u : units) {
+    if (u.kind != PlannedUnit::Kind::chain_reference) continue;
+    EXPECT_TRUE(u.id.find("/links=4;modes=chain") != std::string::npos ||
+                u.id.find("/links=16;modes=chain") != std::string::npos) << u.id;
+    ASSERT_EQ(u.after.size(), 1u) << u.id << " is compared with the beam";
+    EXPECT_EQ(plan.at(u.after[0]).kind, PlannedUnit::Kind::beam_reference) << u.id;
+    const std::size_t at = u.id.rfind("/start=");
+    const std::string start = at == std::string::npos ? "" : u.id.substr(at);
+    EXPECT_EQ(u.after[0].size() >= start.size() && u.after[0].compare(u.after[0].size() - start.size(), start.size(), start) == 0,
+              true) << u.id << " waits for " << u.after[0] << ", of another start";
+  }
+  // the mirror engine builds a 4-link chain: planned beside the chains, its chain reference is one of them
+  settings_.engines = {"reference", "mirror"};
+  const std::vector<PlannedUnit> with_engine = plan_suites({settings_});
+  EXPECT_EQ(count(with_engine, PlannedUnit::Kind::chain_reference), 2 * 2 * 3);
+}
+
 TEST_F(SuitePlan, RecommendedRunsEachEnginesOwnConfigurationForEachLaw) {
   // the mirror's authors name a configuration for Hertz only: its options over the part's, at its own step
   SimulatorDescriptor mirror;

@@ -35,6 +35,9 @@ struct SuiteSettings : MatrixSettings {
   // "recommended": options and time step) instead of contact_paths x time_steps_s; an engine without one
   // runs nothing in this suite. The per-engine options (engine_options) still apply beneath it.
   bool recommended = false;
+  // The reference alone on the K-link chain for each K here, for every scenario, law and reference start, scored
+  // against the beam: the chain's own error at each resolution (the model's share of an engine's error).
+  std::vector<int> reference_chain_links;
   // Set: reference runs are shared with other output folders through this one (harness/jobs/reference_cache.h):
   // a reference whose key is there is copied, not solved; one solved here is stored there.
   std::string reference_cache;

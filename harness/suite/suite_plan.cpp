@@ -258,6 +258,7 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
         PlannedJob beam = make_job(index, JobKind::beam_reference, "reference", law, 0, part.reference_options, start);
         beam.spec.warnings = warnings;
         add_job(beam);
+        for (int links : part.reference_chain_links) add_job(chain_reference_job(index, law, start, links, part, beam, warnings));
         for (const std::string& engine : part.engines) {
           if (engine == "reference" || start >= part.ensemble.engine_starts) continue;
           const auto engine_options = part.engine_options.count(engine) ? part.engine_options.at(engine)
@@ -268,15 +269,10 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
             job.beam_reference = beam.id;
             if (auto simulator = settings_.simulators.make(engine)) {
               if (const auto links = simulator->chain_links(s, job.spec.settings)) {
-                auto chain_options = part.reference_options;
-                for (const auto& [name, value] : settings_.simulators.chain_reference_options(*links)) chain_options[name] = value;
                 // the chain's damping is the engine's choice (option chain_damping): its reference is damped alike
-                if (const auto damping = options.find("chain_damping"); damping != options.end())
-                  chain_options[damping->first] = damping->second;
-                PlannedJob chain = make_job(index, JobKind::chain_reference, "reference", law, 0, chain_options, start);
-                chain.spec.warnings = warnings;
-                chain.beam_reference = beam.id;
-                chain.chain_links = *links;
+                const auto damping = options.find("chain_damping");
+                PlannedJob chain = chain_reference_job(index, law, start, *links, part, beam, warnings,
+                                                       damping == options.end() ? "" : damping->second);
                 job.chain_reference = chain.id;
                 job.chain_links = *links;
                 add_job(chain);
@@ -298,6 +294,20 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
       }
     }
   }
+}
+
+PlannedJob SuiteRunner::chain_reference_job(std::size_t scenario, ContactLaw law, int start, int links,
+                                            const SuiteSettings& part, const PlannedJob& beam,
+                                            const std::vector<std::string>& warnings,
+                                            const std::string& chain_damping) const {
+  auto options = part.reference_options;
+  for (const auto& [name, value] : settings_.simulators.chain_reference_options(links)) options[name] = value;
+  if (!chain_damping.empty()) options["chain_damping"] = chain_damping;  // the engines' option of that name
+  PlannedJob chain = make_job(scenario, JobKind::chain_reference, "reference", law, 0, options, start);
+  chain.spec.warnings = warnings;
+  chain.beam_reference = beam.id;
+  chain.chain_links = links;
+  return chain;
 }
 
 PlannedJob SuiteRunner::make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,

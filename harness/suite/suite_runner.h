@@ -149,6 +149,11 @@ class SuiteRunner : public SuiteSource {
 
   PlannedJob make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,
                       const std::map<std::string, std::string>& options, int start = 0) const;
+  // The reference on the `links`-link chain (damped as an engine's option chain_damping says; "": the
+  // default), compared with the beam reference `beam` of the same scenario, law and start.
+  PlannedJob chain_reference_job(std::size_t scenario, ContactLaw law, int start, int links, const SuiteSettings& part,
+                                 const PlannedJob& beam, const std::vector<std::string>& warnings,
+                                 const std::string& chain_damping = "") const;
 
   // Before a step search starts (its references run first), its probes to come: about a bisection of
   // the whole grid, each costing what a probe at the grid's steps costs on average. The search itself

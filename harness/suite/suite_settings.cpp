@@ -34,7 +34,8 @@ constexpr const char* kSettingsFile = "/suite.jsonl";
 // ensemble of the same step), as opposed to how every job is run and measured (the result-deciding ones).
 const std::set<std::string> kMatrixKeys = {"scenario_files", "engines",     "laws",               "time_steps_s",
                                            "contact_paths",  "engine_options", "step_search", "verdict_tolerances",
-                                           "series", "series_rate_hz", "ensemble", "recommended"};
+                                           "series", "series_rate_hz", "ensemble", "recommended",
+                                           "reference_chain_links"};
 
 // An ensemble's starts K >= 1 are the same runs in two parts only with the same displacement step (their job ids
 // name K, not the step); start 0, the scenario as written, is the same run whatever the ensemble.
@@ -119,6 +120,7 @@ nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
                      {"reference_starts", settings.ensemble.reference_starts},
                      {"displacement_step_m", settings.ensemble.displacement_step_m}};
   if (settings.recommended) s["recommended"] = true;  // absent otherwise: older folders resume
+  if (!settings.reference_chain_links.empty()) s["reference_chain_links"] = settings.reference_chain_links;  // likewise
   if (settings.step_search) {
     s["step_search"] = {settings.step_search->min_step_s, settings.step_search->max_step_s,
                         settings.step_search->points_per_octave};
