@@ -9,7 +9,7 @@ largest error is the chain's and how many links would settle it."""
 
 import math
 
-from . import engines, fronts
+from . import analysis, engines
 from .tables import step_text
 
 # Two CPU costs closer than this (relative) are not told apart: this machine's speed drifts 15 to 30 % between
@@ -35,13 +35,11 @@ def qualifying(case):
 
 
 def run_words(point):
-    """'MuJoCo, matched contact, 7e-5 s, 8 links'."""
-    settings = fronts.settings_text(point)
-    path, _, rest = settings.partition("; ")
-    words = [engines.display_name(point["engine"])]
-    words.append(f"{path} contact" if path in ("matched", "injected", "native") else settings)
-    if rest:
-        words.append(rest)
+    """'<engine>, matched contact, 7e-5 s, 8 links', or with the run's other options: '<engine>, matched contact,
+    accuracy=1e-3, 1e-4 s, 8 links'."""
+    options = analysis.options_of(point["options"])
+    words = [engines.display_name(point["engine"]), f"{analysis.contact_path(point)} contact"]
+    words += [f"{name}={value}" for name, value in options.items() if name not in ("contact", "links")]
     if point.get("time_step_s"):
         words.append(f"{step_text(point['time_step_s'])} s")
     if point.get("chain_links"):

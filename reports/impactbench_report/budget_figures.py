@@ -4,13 +4,19 @@ error against the beam as its parts (budget.py): the chain's share (grey, from z
 colour, from the chain's end), the total as a black diamond with the noise's 95 % bar, the tolerance as dashed
 lines. A metric the case does not rank on (chain_convergence.py) is drawn faint, its title says why."""
 
+import math
+
 import matplotlib.pyplot as plt
+from matplotlib import ticker
 
 from . import analysis, engines, fronts
 from .figures import save
 from .tables import step_text
 
 CHAIN_COLOUR = "#9a9a9a"
+# The axis reaches this many tolerances at most: a native run 50 times off would leave the parts of the runs
+# within their tolerances a pixel wide. Beyond it, the total is written at the edge.
+AXIS_TOLERANCES = 4.0
 
 
 def named_points(case):
@@ -45,6 +51,8 @@ def draw_metric(ax, label, rows, tolerance, kind, flagged):
     factor = scale(kind)
     alpha = 0.35 if flagged else 1.0
     extent = tolerance * factor
+    limit = AXIS_TOLERANCES * tolerance * factor
+    beyond = []
     for y, (point, _) in enumerate(rows):
         entry = point["budget"]["metrics"].get(label)
         if not entry:
@@ -59,11 +67,18 @@ def draw_metric(ax, label, rows, tolerance, kind, flagged):
         ax.errorbar([total], [y], xerr=[[noise * factor]] * 2 if noise else None, fmt="D", color="black",
                     markersize=3.5, linewidth=0.8, capsize=2, alpha=alpha)
         extent = max(extent, abs(total) + (noise or 0) * factor, abs(chain), abs(chain + engine))
+        if abs(total) > limit:
+            beyond.append((y, total))
     for sign in (-1, 1):
         ax.axvline(sign * tolerance * factor, color="#555555", linestyle="--", linewidth=0.8)
     ax.axvline(0, color="black", linewidth=0.6)
-    ax.set_xlim(-1.1 * extent, 1.1 * extent)
+    extent = min(1.1 * extent, limit)
+    ax.set_xlim(-extent, extent)
+    for y, total in beyond:  # the total past the axis, written inside its edge
+        ax.text(math.copysign(0.97 * extent, total), y - 0.3, f"{total:+.3g}" + (" %" if kind == "relative" else ""),
+                ha="right" if total > 0 else "left", va="center", fontsize=5.5)
     ax.set_ylim(-0.6, len(rows) - 0.4)
+    ax.xaxis.set_major_locator(ticker.MaxNLocator(nbins=4))  # few enough labels to stand apart in a narrow panel
     ax.set_title(label + (" (not ranked)" if flagged else ""), fontsize=7)
     ax.set_xlabel("error vs beam [%]" if kind == "relative" else "difference vs beam", fontsize=6)
     ax.tick_params(labelsize=6)

@@ -14,6 +14,26 @@ from . import analysis, data, engines, fronts
 from .figures import VERDICT_COLOURS, legend_axis, log_axis, proxy, save
 
 PATH_MARKERS = {"matched": "o", "injected": "s", "native": "^"}
+# A run on a chain coarser or finer than the case's usual one (its most common K) is a point of the chain's axis:
+# its marker says which way, whatever its contact path.
+COARSER_CHAIN_MARKER, FINER_CHAIN_MARKER = "d", "P"
+
+
+def usual_links(case):
+    """The K most of a case's points ran on (None without one)."""
+    counts = {}
+    for entry in case["fronts"]["engines"].values():
+        for point in entry["points"]:
+            if point.get("chain_links"):
+                counts[point["chain_links"]] = counts.get(point["chain_links"], 0) + 1
+    return max(counts, key=counts.get) if counts else None
+
+
+def marker(point, usual):
+    links = point.get("chain_links")
+    if usual and links and links != usual:
+        return COARSER_CHAIN_MARKER if links < usual else FINER_CHAIN_MARKER
+    return PATH_MARKERS.get(analysis.contact_path(point), "o")
 SMALL_COLUMNS = 3
 SCORE_FLOOR = 1e-3  # a score of exactly 0 sits on the floor (no error in any metric, as to the printed digits)
 
@@ -37,6 +57,7 @@ def draw_case(ax, case, title, fontsize):
             elif point["verdict"] in ("unstable", "failed"):
                 stopped.append((point, cost))
     reference = (case.get("reference") or {}).get("runs_csv", {}).get("cpu_time_per_simulated_s")
+    usual = usual_links(case)
     costs = [c for _, c, _ in scored] + [c for _, c in stopped] + ([reference] if reference else [])
     if not costs:
         ax.text(0.5, 0.5, "no engine run with a cost", ha="center", va="center", fontsize=fontsize,
@@ -61,7 +82,7 @@ def draw_case(ax, case, title, fontsize):
                         capsize=1.5, zorder=3)
     for point, cost, score in scored:
         solid = point["job_id"] in on_front
-        ax.scatter([cost], [score], color=colour(point), marker=PATH_MARKERS.get(analysis.contact_path(point), "o"),
+        ax.scatter([cost], [score], color=colour(point), marker=marker(point, usual),
                    s=30 if solid else 14, alpha=1.0 if solid else 0.3, edgecolors="black" if solid else "none",
                    linewidths=0.6, zorder=4 if solid else 3)
     recommended = {e["recommended"]["job_id"] for e in fronts["engines"].values() if e.get("recommended")}
@@ -89,6 +110,14 @@ def legend_handles(cases):
                 seen.setdefault((point["engine"], analysis.contact_path(point)), colour(point))
     handles = [proxy(f"{engines.display_name(e)}, {p}", color=c, marker=PATH_MARKERS.get(p, "o"))
                for (e, p), c in seen.items()]
+    for case in cases:
+        usual = usual_links(case)
+        links = {p.get("chain_links") for e in case["fronts"]["engines"].values() for p in e["points"]} - {None, usual}
+        if any(k < usual for k in links):
+            handles.append(proxy(f"diamond: a chain coarser than {usual} links", color="black", marker=COARSER_CHAIN_MARKER))
+        if any(k > usual for k in links):
+            handles.append(proxy(f"plus: a chain finer than {usual} links", color="black", marker=FINER_CHAIN_MARKER))
+        break  # the usual K of the first case: the lead figure draws one case
     return handles + [
         proxy("solid, outlined: on the case's Pareto front", color="black", marker="o"),
         proxy("faint: dominated (another run is both cheaper and closer)", color="black", marker="o", alpha=0.3),

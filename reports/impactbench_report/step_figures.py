@@ -75,9 +75,10 @@ def stability_map(suite, law, folder, provenance, steps=None):
                                edgecolors=palette[i], s=36, zorder=5)
         ax.set_yscale("log")
         ax.set_ylim(*padded(all_steps, 1.4))
-        # every step tried is a labelled tick: the points sit on them
+        # every step tried is a tick (the points sit on them), labelled where the label below leaves room
         ax.yaxis.set_major_locator(ticker.FixedLocator(sorted(set(all_steps))))
-        ax.yaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: step_text(v)))
+        labelled = spaced_steps(all_steps)
+        ax.yaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: step_text(v) if v in labelled else ""))
         ax.yaxis.set_minor_locator(ticker.NullLocator())
         ax.set_xticks(range(len(cases)))
         ax.set_xticklabels(ticks, fontsize=6, rotation=35, ha="right", rotation_mode="anchor")
@@ -100,6 +101,21 @@ def stability_map(suite, law, folder, provenance, steps=None):
                 f"{law}: the verdict of every engine run, by case (its contact parameter under its name) and time "
                 f"step, one panel per configuration" + ("; right of the runs, the step search's results "
                                                         "(steps.csv)" if searched else "") + f"; {provenance}")
+
+
+# Two step labels on a log axis closer than this (decades) would overlap at the figure's size: 6.25e-5 and 7e-5
+# are 0.05 apart, 5e-5 and 6.25e-5 0.1.
+LABEL_SPACING_DECADES = 0.15
+
+
+def spaced_steps(steps):
+    """The steps whose tick is labelled: from the smallest up, each at least LABEL_SPACING_DECADES above the last
+    labelled one."""
+    labelled = []
+    for step in sorted(set(steps)):
+        if not labelled or math.log10(step / labelled[-1]) >= LABEL_SPACING_DECADES:
+            labelled.append(step)
+    return set(labelled)
 
 
 # ---- step limits -----------------------------------------------------------------------------------------

@@ -53,7 +53,8 @@ def impact_zoom(suite, scenario, law, chosen, folder, provenance):
     reference = suite.beam_reference(scenario, law)
     configs = analysis.configurations(suite.runs_of(scenario, law))
     newton = law == "newton"
-    figure = plt.figure(figsize=(12, 7.2), constrained_layout=True)
+    # a Newton case's impulse panel holds a label per configuration, written along its tick: more height
+    figure = plt.figure(figsize=(12, 8.4 if newton else 7.2), constrained_layout=True)
     grid = figure.add_gridspec(3, 2, width_ratios=[4, 1.1])
     top = figure.add_subplot(grid[0, 0])
     middle = figure.add_subplot(grid[1, 0], sharex=top)
@@ -150,11 +151,12 @@ def draw_impulses(ax, impulses):
         ax.plot([x], [impulse], "o", color=colour)
         label_point(ax, f"{impulse * 1e3:.2f} mN s", (x, impulse), BESIDE, fontsize=7)
     ax.set_xticks(range(len(impulses)))
-    ax.set_xticklabels([textwrap.fill(label, 18) for label, _, _ in impulses], fontsize=7)
+    # upright they overlap once a case has more than a few configurations: written along the ticks
+    ax.set_xticklabels([label for label, _, _ in impulses], fontsize=6, rotation=90)
     ax.set_xlim(-0.6, len(impulses) - 0.4)
     top = max([i for _, _, i in impulses if not isinstance(i, str) and i > 0] or [1.0])
     ax.set_ylim(0, 1.25 * top)
-    ax.set_ylabel("impulse of the impact [N s]")
+    ax.set_ylabel("impulse [N s]")
     ax.grid(True, axis="y", linewidth=0.3)
 
 

@@ -28,7 +28,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from page_in_chromium import Chromium  # noqa: E402
 from page_layout import label_problems, look_at_layout, width_problems  # noqa: E402
 
-WIDTH, HEIGHT = 1366, 768  # a common laptop screen: what "the first screen" means here
+WIDTH, HEIGHT = 1400, 1000  # a desktop reading window: what "the first screen" means here (issue 46)
 REPORT = None
 
 # The answer's place, measured before anything scrolls, with the headings above it to say what pushes it down.
@@ -41,9 +41,14 @@ ANSWER = """(() => {
                  !(e.parentElement && e.parentElement.closest("p, ul, ol, table, svg, figure, pre")));
   const headings = blocks.filter(e => /^H[1-3]$/.test(e.tagName)).map(e => e.textContent.trim().slice(0, 60));
   const first = document.images[0];
+  const sentence = document.getElementById("answer-sentence");
+  const place = e => { const b = e.getBoundingClientRect(); return {top: b.top, bottom: b.bottom, height: b.height}; };
+  const budget = Array.from(document.images).find(i => (i.getAttribute("src") || "").endsWith("figures/budget.svg"));
   return {top: box.top, height: box.height, tag: answer.tagName.toLowerCase(), headings: headings,
           blocks: blocks.length,
-          first_image: first ? {src: first.getAttribute("src"), top: first.getBoundingClientRect().top} : null};
+          first_image: first ? {src: first.getAttribute("src"), top: first.getBoundingClientRect().top} : null,
+          sentence: sentence ? {...place(sentence), text: sentence.textContent.trim()} : null,
+          budget: budget ? place(budget) : null};
 })()"""
 
 # Every image, once each has loaded or failed; "lazy" images are made eager first, as if the reader scrolled
@@ -94,16 +99,32 @@ def figure_problems(seen, report):
 
 
 def answer_problems(seen):
+    """The lead case's answer sentence (id "answer-sentence") whole on the first screen; the table of what to use
+    (id "answer") and the error budget's figure (figures/budget.svg) starting on the first two."""
     answer = seen["answer"]
     if answer is None:
         return ['no element with id="answer" on the page: the summary table must carry it']
     if answer["height"] <= 0:
         return [f'the element with id="answer" (<{answer["tag"]}>) is not displayed (height {answer["height"]:g} px)']
-    if answer["top"] >= HEIGHT:
-        return [f'the element with id="answer" (<{answer["tag"]}>) starts at {answer["top"]:.0f} px, below the first '
-                f'screen ({WIDTH} x {HEIGHT} px); {answer["blocks"]} blocks come before it, under the headings: '
-                + (" / ".join(answer["headings"]) or "none")]
-    return []
+    problems = []
+    sentence = answer.get("sentence")
+    if sentence is None:
+        problems.append('no element with id="answer-sentence": the page must open with the answer in a sentence')
+    elif sentence["bottom"] > HEIGHT or sentence["height"] <= 0:
+        problems.append(f'the answer sentence ends at {sentence["bottom"]:.0f} px, not whole on the first screen '
+                        f'({WIDTH} x {HEIGHT} px)')
+    elif "resonance" not in sentence["text"]:
+        problems.append(f'the answer sentence is not the resonance\'s: "{sentence["text"][:80]}"')
+    if answer["top"] >= 2 * HEIGHT:
+        problems.append(f'the element with id="answer" (<{answer["tag"]}>) starts at {answer["top"]:.0f} px, below the '
+                        f'first two screens ({WIDTH} x {HEIGHT} px); {answer["blocks"]} blocks come before it, under the '
+                        'headings: ' + (" / ".join(answer["headings"]) or "none"))
+    budget = answer.get("budget")
+    if budget is None:
+        problems.append("no error budget figure (figures/budget.svg) on the page")
+    elif budget["top"] >= 2 * HEIGHT:
+        problems.append(f'the error budget figure starts at {budget["top"]:.0f} px, below the first two screens')
+    return problems
 
 
 def fronts_problems(seen):
@@ -197,10 +218,11 @@ class TheChecksCanFail(unittest.TestCase):
         shutil.rmtree(cls.folder)
 
     def test_a_good_page_passes(self):
-        report = hand_made(os.path.join(self.folder, "good"), '<h1>Report</h1><img src="figures/fronts.svg">'
+        report = hand_made(os.path.join(self.folder, "good"), '<h1>Report</h1><p id="answer-sentence">resonance, '
+                           'hertz: use engine_a</p><img src="figures/fronts.svg"><img src="figures/budget.svg">'
                            '<table id="answer"><tr><td>engine_a</td></tr>'
                            '</table><img src="figures/drawn.svg" loading="lazy" style="margin-top:3000px">',
-                           figures=("fronts.svg", "drawn.svg"))
+                           figures=("fronts.svg", "budget.svg", "drawn.svg"))
         seen = look_at(report, os.path.join(report, "first-screen.png"))
         self.assertEqual(console_problems(seen) + image_problems(seen) + figure_problems(seen, report)
                          + answer_problems(seen) + fronts_problems(seen), [])
@@ -209,7 +231,8 @@ class TheChecksCanFail(unittest.TestCase):
         report = hand_made(os.path.join(self.folder, "faulty"),
                            '<h1>Report</h1><h2>Caveats</h2><img src="figures/drawn.svg"><img src="figures/gone.svg">'
                            '<script>console.error("deliberate", 42); console.log("not an error")</script>'
-                           '<div style="height:1500px"></div><table id="answer"><tr><td>x</td></tr></table>'
+                           '<div style="height:2500px"></div><p id="answer-sentence">resonance: use x</p>'
+                           '<table id="answer"><tr><td>x</td></tr></table>'
                            '<script>noSuchFunction()</script>', figures=("drawn.svg", "unshown.svg"))
         seen = look_at(report, os.path.join(report, "first-screen.png"))
         console = "\n".join(console_problems(seen))
@@ -219,7 +242,10 @@ class TheChecksCanFail(unittest.TestCase):
         self.assertNotIn("not an error", console)
         self.assertEqual(image_problems(seen), ['<img src="figures/gone.svg"> is not drawn (complete: true, naturalWidth: 0)'])
         self.assertRegex(" ".join(figure_problems(seen, report)), r"1 of the 2 files .*: unshown\.svg$")
-        self.assertRegex(" ".join(answer_problems(seen)), r"starts at 1\d\d\d px, below the first screen.*Report / Caveats")
+        problems = " ".join(answer_problems(seen))
+        self.assertRegex(problems, r"the answer sentence ends at 2\d\d\d px, not whole on the first screen")
+        self.assertRegex(problems, r"starts at 2\d\d\d px, below the first two screens.*Report / Caveats")
+        self.assertIn("no error budget figure", problems)
         self.assertEqual(fronts_problems(seen), ["the first image is figures/drawn.svg, not the fronts (figures/fronts.svg)"])
 
     def test_a_page_that_fits_with_labels_apart_passes(self):
@@ -281,6 +307,13 @@ class TheChecksCanFail(unittest.TestCase):
     def test_a_page_without_the_answer_is_reported(self):
         report = hand_made(os.path.join(self.folder, "no_answer"), '<img src="figures/drawn.svg">')
         self.assertIn('no element with id="answer"', " ".join(answer_problems(look_at(report, os.devnull))))
+
+    def test_a_sentence_of_another_case_is_reported(self):
+        report = hand_made(os.path.join(self.folder, "other_case"), '<p id="answer-sentence">free_vibration: use x</p>'
+                           '<img src="figures/budget.svg"><table id="answer"><tr><td>x</td></tr></table>',
+                           figures=("budget.svg",))
+        self.assertEqual(answer_problems(look_at(report, os.devnull)),
+                         ['the answer sentence is not the resonance\'s: "free_vibration: use x"'])
 
     def test_a_hung_page_fails_instead_of_hanging(self):
         report = hand_made(os.path.join(self.folder, "hung"), "<p>ready</p>")
