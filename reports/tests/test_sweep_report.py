@@ -13,7 +13,7 @@ import tempfile
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from impactbench_report import sweep  # noqa: E402
+from impactbench_report import sweep, sweep_starts  # noqa: E402
 
 MAKE_REPORT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "make_report.py")
 # sweep.csv's header as harness/sweep/sweep_row.cpp writes it (the quantities runs.csv has under runs.csv's names)
@@ -109,12 +109,12 @@ class MultistableRatios(unittest.TestCase):
 
     def test_the_fractions_count_every_start_and_a_ratio_is_multistable_when_more_than_one_regime_is_reached(self):
         data = self.read(MULTISTABLE + SETTLED)
-        table = sweep.start_ensemble_table(data, "hertz")
+        table = sweep_starts.start_ensemble_table(data, "hertz")
         self.assertEqual([t["ratio"] for t in table], [0.94, 1.0])
         self.assertEqual(table[0]["regimes"], {"no impact": 5, "irregular": 3})
         self.assertEqual((table[0]["starts"], table[0]["impacting"], table[0]["multistable"]), (8, 3, True))
         self.assertEqual((table[1]["regimes"], table[1]["multistable"]), ({"period-1": 4}, False))
-        self.assertEqual(sweep.start_ensemble_rows(table)[0], ["0.94", "8", "no impact 5 of 8, irregular 3 of 8", "3 of 8", "yes"])
+        self.assertEqual(sweep_starts.start_ensemble_rows(table)[0], ["0.94", "8", "no impact 5 of 8, irregular 3 of 8", "3 of 8", "yes"])
         self.assertIn("multistable at r = 0.94 (no impact 5 of 8, irregular 3 of 8)", sweep.summary_sentence(data))
         # the members are one configuration's: the reference is one simulator, its rows from rest one per ratio
         self.assertEqual(len(data.simulators()), 1)
@@ -141,9 +141,14 @@ class MultistableRatios(unittest.TestCase):
                                    row("engine_a", "up", 0.94, "irregular", 0.3, options="contact=matched")])
         reference_sweep = self.read(MULTISTABLE)
         self.assertAlmostEqual(sweep.agreement(engines_sweep)[0]["agreement"], 0)  # one start: disagrees
-        sweep.share_start_ensembles([("engines", engines_sweep), ("reference", reference_sweep)])
+        sweep_starts.share_start_ensembles([("engines", engines_sweep), ("reference", reference_sweep)])
         self.assertEqual(engines_sweep.start_ensembles_from, "sweep reference")
         self.assertAlmostEqual(sweep.agreement(engines_sweep)[0]["agreement"], 1)
+        # another reference (5 modes) is another model: its starts do not judge this one's engines
+        engines_sweep = self.read([row("reference", "up", 0.94, "no impact", 0.0, options="n=5"),
+                                   row("engine_a", "up", 0.94, "irregular", 0.3, options="contact=matched")])
+        sweep_starts.share_start_ensembles([("engines", engines_sweep), ("reference", reference_sweep)])
+        self.assertEqual(engines_sweep.start_ensembles, {})
 
     def test_the_report_shows_the_fractions_and_the_multistable_ratios(self):
         folder = tempfile.mkdtemp(prefix="impactbench_sweep_ensemble_report_")
