@@ -61,9 +61,8 @@ std::vector<double> parse_ensemble_ratios(const std::string& text, const std::ve
     const std::string part = text.substr(from, comma - from);
     // one ratio alone ("0.94") is the range 0.94:0.94:0
     for (double ratio : parse_ratios(part.find(':') == std::string::npos ? part + ":" + part + ":0" : part)) {
-      bool in_sweep = false;
-      for (double r : sweep_ratios) in_sweep = in_sweep || std::abs(r - ratio) < 1e-9;
-      if (!in_sweep)
+      // both on parse_ratios' 1e-9 grid: one ratio is one double
+      if (std::find(sweep_ratios.begin(), sweep_ratios.end(), ratio) == sweep_ratios.end())
         throw std::invalid_argument("--ensemble-ratios " + text + ": " + ratio_text(ratio) +
                                     " is not one of the sweep's ratios (--ratios); allowed: ratios the sweep runs");
       if (std::find(ratios.begin(), ratios.end(), ratio) == ratios.end()) ratios.push_back(ratio);
@@ -84,10 +83,8 @@ std::vector<SweepChain> plan_sweep(const SweepSettings& s, const std::string& sc
   std::vector<SweepChain> chains;
   const auto in_ensemble = [&](double ratio) {
     if (s.ensemble.reference_starts <= 1) return false;
-    if (s.ensemble.ratios.empty()) return true;
-    for (double r : s.ensemble.ratios)
-      if (std::abs(r - ratio) < 1e-9) return true;
-    return false;
+    const auto& ratios = s.ensemble.ratios;  // parse_ensemble_ratios': the sweep's own doubles
+    return ratios.empty() || std::find(ratios.begin(), ratios.end(), ratio) != ratios.end();
   };
   const std::vector<std::string> no_path = {""};
   const std::vector<double> default_step = {0};
