@@ -4,6 +4,8 @@
 #include <stdexcept>
 
 #include "cli/commands.h"
+#include "harness/records/number_text.h"
+#include "harness/scoring/plausibility.h"
 #include "harness/sweep/sweep.h"
 
 namespace cli {
@@ -27,6 +29,15 @@ void add_sweep_command(CLI::App& app, SweepOptions& o, MeasurementOptions& measu
   add_shared_option(command, Shared::rate, o.rate_hz, "output series sample rate [Hz]");
   add_shared_option(command, Shared::jobs, o.jobs, "worker processes (one chain each)");
   add_shared_option(command, Shared::time_limit, o.time_limit_s, "per ratio; a chain past it is stopped and recorded [s]");
+  command->add_option("--reference-ensemble", o.reference_ensemble_starts,
+                      "N: the reference from N starts from rest at each --ensemble-ratios ratio (start K: frame 1's tip displaced "
+                      "K x --ensemble-step); the report gives the fraction reaching each regime and the multistable ratios")
+      ->capture_default_str();
+  command->add_option("--ensemble-step", o.ensemble_step_m, "frame 1's initial tip displacement between two starts [m]")
+      ->capture_default_str();
+  command->add_option("--ensemble-ratios", o.ensemble_ratios,
+                      "where the reference's ensemble runs: FROM:TO:STEP or single ratios, comma-separated, each one of --ratios; "
+                      "default: every ratio");
   command->add_option("--shard", o.shard, "K/N: run every N-th chain only (configuration and start), for a job array");
   command->add_flag("--resume", o.resume, "continue the sweep in --out: the rows recorded are kept, the rest run");
   command->add_option("--out", o.out, "output folder")->required();
@@ -34,6 +45,34 @@ void add_sweep_command(CLI::App& app, SweepOptions& o, MeasurementOptions& measu
   command->add_option("--series", measurement.series, "what each ratio's folder keeps of its series: none, window or all")
       ->capture_default_str();
 }
+
+namespace {
+
+// The reference's ensemble of starts from rest (SweepSettings::ensemble), each range with its why.
+ib::SweepSettings::StartEnsemble ensemble_from(const SweepOptions& o, const ib::SweepSettings& s) {
+  // Enough to tell a fraction of a quarter from one of a half; more is a typo (each start is a run from rest).
+  constexpr int kMaxStarts = 100;
+  // As a suite's ensemble: every start within 1 % of the rig's 1 mm gap, far below anything physical.
+  constexpr double kMaxSpread_m = 1e-5;
+  ib::SweepSettings::StartEnsemble e;
+  e.reference_starts = o.reference_ensemble_starts;
+  e.displacement_step_m = o.ensemble_step_m;
+  ib::check_option("--reference-ensemble", e.reference_starts, 1, kMaxStarts, "", true);
+  if (!(e.displacement_step_m > 0) || !(e.displacement_step_m * (e.reference_starts - 1) <= kMaxSpread_m))
+    throw std::invalid_argument("--ensemble-step " + ib::exact_number_text(e.displacement_step_m) + ": allowed: above 0 m, with the " +
+                                std::to_string(e.reference_starts) + " starts spread over at most " +
+                                ib::exact_number_text(kMaxSpread_m) + " m (1 % of the rig's 1 mm gap: far below anything physical)");
+  if (!o.ensemble_ratios.empty()) {
+    if (e.reference_starts == 1) throw std::invalid_argument("--ensemble-ratios " + o.ensemble_ratios + ": needs --reference-ensemble N > 1");
+    e.ratios = ib::parse_ensemble_ratios(o.ensemble_ratios, s.ratios);
+  }
+  if (e.reference_starts > 1 && std::find(s.starts.begin(), s.starts.end(), ib::SweepStart::rest) == s.starts.end())
+    throw std::invalid_argument("--reference-ensemble " + std::to_string(e.reference_starts) +
+                                ": the ensemble's starts are from rest; needs rest among --start");
+  return e;
+}
+
+}  // namespace
 
 ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOptions& measurement_options) {
   ib::SweepSettings s;
@@ -57,6 +96,7 @@ ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOp
   require_at_most(Shared::window, o.window_s, o.duration_s, "the run (--duration " + value_text(o.duration_s) + " s)");
   s.continuation_duration_s = o.duration_s;
   s.window_s = o.window_s;
+  s.ensemble = ensemble_from(o, s);
   return s;
 }
 

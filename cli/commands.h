@@ -36,6 +36,10 @@ struct SuiteOptions : MatrixOptions {
 struct SweepOptions : MatrixOptions {
   std::string scenario, ratios = "0.85:1.25:0.01", start = "both";
   double duration_s = 60, rest_duration_s = -1, window_s = 10;
+  // the reference's ensemble of starts from rest (SweepSettings::ensemble): 1, no ensemble; ratios "": every ratio
+  int reference_ensemble_starts = 1;
+  double ensemble_step_m = 1e-7;
+  std::string ensemble_ratios;
 };
 
 int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,

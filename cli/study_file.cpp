@@ -78,6 +78,9 @@ const std::vector<KeySpec> kSweepKeys = {
     {"ratios", Type::text, "--ratios", "FROM:TO:STEP, the motor speed over f_1"},
     {"starts", Type::texts, "--start", "rest, up, down or both"},
     {"rest_duration_s", Type::number, "--rest-duration", "a start from rest's run [s]"},
+    {"reference_ensemble_starts", Type::integer, "--reference-ensemble", "the reference's starts from rest at each ensemble ratio (1: one)"},
+    {"ensemble_step_m", Type::number, "--ensemble-step", "frame 1's initial tip displacement between two starts [m]"},
+    {"ensemble_ratios", Type::texts, "--ensemble-ratios", "FROM:TO:STEP ranges or single ratios where the reference's ensemble runs"},
 };
 
 std::vector<KeySpec> keys_of(StudyPart::Kind kind) {
@@ -253,6 +256,9 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
     if (given.count("duration_s")) s.duration_s = std::stod(given["duration_s"]);
     if (given.count("rest_duration_s")) s.rest_duration_s = std::stod(given["rest_duration_s"]);
     if (given.count("window_s")) s.window_s = std::stod(given["window_s"]);
+    if (given.count("reference_ensemble_starts")) s.reference_ensemble_starts = std::stoi(given["reference_ensemble_starts"]);
+    if (given.count("ensemble_step_m")) s.ensemble_step_m = std::stod(given["ensemble_step_m"]);
+    if (given.count("ensemble_ratios")) s.ensemble_ratios = given["ensemble_ratios"];
     return part;
   }
   require("scenarios", "scenario files or folders");

@@ -24,7 +24,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from impactbench_report import ablation, analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
 from impactbench_report import budget_figures, convergence_table, front_figures, step_figures, zoom_figures  # noqa: E402
-from impactbench_report import dynamics, named_runs, spectral, sweep  # noqa: E402
+from impactbench_report import dynamics, named_runs, spectral, sweep, sweep_starts  # noqa: E402
 from impactbench_report.page_style import STYLE  # noqa: E402
 
 CAVEATS = [
@@ -232,6 +232,7 @@ def main():
             sweeps.append((name, sweep.read(folder)))
         except data.ResultsError as error:
             sys.exit(f"make_report: {error}")
+    sweep_starts.share_start_ensembles(sweeps)  # the engines' sweep judged at multistable ratios by the reference sweep's starts
     fronts_figures, paths_by_case, paths_by_law, sections_by_sweep = draw_figures(
         suite, cases, chosen_by_law, experiment, steps, tolerances, figures_folder, stamp, sweeps, document["cases"])
     for (scenario, law, chosen), paths, case in zip(cases, paths_by_case, document["cases"]):
@@ -264,6 +265,9 @@ def main():
     document["sweep_answers"] = []
     for (name, data_of_sweep), sweep_sections in zip(sweeps, sections_by_sweep):
         document["sweep_answers"].append(f"Frequency sweep ({name}): " + sweep.summary_sentence(data_of_sweep))
+        if data_of_sweep.start_ensembles_from == "this sweep":  # the fractions where they were measured
+            document.setdefault("sweep_start_ensembles", []).extend(
+                dict(sweep=name, law=law, **t) for law in data_of_sweep.laws() for t in sweep_starts.start_ensemble_table(data_of_sweep, law))
         document["warnings"] += data_of_sweep.warning_entries()  # the page's one Warnings list
         sections += sweep_sections
     if document["sweep_answers"]:

@@ -29,6 +29,12 @@ TEST(SweepCommand, BadInputExitsWith2NamingTheOptionTheValueAndWhatIsAllowed) {
       {scenario + " --engines nosuchengine", "nosuchengine"},
       {scenario + " --laws glue", "glue"},
       {paper_scenario("free_vibration"), "a sweep needs a motor"},
+      {scenario + " --reference-ensemble 0", "--reference-ensemble 0: allowed: 1 <= x <= 100"},
+      {scenario + " --reference-ensemble 8 --ensemble-step 1e-5", "--ensemble-step 1e-05: allowed: above 0 m"},
+      {scenario + " --reference-ensemble 8 --start up", "the ensemble's starts are from rest; needs rest among --start"},
+      {scenario + " --start rest --reference-ensemble 8 --ensemble-ratios 1.3",
+       "--ensemble-ratios 1.3: 1.3 is not one of the sweep's ratios"},
+      {scenario + " --ensemble-ratios 1.0", "--ensemble-ratios 1.0: needs --reference-ensemble N > 1"},
   };
   for (const auto& c : cases) {
     const CommandOutput result = sweep(c.arguments + " --out " + out.string());
@@ -48,7 +54,7 @@ TEST(SweepCommand, WritesItsTablesAndAResumeWithOtherSettingsIsRefused) {
   std::string header, row;
   std::getline(table, header);
   EXPECT_EQ(header.rfind("id,scenario,engine,engine_version,law,options,contact_path,law_simulated,time_step_s,start,ratio,"
-                         "motor_frequency_hz,", 0), 0u);
+                         "ensemble_start,ensemble_starts,initial_displacement_offset_m,motor_frequency_hz,", 0), 0u);
   int rows = 0;
   while (std::getline(table, row)) ++rows;
   EXPECT_EQ(rows, 2);

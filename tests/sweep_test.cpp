@@ -70,6 +70,49 @@ TEST(SweepPlan, ContinuationsRunInOrderUpAndDownAndEveryStartFromRestIsAChainOfI
   EXPECT_EQ(chains[4].id, "resonance/reference/hertz/rest/r=1");
 }
 
+// The reference's ensemble (SweepSettings::ensemble): its other starts from rest at the ensemble's ratios, each a
+// chain of its own right after the ratio's row from rest (start 0), frame 1's tip displaced K x the step.
+TEST(SweepPlan, TheReferencesEnsembleAddsItsOtherStartsFromRestAtTheEnsembleRatiosOnly) {
+  SweepSettings s = small_sweep("unused");
+  s.starts = {SweepStart::up, SweepStart::rest};
+  s.ensemble = {3, 2e-7, {0.99}};
+  const auto chains = plan_sweep(s, "resonance");
+  ASSERT_EQ(chains.size(), 1u + 3u + 2u);  // up; rest at 0.98, 0.99 (and its starts 1 and 2), 1.0
+  EXPECT_EQ(chains[0].rows.size(), 3u);
+  EXPECT_EQ(chains[0].rows[1].job.start.count, 1);  // a continuation runs once
+  EXPECT_EQ(chains[1].id, "resonance/reference/hertz/rest/r=0.98");
+  EXPECT_EQ(chains[1].rows[0].job.start.count, 1);
+  EXPECT_EQ(chains[2].id, "resonance/reference/hertz/rest/r=0.99");
+  EXPECT_EQ(chains[2].rows[0].job.start.count, 3);
+  EXPECT_EQ(chains[2].rows[0].job.start.initial_displacement_offset_m, 0.0);
+  for (int k = 1; k <= 2; ++k) {
+    const SweepRow& member = chains[2 + k].rows.at(0);
+    EXPECT_EQ(member.id, "resonance/reference/hertz/rest/r=0.99/start=" + std::to_string(k));
+    EXPECT_EQ(member.chain, member.id);
+    EXPECT_EQ(member.start, SweepStart::rest);
+    EXPECT_EQ(member.job.start.index, k);
+    EXPECT_DOUBLE_EQ(member.job.start.initial_displacement_offset_m, k * 2e-7);
+  }
+  EXPECT_EQ(chains[5].id, "resonance/reference/hertz/rest/r=1");
+  s.ensemble.ratios.clear();  // every ratio
+  EXPECT_EQ(plan_sweep(s, "resonance").size(), 1u + 3u * 3u);
+  s.engines = {"an_engine"};  // engines run from one start: the ensemble is the reference's
+  EXPECT_EQ(plan_sweep(s, "resonance").size(), 1u + 3u);
+}
+
+TEST(SweepRatios, EnsembleRatiosAreRangesOrSingleRatiosOfTheSweep) {
+  const std::vector<double> sweep = parse_ratios("0.90:1.20:0.01");
+  EXPECT_EQ(parse_ensemble_ratios("1.1,0.93:0.95:0.01", sweep), (std::vector<double>{0.93, 0.94, 0.95, 1.1}));
+  for (const char* bad : {"0.935", "1.19:1.21:0.01", "x"}) {
+    try {
+      parse_ensemble_ratios(bad, sweep);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("--"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // Continuing from a saved state is the same physics as not stopping: 2 x 3 s against 6 s at once, the motor
 // at 7 Hz (3 s = 21 whole periods, so the continued run's motor phase 0 is the one the long run has at 3 s).
 TEST(ReferenceContinuation, TwoRunsJoinedByTheSavedStateAreTheOneRunTheyReplace) {
@@ -219,6 +262,32 @@ TEST(SweepResults, SharedQuantitiesHaveTheRunsCsvNamesUnitsAndValues) {
   }
   EXPECT_EQ(header.find("warnings"), std::string::npos);  // a list: sweep.jsonl's alone
   EXPECT_NE(read_all(root + "/sweep.jsonl").find("start-up transient"), std::string::npos);
+}
+
+// Each start of the reference's ensemble is a row of sweep.csv with runs.csv's ensemble columns, and runs displaced.
+TEST(SweepResults, TheReferencesEnsembleStartsAreRowsWithTheirStartAndDisplacement) {
+  const std::string root = ::testing::TempDir() + "/sweep_ensemble";
+  fs::remove_all(root);
+  SweepSettings s = small_sweep(root);
+  s.ratios = {1.0};
+  s.starts = {SweepStart::rest};
+  s.ensemble = {3, 1e-6, {}};
+  ASSERT_EQ(run_sweep(s).rows_run, 3);
+  std::istringstream lines(read_all(root + "/sweep.jsonl"));
+  int k = 0;
+  std::set<double> displacements;
+  for (std::string line; std::getline(lines, line); ++k) {
+    const auto row = nlohmann::json::parse(line);
+    EXPECT_EQ(row["id"], "resonance/reference/hertz/rest/r=1" + (k ? "/start=" + std::to_string(k) : std::string()));
+    EXPECT_EQ(row["ensemble_start"], k);
+    EXPECT_EQ(row["ensemble_starts"], 3);
+    EXPECT_DOUBLE_EQ(row["initial_displacement_offset_m"].get<double>(), k * 1e-6);
+    displacements.insert(row["frame1_peak_displacement_m"].get<double>());
+  }
+  EXPECT_EQ(k, 3);
+  EXPECT_EQ(displacements.size(), 3u);  // three runs, not one run recorded three times
+  const auto settings = nlohmann::json::parse(read_all(root + "/sweep.json"));
+  EXPECT_EQ(settings["reference_ensemble_starts"], 3);
 }
 
 TEST(SweepResults, AResumeWithOtherSettingsOrAScenarioWithoutAMotorIsRefusedBeforeAnyRun) {

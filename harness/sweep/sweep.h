@@ -43,6 +43,17 @@ struct SweepSettings : MatrixSettings {
   double continuation_duration_s = 60;
   std::optional<double> rest_duration_s;
   double window_s = 10;                            // the last window_s of each run is scored [s] (whole periods)
+  // An ensemble of the reference's starts from rest (docs/sweeps.md, "Multistable ratios"): at each of `ratios`
+  // (empty: every ratio of the sweep) the reference also runs from starts K = 1 .. reference_starts - 1, frame 1's
+  // tip displaced by K x displacement_step_m beyond the scenario's initial displacement (start 0 is the row from
+  // rest itself). Near the edges of the impacting region the start-up transient is chaotic, so which attractor
+  // one start reaches is chance: the fraction of starts reaching each regime is the fact, and a ratio whose
+  // starts reach more than one regime is multistable. Engines run from one start (their cost is the budget's).
+  struct StartEnsemble {
+    int reference_starts = 1;             // 1: no ensemble
+    double displacement_step_m = 1e-7;
+    std::vector<double> ratios;           // each one of the sweep's ratios
+  } ensemble;
 };
 
 struct SweepOutcome {
@@ -72,7 +83,7 @@ struct SweepRow {
   std::string id;            // "<configuration id>/<start>/r=<ratio>": its folder below runs/
   std::string chain;         // "<configuration id>/<start>" (rest: with /r=<ratio>)
   JobSpec job;               // scenario file, engine, law, step, options
-  SweepStart start = SweepStart::rest;
+  SweepStart start = SweepStart::rest;  // an ensemble's start K >= 1 (job.start) is from rest; its id ends in /start=K
   double ratio = 0;
   bool first_of_chain = true;
 };
@@ -80,9 +91,13 @@ struct SweepChain {
   std::string id;
   std::vector<SweepRow> rows;  // in the order they run (down: descending ratios)
 };
-// The chains in planned order: configuration (engine, law, path, step), then start, then ratio.
+// The chains in planned order: configuration (engine, law, path, step), then start, then ratio (a ratio's
+// ensemble starts right after its row from rest).
 std::vector<SweepChain> plan_sweep(const SweepSettings& settings, const std::string& scenario_name);
 std::string ratio_text(double ratio);  // "0.95", as row ids and tables print a ratio
+// FROM:TO:STEP ranges, comma-separated ("0.92:0.95:0.01,1.08:1.12:0.01"), as --ensemble-ratios takes them: the
+// ratios in ascending order, each one a ratio of `sweep_ratios` (std::invalid_argument naming one that is not).
+std::vector<double> parse_ensemble_ratios(const std::string& text, const std::vector<double>& sweep_ratios);
 
 // The tables (sweep.jsonl, sweep.csv, poincare.csv) made again from the row folders of `rows`, in their order;
 // rows without a folder's row.json are left out. Returns the number of rows written.

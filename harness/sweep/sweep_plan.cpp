@@ -1,4 +1,5 @@
 // The sweep's plan: its ratios, its chains and rows in planned order.
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -52,6 +53,26 @@ std::vector<double> parse_ratios(const std::string& text) {
   return ratios;
 }
 
+std::vector<double> parse_ensemble_ratios(const std::string& text, const std::vector<double>& sweep_ratios) {
+  std::vector<double> ratios;
+  std::size_t from = 0;
+  while (from <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', from), text.size());
+    const std::string part = text.substr(from, comma - from);
+    // one ratio alone ("0.94") is the range 0.94:0.94:0
+    for (double ratio : parse_ratios(part.find(':') == std::string::npos ? part + ":" + part + ":0" : part)) {
+      // both on parse_ratios' 1e-9 grid: one ratio is one double
+      if (std::find(sweep_ratios.begin(), sweep_ratios.end(), ratio) == sweep_ratios.end())
+        throw std::invalid_argument("--ensemble-ratios " + text + ": " + ratio_text(ratio) +
+                                    " is not one of the sweep's ratios (--ratios); allowed: ratios the sweep runs");
+      if (std::find(ratios.begin(), ratios.end(), ratio) == ratios.end()) ratios.push_back(ratio);
+    }
+    from = comma + 1;
+  }
+  std::sort(ratios.begin(), ratios.end());
+  return ratios;
+}
+
 std::string ratio_text(double ratio) {
   char text[32];
   std::snprintf(text, sizeof text, "%.9g", ratio);
@@ -60,6 +81,11 @@ std::string ratio_text(double ratio) {
 
 std::vector<SweepChain> plan_sweep(const SweepSettings& s, const std::string& scenario_name) {
   std::vector<SweepChain> chains;
+  const auto in_ensemble = [&](double ratio) {
+    if (s.ensemble.reference_starts <= 1) return false;
+    const auto& ratios = s.ensemble.ratios;  // parse_ensemble_ratios': the sweep's own doubles
+    return ratios.empty() || std::find(ratios.begin(), ratios.end(), ratio) != ratios.end();
+  };
   const std::vector<std::string> no_path = {""};
   const std::vector<double> default_step = {0};
   for (const std::string& engine : s.engines) {
@@ -95,7 +121,19 @@ std::vector<SweepChain> plan_sweep(const SweepSettings& s, const std::string& sc
               for (double ratio : s.ratios) {
                 SweepRow row = row_of(ratio, true);
                 row.chain = row.id;
+                const bool ensemble = reference && in_ensemble(ratio);
+                const int count = s.ensemble.reference_starts;
+                if (ensemble) row.job.start.count = count;  // start 0 of count: the scenario as written
                 chains.push_back({row.id, {row}});
+                if (!ensemble) continue;
+                // the reference's other starts at this ratio, each a chain of its own (start 0 is the row above)
+                for (int k = 1; k < count; ++k) {
+                  SweepRow member = row;
+                  member.job.start = {k, count, k * s.ensemble.displacement_step_m};
+                  member.id = row.id + "/start=" + std::to_string(k);
+                  member.chain = member.id;
+                  chains.push_back({member.id, {member}});
+                }
               }
               continue;
             }

@@ -47,6 +47,10 @@ std::vector<Field> row_fields(const SweepRow& row, const RowScenario& at, const 
       {"time_step_s", std::isfinite(f.time_step_s) ? f.time_step_s : job.settings.time_step_s, true},
       {"start", to_string(row.start)},
       {"ratio", row.ratio, true},
+      // which of the reference's starts from rest at this ratio (runs.csv's names; 0 of 1: no ensemble)
+      {"ensemble_start", static_cast<double>(job.start.index)},
+      {"ensemble_starts", static_cast<double>(job.start.count)},
+      {"initial_displacement_offset_m", job.start.initial_displacement_offset_m, true},
       {"motor_frequency_hz", at.motor_frequency_hz},
       {"duration_s", at.scenario.duration_s},
       {"window_s", at.scenario.scoring_window_s},

@@ -46,6 +46,11 @@ nlohmann::ordered_json settings_record(const SweepSettings& s, const Scenario& s
   j["continuation_duration_s"] = s.continuation_duration_s;
   j["rest_duration_s"] = s.rest_duration_s.value_or(scenario.duration_s);
   j["window_s"] = s.window_s;
+  if (s.ensemble.reference_starts > 1) {  // absent without one: a sweep recorded before ensembles resumes as it was
+    j["reference_ensemble_starts"] = s.ensemble.reference_starts;
+    j["ensemble_step_m"] = s.ensemble.displacement_step_m;
+    j["ensemble_ratios"] = s.ensemble.ratios.empty() ? s.ratios : s.ensemble.ratios;
+  }
   j["output_rate_hz"] = s.output_rate_hz;
   j["sensor_rate_hz"] = s.measurement.sensor_rate_hz;
   j["merge_window_s"] = s.measurement.merge_window_s;

@@ -9,18 +9,31 @@ import math
 import os
 
 from . import data, engines
+from .sweep_starts import (START_ENSEMBLE_HEADER, ensemble_member, multistable, multistable_sentence, ratio_text,
+                           regime_agrees, regime_of, start_ensemble_rows, start_ensemble_table, start_ensembles)
 
 EXPERIMENT_RATIOS = (0.95, 1.00, 1.17)  # the published operating points (rig.md section 7)
 STARTS = ("up", "down", "rest")
 
 
+def configuration_key(row):
+    """A row's configuration: its id without start and ratio, and without an ensemble start's /start=K
+    (harness/sweep: "<configuration>/<start>/r=<ratio>[/start=K]")."""
+    head, _, last = row["id"].rpartition("/")
+    return (head if last.startswith("start=") else row["id"]).rsplit("/", 2)[0]
+
+
 class Sweep:
     """A sweep folder read: its rows (dicts, numbers as floats where the column is numeric), the
-    Poincare samples of each row id and the warnings of each row id (sweep.jsonl)."""
+    Poincare samples of each row id and the warnings of each row id (sweep.jsonl). start_ensembles: the
+    reference's starts from rest, {(law, ratio): {regime: starts}} at each ratio where it ran more than one
+    (its own, or a sibling sweep's of the same scenario in a study: share_start_ensembles)."""
 
     def __init__(self, folder, rows, samples, settings, warnings=None):
         self.folder, self.rows, self.samples, self.settings = folder, rows, samples, settings
         self.warnings = warnings or {}
+        self.start_ensembles = start_ensembles(rows)
+        self.start_ensembles_from = "this sweep" if self.start_ensembles else ""
 
     def warning_entries(self):
         """The rows' warnings as the report lists them (answer.warning_lines): [{"warning", "job_ids"}]."""
@@ -36,12 +49,12 @@ class Sweep:
         could not report is its chain's)."""
         seen = []
         for r in self.rows:
-            if r["id"].rsplit("/", 2)[0] not in [k for k, _ in seen]:
-                seen.append((r["id"].rsplit("/", 2)[0], r))
+            if configuration_key(r) not in [k for k, _ in seen]:
+                seen.append((configuration_key(r), r))
         steps = {}
         for r in self.rows:
             if not math.isnan(r["time_step_s"]) and r["time_step_s"] > 0:
-                steps[r["id"].rsplit("/", 2)[0]] = r["time_step_s"]
+                steps[configuration_key(r)] = r["time_step_s"]
         configs = [(r["engine"], r["options"], steps.get(key, 0.0) if r["engine"] != "reference" else 0.0, key)
                    for key, r in seen]
         return sorted(configs, key=lambda c: (c[0] != "reference", configs.index(c)))
@@ -50,9 +63,12 @@ class Sweep:
         return sorted({r["law"] for r in self.rows}, key=lambda law: ["hertz", "viscoelastic", "newton"].index(law)
                       if law in ("hertz", "viscoelastic", "newton") else 9)
 
-    def rows_of(self, config, law, start):
-        return sorted((r for r in self.rows if r["id"].rsplit("/", 2)[0] == config[3] and r["law"] == law
-                       and r["start"] == start), key=lambda r: r["ratio"])
+    def rows_of(self, config, law, start, members=False):
+        """A configuration's rows of one law and start by ratio; the reference's ensemble starts K >= 1 from
+        rest only with members (start 0 is the row from rest every configuration has)."""
+        return sorted((r for r in self.rows if configuration_key(r) == config[3] and r["law"] == law
+                       and r["start"] == start and (members or not ensemble_member(r))),
+                      key=lambda r: (r["ratio"], r.get("ensemble_start", 0)))
 
     def all_ratios(self):
         return sorted({r["ratio"] for r in self.rows})
@@ -66,7 +82,7 @@ def label(config):
 
 
 # sweep.csv's numeric columns; a quantity runs.csv has too carries runs.csv's name and unit (docs/sweeps.md).
-NUMBERS = ("ratio", "time_step_s", "motor_frequency_hz", "duration_s", "window_s", "impacts",
+NUMBERS = ("ratio", "ensemble_start", "ensemble_starts", "initial_displacement_offset_m", "time_step_s", "motor_frequency_hz", "duration_s", "window_s", "impacts",
            "impacts_per_cycle", "period_n", "impacts_per_period", "frame1_sensor_peak_acceleration_g",
            "frame2_sensor_peak_acceleration_g", "frame1_peak_displacement_m", "frame2_peak_displacement_m",
            "mean_approach_velocity_m_s", "contact_duration_mean_s", "poincare_samples", "steps", "cpu_time_s",
@@ -142,10 +158,6 @@ def impacts(row):
     return row["verdict"] == "ok" and row["regime"] not in ("", "no impact")
 
 
-def ratio_text(ratio):
-    return f"{ratio:.3f}".rstrip("0").rstrip(".") if not math.isnan(ratio) else "?"
-
-
 def ranges_text(ratios, grid):
     """Ratios as runs of neighbours on the sweep's grid: "0.94 to 1.08, 1.1 to 1.13"."""
     index = {round(r, 6): i for i, r in enumerate(grid)}
@@ -217,9 +229,10 @@ def answer_sentences(sweep):
 
 
 def agreement(sweep):
-    """Per engine configuration, law and start: how often its regime equals the reference's at the same
-    ratio, where not, the error of impacts per cycle and of frame 1's sensor peak where both impact, and
-    its CPU time. Rows whose verdict is not ok disagree."""
+    """Per engine configuration, law and start: how often its regime is the reference's at the same ratio
+    (regime_agrees: at a multistable ratio, any regime the reference's starts reach), where not, the error of
+    impacts per cycle and of frame 1's sensor peak where both impact, and its CPU time. Rows whose verdict is
+    not ok disagree. multistable: (ratio, engine's regime, {regime: starts}) at each multistable ratio."""
     reference = next((c for c in sweep.simulators() if c[0] == "reference"), None)
     table = []
     for config in sweep.simulators():
@@ -232,8 +245,9 @@ def agreement(sweep):
                 paired = [(r, ref[round(r["ratio"], 6)]) for r in rows if round(r["ratio"], 6) in ref]
                 if not paired:
                     continue
-                same = [(r, q) for r, q in paired if r["verdict"] == "ok" and r["regime"] == q["regime"]]
-                differ = [(r, q) for r, q in paired if not (r["verdict"] == "ok" and r["regime"] == q["regime"])]
+                reached = {id(r): sweep.start_ensembles.get((law, round(r["ratio"], 6))) for r, _ in paired}
+                same = [(r, q) for r, q in paired if regime_agrees(r, q, reached[id(r)])]
+                differ = [(r, q) for r, q in paired if not regime_agrees(r, q, reached[id(r)])]
                 ipc = [abs(r["impacts_per_cycle"] - q["impacts_per_cycle"]) for r, q in paired
                        if r["verdict"] == "ok" and not math.isnan(r["impacts_per_cycle"]) and not math.isnan(q["impacts_per_cycle"])]
                 peaks = sorted(abs(r["frame1_sensor_peak_acceleration_g"] / q["frame1_sensor_peak_acceleration_g"] - 1)
@@ -242,8 +256,9 @@ def agreement(sweep):
                 table.append({
                     "configuration": label(config), "law": law, "start": start, "ratios": len(paired),
                     "agreement": len(same) / len(paired),
-                    "differ": [(r["ratio"], r["regime"] if r["verdict"] == "ok" else r["verdict"], q["regime"] or q["verdict"])
-                               for r, q in differ],
+                    "differ": [(r["ratio"], regime_of(r), q["regime"] or q["verdict"]) for r, q in differ],
+                    "multistable": [(r["ratio"], regime_of(r), reached[id(r)]) for r, _ in paired
+                                    if multistable(reached[id(r)])],
                     "impacts_per_cycle_mean_abs_error": sum(ipc) / len(ipc) if ipc else math.nan,
                     "sensor_peak_median_relative_error": peaks[len(peaks) // 2] if peaks else math.nan,
                     "cpu_time_s": sum(r["cpu_time_s"] for r in rows if not math.isnan(r["cpu_time_s"])),
@@ -252,7 +267,8 @@ def agreement(sweep):
 
 
 AGREEMENT_HEADER = ["configuration", "law", "start", "ratios", "regime as the reference", "where it differs (engine vs reference)",
-                    "impacts/cycle mean |error|", "frame 1 sensor peak median |error|", "CPU [s]"]
+                    "at multistable ratios (engine: reference's starts reaching it)", "impacts/cycle mean |error|",
+                    "frame 1 sensor peak median |error|", "CPU [s]"]
 
 
 def agreement_rows(table):
@@ -260,19 +276,24 @@ def agreement_rows(table):
         shown = [f"{ratio_text(r)} ({e} vs {q})" for r, e, q in items[:8]]
         return ", ".join(shown) + (f", and {len(items) - 8} more" if len(items) > 8 else "") if items else "none"
 
+    def multistable_text(items):
+        return ", ".join(f"{ratio_text(r)} ({e}: {counts.get(e, 0)} of {sum(counts.values())})" for r, e, counts in items) or "none"
+
     def fmt(value, percent=False):
         if math.isnan(value):
             return "n/a"
         return f"{100 * value:.1f} %" if percent else f"{value:.3f}"
 
     return [[t["configuration"], t["law"], t["start"], str(t["ratios"]), f"{100 * t['agreement']:.0f} %",
-             differ_text(t["differ"]), fmt(t["impacts_per_cycle_mean_abs_error"]),
+             differ_text(t["differ"]), multistable_text(t.get("multistable", [])), fmt(t["impacts_per_cycle_mean_abs_error"]),
              fmt(t["sensor_peak_median_relative_error"], percent=True), f"{t['cpu_time_s']:.1f}"] for t in table]
 
 
 def summary_sentence(sweep):
     """One opening line: the reference's branches and the engines' agreement, from the data."""
     parts = answer_sentences(sweep)
+    if sweep.start_ensembles_from == "this sweep":
+        parts.append(multistable_sentence(sweep))
     table = agreement(sweep)
     if table:
         by_config = {}
@@ -297,9 +318,19 @@ def sections(data, figures_folder, stamp, title):
         rows = agreement_rows([t for t in table if t["law"] == law])
         text = lede if law == data.laws()[0] else ""
         markdown_text, html_text = text, f"<p>{text}</p>" if text else ""
+        ensemble = start_ensemble_rows(start_ensemble_table(data, law)) if data.start_ensembles_from == "this sweep" else []
+        if ensemble:
+            note = ("The reference from an ensemble of starts from rest (start K: frame 1's tip displaced K x the "
+                    "ensemble's step): how many starts reach each regime, and whether more than one is reached "
+                    "(multistable: which attractor one start reaches is chance; the engines' regimes are judged "
+                    "against every regime reached).")
+            markdown_text += "\n\n" + note + "\n\n" + tables.markdown(START_ENSEMBLE_HEADER, ensemble)
+            html_text += f"<p>{note}</p>" + tables.html_table(START_ENSEMBLE_HEADER, ensemble)
         if rows:
             note = ("Each engine's regime against the reference's at the same ratio and start (no impact, period-n, "
-                    "irregular; a run not ok disagrees), the error of impacts per cycle, the median error of frame 1's "
+                    "irregular; a run not ok disagrees; at a multistable ratio, against every regime the reference's "
+                    "starts from rest reach" + (f", from {data.start_ensembles_from}" if data.start_ensembles_from not in
+                                                ("", "this sweep") else "") + "), the error of impacts per cycle, the median error of frame 1's "
                     "sensor peak where both impact, and the engine's CPU time for the sweep.")
             markdown_text += "\n\n" + note + "\n\n" + tables.markdown(AGREEMENT_HEADER, rows)
             html_text += f"<p>{note}</p>" + tables.html_table(AGREEMENT_HEADER, rows)

@@ -46,7 +46,7 @@ def bifurcation(data, law, folder, stamp, name):
     for ax, config in zip(axes.flat, configs):
         for start in sweep.STARTS:
             xs, ys, unstable = [], [], []
-            for r in data.rows_of(config, law, start):
+            for r in data.rows_of(config, law, start, members=True):  # every start of an ensemble: its attractors
                 if r["verdict"] != "ok":
                     unstable.append(r["ratio"])
                     continue

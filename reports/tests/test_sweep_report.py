@@ -13,23 +13,25 @@ import tempfile
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from impactbench_report import sweep  # noqa: E402
+from impactbench_report import sweep, sweep_starts  # noqa: E402
 
 MAKE_REPORT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "make_report.py")
 # sweep.csv's header as harness/sweep/sweep_row.cpp writes it (the quantities runs.csv has under runs.csv's names)
 COLUMNS = ("id,scenario,engine,engine_version,law,options,contact_path,law_simulated,time_step_s,start,ratio,"
+           "ensemble_start,ensemble_starts,initial_displacement_offset_m,"
            "motor_frequency_hz,duration_s,window_s,verdict,reason,timed_out,impacts,impacts_per_cycle,regime,period_n,"
            "impacts_per_period,frame1_sensor_peak_acceleration_g,frame2_sensor_peak_acceleration_g,"
            "frame1_peak_displacement_m,frame2_peak_displacement_m,mean_approach_velocity_m_s,contact_duration_mean_s,"
            "poincare_samples,steps,cpu_time_s,wall_time_s,load_average")
 
 
-def row(engine, start, ratio, regime, impacts_per_cycle, peak=10.0, verdict="ok", options=""):
+def row(engine, start, ratio, regime, impacts_per_cycle, peak=10.0, verdict="ok", options="", member=0, members=1):
+    """A sweep.csv row; member K >= 1 of `members`: the reference's ensemble start K from rest (id ends in /start=K)."""
     prefix = f"resonance/{engine}/hertz" + (f"/{options}" if options else "")
     path = "" if engine == "reference" else (options.partition("contact=")[2] or "matched")
-    return (f"{prefix}/{start}/r={ratio:g},resonance,{engine},v1,hertz,{options},{path},"
+    return (f"{prefix}/{start}/r={ratio:g}{f'/start={member}' if member else ''},resonance,{engine},v1,hertz,{options},{path},"
             f"{'no' if path == 'native' else 'yes'},{1e-4 if engine != 'reference' else 0},"
-            f"{start},{ratio},{6.95 * ratio},30,10,{verdict},,false,{round(70 * impacts_per_cycle)},{impacts_per_cycle},"
+            f"{start},{ratio},{member},{members},{member * 1e-7},{6.95 * ratio},30,10,{verdict},,false,{round(70 * impacts_per_cycle)},{impacts_per_cycle},"
             f"{regime},,,{peak},{peak},0.001,0.0005,0.1,0.0003,70,1000,1.5,1.5,1.0")
 
 
@@ -86,6 +88,78 @@ class SweepAnswer(unittest.TestCase):
         self.assertAlmostEqual(t["impacts_per_cycle_mean_abs_error"], 0.5)  # 0 at 1.0, 1 at 1.08; 1.17 not ok
         self.assertAlmostEqual(t["sensor_peak_median_relative_error"], 0.1)  # where both impact: 1.0 only
         self.assertIn("1.08 (no impact vs period-1), 1.17 (unstable vs no impact)", sweep.agreement_rows(table)[0][5])
+
+
+def ensemble_rows(ratio, regimes):
+    """The reference's starts from rest at one ratio, start K reaching regimes[K]."""
+    return [row("reference", "rest", ratio, regime, 0.0 if regime == "no impact" else 0.3, member=k, members=len(regimes))
+            for k, regime in enumerate(regimes)]
+
+
+# 0.94: start 0 (the row from rest) has no impact, 3 of the 8 starts impact: multistable. 1.0: every start period-1.
+MULTISTABLE = ensemble_rows(0.94, ["no impact"] * 5 + ["irregular"] * 3)
+SETTLED = ensemble_rows(1.0, ["period-1"] * 4)
+
+
+class MultistableRatios(unittest.TestCase):
+    def read(self, rows, scenario="resonance"):
+        folder = tempfile.mkdtemp(prefix="impactbench_sweep_ensemble_")
+        write_sweep(folder, rows)
+        return sweep.read(folder)
+
+    def test_the_fractions_count_every_start_and_a_ratio_is_multistable_when_more_than_one_regime_is_reached(self):
+        data = self.read(MULTISTABLE + SETTLED)
+        table = sweep_starts.start_ensemble_table(data, "hertz")
+        self.assertEqual([t["ratio"] for t in table], [0.94, 1.0])
+        self.assertEqual(table[0]["regimes"], {"no impact": 5, "irregular": 3})
+        self.assertEqual((table[0]["starts"], table[0]["impacting"], table[0]["multistable"]), (8, 3, True))
+        self.assertEqual((table[1]["regimes"], table[1]["multistable"]), ({"period-1": 4}, False))
+        self.assertEqual(sweep_starts.start_ensemble_rows(table)[0], ["0.94", "8", "no impact 5 of 8, irregular 3 of 8", "3 of 8", "yes"])
+        self.assertIn("multistable at r = 0.94 (no impact 5 of 8, irregular 3 of 8)", sweep.summary_sentence(data))
+        # the members are one configuration's: the reference is one simulator, its rows from rest one per ratio
+        self.assertEqual(len(data.simulators()), 1)
+        self.assertEqual([r["ratio"] for r in data.rows_of(data.simulators()[0], "hertz", "rest")], [0.94, 1.0])
+
+    def test_an_engine_agrees_at_a_multistable_ratio_when_any_start_of_the_reference_reaches_its_regime(self):
+        # From one start (start 0: no impact) the engine's irregular orbit at 0.94 would disagree: it agrees
+        # because 3 of the reference's 8 starts reach it. At 1.0, where every start reaches period-1, period-2
+        # disagrees; at 0.94 a regime no start reaches (period-2) disagrees too.
+        engine = [row("engine_a", "rest", 0.94, "irregular", 0.3, options="contact=matched"),
+                  row("engine_a", "rest", 1.0, "period-2", 1.0, options="contact=matched")]
+        t = sweep.agreement(self.read(MULTISTABLE + SETTLED + engine))[0]
+        self.assertAlmostEqual(t["agreement"], 1 / 2)
+        self.assertEqual(t["differ"], [(1.0, "period-2", "period-1")])
+        self.assertEqual(t["multistable"], [(0.94, "irregular", {"no impact": 5, "irregular": 3})])
+        self.assertEqual(sweep.agreement_rows([t])[0][6], "0.94 (irregular: 3 of 8)")
+        engine[0] = row("engine_a", "rest", 0.94, "period-2", 0.5, options="contact=matched")
+        t = sweep.agreement(self.read(MULTISTABLE + SETTLED + engine))[0]
+        self.assertAlmostEqual(t["agreement"], 0)
+
+    def test_a_studys_engine_sweep_is_judged_by_the_reference_sweeps_starts(self):
+        # the engines' sweep (up) holds one reference row per ratio; the study's reference sweep holds the starts
+        engines_sweep = self.read([row("reference", "up", 0.94, "no impact", 0.0),
+                                   row("engine_a", "up", 0.94, "irregular", 0.3, options="contact=matched")])
+        reference_sweep = self.read(MULTISTABLE)
+        self.assertAlmostEqual(sweep.agreement(engines_sweep)[0]["agreement"], 0)  # one start: disagrees
+        sweep_starts.share_start_ensembles([("engines", engines_sweep), ("reference", reference_sweep)])
+        self.assertEqual(engines_sweep.start_ensembles_from, "sweep reference")
+        self.assertAlmostEqual(sweep.agreement(engines_sweep)[0]["agreement"], 1)
+        # another reference (5 modes) is another model: its starts do not judge this one's engines
+        engines_sweep = self.read([row("reference", "up", 0.94, "no impact", 0.0, options="n=5"),
+                                   row("engine_a", "up", 0.94, "irregular", 0.3, options="contact=matched")])
+        sweep_starts.share_start_ensembles([("engines", engines_sweep), ("reference", reference_sweep)])
+        self.assertEqual(engines_sweep.start_ensembles, {})
+
+    def test_the_report_shows_the_fractions_and_the_multistable_ratios(self):
+        folder = tempfile.mkdtemp(prefix="impactbench_sweep_ensemble_report_")
+        write_sweep(folder, reference_rows() + MULTISTABLE + SETTLED)
+        run = subprocess.run([sys.executable, MAKE_REPORT, folder], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        with open(os.path.join(folder, "report", "summary.md")) as f:
+            markdown = f.read()
+        self.assertIn("| 0.94 | 8 | no impact 5 of 8, irregular 3 of 8 | 3 of 8 | yes |", markdown)
+        self.assertIn("| 1 | 4 | period-1 4 of 4 | 4 of 4 | no |", markdown)
+        self.assertIn("multistable at r = 0.94", markdown)
 
 
 class SweepReport(unittest.TestCase):
