@@ -194,10 +194,15 @@ std::string masked_summary(const fs::path& report) {
   std::string out;
   std::vector<int> cost_columns;
   const std::regex engine_cost(R"(at [0-9.e+-]+ s CPU/s)");
+  // the answer sentences' costs (answer_sentence.py): "at 0.12 s of CPU per simulated second", "(0.13 s/s)"
+  const std::regex sentence_cost(R"(at [0-9.e+-]+ s of CPU per simulated second)");
+  const std::regex tie_cost(R"(\([0-9.e+-]+ s/s\))");
   for (std::string line; std::getline(in, line);) {
     for (const char* varying : {"- made:", "- suite folder:", "- commands:", "- load average"})
       if (line.rfind(varying, 0) == 0) line = std::string(varying) + " <varies>";
     line = std::regex_replace(line, engine_cost, "at <cost> s CPU/s");
+    line = std::regex_replace(line, sentence_cost, "at <cost> s of CPU per simulated second");
+    line = std::regex_replace(line, tie_cost, "(<cost> s/s)");
     if (line.rfind("| ", 0) == 0) {
       std::vector<std::string> cells;
       std::size_t at = 0;

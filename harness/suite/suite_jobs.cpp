@@ -77,8 +77,8 @@ std::string SuiteRunner::start(const PlannedJob& job, ProcessPool& pool) {
 }
 
 // What a job's folder keeps of its series: a reference its window at the output rate when a run is compared
-// with it (also on --resume) or it is no ensemble's further start, else none (the reference starts beyond the
-// engines': their metrics are what counts);
+// with it (also on --resume: the runs are scored against its series), else what --series says, and an
+// ensemble's further start none (its metrics are what counts: the chains of a convergence study, say);
 // a step-search probe none unless asked (its summary and events say whether the step is stable and accurate);
 // any other run what --series says.
 nlohmann::ordered_json SuiteRunner::cache_key_of(const PlannedJob& job) const {
@@ -87,10 +87,14 @@ nlohmann::ordered_json SuiteRunner::cache_key_of(const PlannedJob& job) const {
 
 Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
   Measurement m = part_of(job).measurement;
-  if (job.kind != JobKind::engine && m.series == SeriesOutput::none) m.series = SeriesOutput::window;
-  if (job.kind != JobKind::engine && job.spec.start.index > 0 && !compared_references_.count(job.id))
-    m.series = SeriesOutput::none;
-  if (job.kind != JobKind::engine) m.series_rate_hz = 0;  // every sample: the engine runs are compared with it
+  if (job.kind != JobKind::engine) {
+    if (compared_references_.count(job.id)) {
+      if (m.series == SeriesOutput::none) m.series = SeriesOutput::window;
+    } else if (job.spec.start.index > 0) {
+      m.series = SeriesOutput::none;
+    }
+    m.series_rate_hz = 0;  // every sample: the runs compared with it are scored against it
+  }
   if (job.step_probe && !part_of(job).keep_probe_series) m.series = SeriesOutput::none;
   return m;
 }
