@@ -15,9 +15,13 @@ import math
 
 from . import analysis, ensemble_groups, significance
 
-# Residual below which the parts are said to add up: runs.csv writes each error with nine significant digits
-# (harness/records/number_text.h), so three of them, each up to order one, agree to about 1e-9.
+# Residual, relative to the largest part (at least one), below which the parts are said to add up: runs.csv
+# writes each error with nine significant digits (harness/records/number_text.h), so three agree to about 1e-9.
 ADDITIVE_TOLERANCE = 1e-8
+
+
+def adds_up(total, chain, engine):
+    return abs(total - chain - engine) <= ADDITIVE_TOLERANCE * max(1.0, abs(total), abs(chain), abs(engine))
 
 
 def none_if_nan(x):
@@ -29,7 +33,15 @@ def metric_budget(run, chain_run, column, kind, noise):
     total = analysis.signed_error(run, column, "beam")
     if math.isnan(total):
         return None
-    chain = analysis.signed_error(chain_run, column, "beam") if chain_run is not None else math.nan
+    # The chain's share from the same values as the run's total: the ensembles' means where the run's error is
+    # an ensemble's, else the rows of the same start (an unstable run has no ensemble statistics)
+    from_means = analysis.error_interval(run, column, "beam") is not None
+    if chain_run is None:
+        chain = math.nan
+    elif from_means:
+        chain = analysis.signed_error(chain_run, column, "beam")
+    else:
+        chain = chain_run.number(analysis.AGAINST["beam"] + column)
     own = analysis.signed_error(run, column, "own chain")
     engine = own * (1 + chain) if kind == "relative" else own
     entry = {"total": total, "chain": none_if_nan(chain), "engine": none_if_nan(engine),
@@ -43,9 +55,9 @@ def metric_budget(run, chain_run, column, kind, noise):
                                      else "no error against the run's own chain")
     else:
         entry["residual"] = total - chain - engine
-        if abs(entry["residual"]) > ADDITIVE_TOLERANCE * max(1.0, abs(total)):
-            entry["why_not_additive"] = ("the run's errors come from its row, not from the ensembles' means the chain's "
-                                         "share is measured with")
+        if not adds_up(total, chain, engine):
+            entry["why_not_additive"] = ("the run's errors and its chain's are measured against different values of "
+                                         "the references (an ensemble's means on one side, a row on the other)")
     return entry
 
 

@@ -72,8 +72,15 @@ def metric_interval(ensemble, column):
     return ensembles.t_interval([r.number(column) for r in runs], [r["job_id"] for r in runs])
 
 
+def chain_damping(run):
+    """The chain damping a run's options name (an engine's and its chain reference's alike), "modal" by default:
+    two chains of one K damped otherwise are two references."""
+    return analysis.options_of(run["options"]).get("chain_damping", "modal")
+
+
 def reference_index(runs):
-    """{(scenario, law, chain links or "beam"): the reference run}: what reference_of looks up."""
+    """{(scenario, law, "beam") or (scenario, law, chain links, chain damping): the reference run}: what
+    reference_of looks up."""
     index = {}
     for r in runs:
         if r["engine"] != "reference":
@@ -81,14 +88,16 @@ def reference_index(runs):
         if r["options"] == "":
             index.setdefault((r["scenario"], r["law"], "beam"), r)
         elif "modes=chain" in r["options"]:
-            index.setdefault((r["scenario"], r["law"], r.number("chain_links")), r)
+            index.setdefault((r["scenario"], r["law"], r.number("chain_links"), chain_damping(r)), r)
     return index
 
 
 def reference_of(index, run, against):
     """The representative of the reference ensemble a run's errors `against` ("beam", "own chain") are
-    measured against (the beam's, or the chain's with the run's links), or None."""
-    return index.get((run["scenario"], run["law"], "beam" if against == "beam" else run.number("chain_links")))
+    measured against (the beam's, or the chain's with the run's links and chain damping), or None."""
+    if against == "beam":
+        return index.get((run["scenario"], run["law"], "beam"))
+    return index.get((run["scenario"], run["law"], run.number("chain_links"), chain_damping(run)))
 
 
 def attach(suite, members):
