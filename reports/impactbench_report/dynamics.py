@@ -204,6 +204,7 @@ def state_panels(runs, has_data):
             no_data(ax)
             continue
         ax.grid(alpha=0.3)
+        ax.xaxis.set_major_locator(ticker.MaxNLocator(nbins=4))  # "-0.0010" labels need room in a 3.3 in panel
         ax.set_xlabel("frame 1 tip displacement u1 [m]", fontsize=8)
         ax.set_ylabel("velocity v1 [m/s]", fontsize=8)
     return figure, axes, legend

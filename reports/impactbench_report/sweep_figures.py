@@ -23,9 +23,9 @@ def engine_colour(config):
 def mark_experiment(ax, label=True):
     for x in sweep.EXPERIMENT_RATIOS:
         ax.axvline(x, color="#2ca02c", linestyle=":", linewidth=0.8)
-        if label:
-            ax.text(x, 1.0, f" experiment {x:g}", transform=ax.get_xaxis_transform(), fontsize=6, color="#2ca02c",
-                    rotation=90, va="top", ha="right")
+        if label:  # above the panel, where no legend is
+            ax.text(x, 1.01, f"exp. {x:g}", transform=ax.get_xaxis_transform(), fontsize=6, color="#2ca02c",
+                    va="bottom", ha="center", clip_on=False)
 
 
 def bifurcation(data, law, folder, stamp, name):
