@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders a report page in headless Chromium (Debian's chromium, installed when missing) to a PNG, to
-# look at it as a reader would:  scripts/screenshot-report.sh REPORT/index.html OUT.png [HEIGHT_PX]
+# look at it as a reader would (1400 px wide, as the Chromium test reads it):
+#   scripts/screenshot-report.sh REPORT/index.html OUT.png [HEIGHT_PX]
 set -euo pipefail
 page=$(realpath "$1"); png=$2; height=${3:-3000}
 if ! command -v chromium >/dev/null; then
@@ -9,7 +10,7 @@ if ! command -v chromium >/dev/null; then
 fi
 profile=$(mktemp -d)
 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking \
-  --disable-component-update --disable-sync --user-data-dir="$profile" --window-size=1366,"$height" \
+  --disable-component-update --disable-sync --user-data-dir="$profile" --window-size=1400,"$height" \
   --screenshot="$png" "file://$page" 2>/dev/null
 rm -rf "$profile"
 echo "screenshot: $png"
