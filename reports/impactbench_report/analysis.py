@@ -110,13 +110,19 @@ def runs_of_config(runs, config):
     return sorted((r for r in runs if r.config == config), key=lambda r: r.number("time_step_s"))
 
 
+def engine_score(score_vs_own_chain, score_vs_beam):
+    """(the score that ranks an engine's run, what it is against): the error the engine controls, its score against
+    its own chain, or the beam's where it has no chain (issue 46)."""
+    if math.isinf(score_vs_own_chain):
+        return score_vs_beam, "beam"
+    return score_vs_own_chain, "own chain"
+
+
 def ranking_key(run, tolerances, skip=()):
-    """How runs of an engine are ranked (issue 46): a run that passes its own verdict before one that fails it,
-    then the error the engine controls (its score against its own chain, the beam's where it has no chain), then
-    the cheaper."""
-    own = score(run, tolerances, "own chain", skip)[0]
-    by = own if not math.isinf(own) else score(run, tolerances, "beam", skip)[0]
-    return (run["verdict"] != "ok", by, run.number("cpu_time_per_simulated_s"))
+    """How runs of an engine are ranked: a run that passes its own verdict before one that fails it, then its
+    engine_score, then the cheaper."""
+    ranked = engine_score(score(run, tolerances, "own chain", skip)[0], score(run, tolerances, "beam", skip)[0])[0]
+    return (run["verdict"] != "ok", ranked, run.number("cpu_time_per_simulated_s"))
 
 
 def best_run(runs, tolerances, skip=()):
@@ -125,11 +131,6 @@ def best_run(runs, tolerances, skip=()):
     if not scored:
         return None
     return min(scored, key=lambda r: ranking_key(r, tolerances, skip))
-
-
-def best_step(runs, config, tolerances=DEFAULT_TOLERANCES, skip=()):
-    """A configuration's best run (see best_run)."""
-    return best_run(runs_of_config(runs, config), tolerances, skip)
 
 
 def step_limits(runs, config):

@@ -7,10 +7,8 @@ with it are the others that qualify at a cost this machine's drift cannot tell f
 qualifies, the sentence names the closest run that passes its verdict and says, with its budget, how much of its
 largest error is the chain's and how many links would settle it."""
 
-import math
-
-from . import analysis, engines
-from .tables import step_text
+from . import analysis, data, engines
+from .tables import signed_text, step_text
 
 # Two CPU costs closer than this (relative) are not told apart: this machine's speed drifts 15 to 30 % between
 # identical runs (docs/budgets.md), the same floor `impactbench compare` judges cost against.
@@ -22,7 +20,7 @@ def every_point(case):
 
 
 def stable(point):
-    return point["verdict"] in ("ok", "inaccurate") and point["cpu_time_per_simulated_s"] is not None
+    return point["verdict"] in data.STABLE_VERDICTS and point["cpu_time_per_simulated_s"] is not None
 
 
 def qualifying(case):
@@ -51,12 +49,6 @@ def cost_text(point):
     return f"{point['cpu_time_per_simulated_s']:.2g} s of CPU per simulated second"
 
 
-def percent_or_difference(kind, value):
-    if value is None or (isinstance(value, float) and math.isnan(value)):
-        return "n/a"
-    return f"{100 * value:+.2g} %" if kind == "relative" else f"{value:+.2g}"
-
-
 def budget_words(point):
     """'frame 1 log decrement +25 % from the beam: the 8-link chain's +25 %, the engine's -0.2 %' for a point's
     largest error against the beam."""
@@ -68,10 +60,10 @@ def budget_words(point):
     if not entry:
         return f"{largest['metric']} {largest['error']:+.3g} from the beam"
     kind = entry["kind"]
-    text = f"{largest['metric']} {percent_or_difference(kind, entry['total'])} from the beam"
+    text = f"{largest['metric']} {signed_text(entry['total'], kind)} from the beam"
     if entry.get("chain") is not None:
-        text += (f": the {budget.get('chain_links')}-link chain's {percent_or_difference(kind, entry['chain'])}, "
-                 f"the engine's {percent_or_difference(kind, entry['engine'])}")
+        text += (f": the {budget.get('chain_links')}-link chain's {signed_text(entry['chain'], kind)}, "
+                 f"the engine's {signed_text(entry['engine'], kind)}")
     return text
 
 

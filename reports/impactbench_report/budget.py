@@ -75,13 +75,6 @@ def run_budget(suite, index, run, need):
             "chain_reference_job_id": chain_run["job_id"] if chain_run is not None else None, "metrics": metrics}
 
 
-def largest_parts(budget, metric):
-    """(total, chain, engine, noise) of one metric of a budget, NaN where missing."""
-    entry = budget["metrics"].get(metric) if budget else None
-    if entry is None:
-        return (math.nan,) * 4
-    return tuple(math.nan if entry[k] is None else entry[k] for k in ("total", "chain", "engine", "noise_half_width"))
-
 
 def tight_reference(suite, scenario, law):
     """The case's beam reference rerun at tighter tolerances (options rtol and atol only), or None."""

@@ -15,6 +15,7 @@ and ranks no engine in that case (budget.sound_metrics), when
 import math
 
 from . import analysis
+from .tables import signed_text
 
 # How much of a tolerance the chain may take for its resolution to count as settled: a quarter leaves three
 # quarters of every tolerance to the engine and the noise.
@@ -75,16 +76,12 @@ def metric_convergence(references, column, kind, tolerance):
                      f"{share_text(allowed, kind)}")
     for a, b in zip(rows, rows[1:]):
         if abs(a["error"]) > allowed and abs(b["error"]) > allowed and a["error"] * b["error"] < 0:
-            flags.append(f"ill-conditioned in its window: its chain error swings from {error_text(a['error'], kind)} "
-                         f"at {a['links']} links to {error_text(b['error'], kind)} at {b['links']}")
+            flags.append(f"ill-conditioned in its window: its chain error swings from {signed_text(a['error'], kind)} "
+                         f"at {a['links']} links to {signed_text(b['error'], kind)} at {b['links']}")
             break
     noisy = [r["links"] for r in rows if (r["half_width"] or 0) > allowed]
     return {"errors_vs_beam": rows, "allowed_chain_error": allowed, "settled_links": settled, "flags": flags,
             "noise_exceeds_share_at_links": noisy}
-
-
-def error_text(error, kind):
-    return f"{100 * error:+.2g} %" if kind == "relative" else f"{error:+.2g}"
 
 
 def share_text(allowed, kind):

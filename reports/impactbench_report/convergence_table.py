@@ -4,13 +4,13 @@ its share of the tolerance, and why a metric ranks no engine. Rendered in HTML a
 
 import html
 
-from .tables import html_table
+from .tables import html_table, signed_text
 from .tables import markdown as markdown_table
 
 
 def error_cell(row, kind):
     """'-3.7 % ± 1.6 %' or '+0.014 ± 0.02', with ✓ within the chain's share of the tolerance, ✗ beyond, ? undecided."""
-    value = f"{100 * row['error']:+.2g} %" if kind == "relative" else f"{row['error']:+.2g}"
+    value = signed_text(row["error"], kind)
     if row.get("half_width"):
         value += f" ± {100 * row['half_width']:.2g} %" if kind == "relative" else f" ± {row['half_width']:.2g}"
     return value + {"within": " ✓", "beyond": " ✗", "undecided": " ?"}[row["status"]]

@@ -100,14 +100,9 @@ def intervals_measured(case, run):
 
 
 def chain_share_text(case, run):
-    """' (chain +24 %)': the chain's share of the largest error vs beam, from the point's budget (fronts)."""
-    largest = run["largest_error_vs_beam"]
+    """' (chain +24 %)': the chain's share of the run's largest error vs beam, from its point's budget (fronts)."""
     point = next((p for e in case["fronts"]["engines"].values() for p in e["points"] if p["job_id"] == run["job_id"]), None)
-    entry = ((point or {}).get("budget") or {}).get("metrics", {}).get(largest["metric"]) if largest else None
-    if not entry or entry.get("chain") is None:
-        return ""
-    kind = next(k for name, _, _, k, _ in analysis.SCORED if name == largest["metric"])
-    return " (chain " + (f"{100 * entry['chain']:+.2g} %" if kind == "relative" else f"{entry['chain']:+.2g}") + ")"
+    return "" if point is None else operating_points.chain_share(point)
 
 
 def verdict_mark(run, against="beam"):

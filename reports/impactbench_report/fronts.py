@@ -88,11 +88,6 @@ def within_tolerances(point, tolerances, need, against="beam"):
     return score <= 1
 
 
-def own_score(point):
-    """What ranks an engine's contact handling: its score against its own chain (the beam's without a chain)."""
-    return point.score if math.isinf(point.score_vs_chain) else point.score_vs_chain
-
-
 def most_accurate(candidates, tolerances, need):
     """(the point with the smallest score against its own chain among those that pass their verdict where one
     does, the cheaper first among equal scores; the other such points whose score the noise cannot tell from
@@ -101,8 +96,8 @@ def most_accurate(candidates, tolerances, need):
     scored = passing_first([p for p in candidates if p.scored])
     if not scored:
         return None, []
-    best = min(scored, key=lambda p: (own_score(p), p.cost_s_per_s))
-    against = "beam" if math.isinf(best.score_vs_chain) else "own chain"
+    best = min(scored, key=lambda p: (analysis.engine_score(p.score_vs_chain, p.score)[0], p.cost_s_per_s))
+    against = analysis.engine_score(best.score_vs_chain, best.score)[1]
     best_interval = significance.score_interval(best.run, tolerances, need, against, best.skip)
     tied = []
     for p in scored:

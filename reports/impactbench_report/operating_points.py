@@ -6,7 +6,7 @@ import html
 
 from . import engines, fronts
 from .answer import error_cell
-from .tables import html_table, step_text
+from .tables import html_table, signed_text, step_text
 from .tables import markdown as markdown_table
 
 
@@ -69,8 +69,7 @@ def chain_share(point):
     entry = ((point.get("budget") or {}).get("metrics") or {}).get(largest["metric"]) if largest else None
     if not entry or entry.get("chain") is None:
         return ""
-    value = entry["chain"]
-    return " (chain " + (f"{100 * value:+.2g} %" if entry["kind"] == "relative" else f"{value:+.2g}") + ")"
+    return f" (chain {signed_text(entry['chain'], entry['kind'])})"
 
 
 def intro(case):

@@ -23,6 +23,13 @@ def step_text(step):
     return f"{float(mantissa):g}e{int(exponent)}"
 
 
+def signed_text(value, kind):
+    """'+2.5 %' for a relative error (a fraction), '+0.14' for a difference; 'n/a' where not defined."""
+    if value is None or math.isnan(value):
+        return "n/a"
+    return f"{100 * value:+.2g} %" if kind == "relative" else f"{value:+.2g}"
+
+
 def percent(value):
     if math.isnan(value):
         return "–"
