@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# A budget on a machine whose speed is not its recorded one (docs/performance.md, "Budgets on a slow day"): the
+# benchmark of a baseline commit and of this checkout's HEAD, each from a fresh clone, built cold
+# (CCACHE_DISABLE=1), one after the other with nothing else running. Prints each one's build time, study time and
+# folder size as scripts/benchmark.sh reports them, and the ratios: the change's cost at the recorded speed is the
+# baseline's recorded figure (docs/budgets.md) times the ratio.
+#   bench/side_by_side.sh BASELINE_COMMIT SCRATCH_FOLDER [benchmark.sh options, e.g. --full]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if (($# < 2)); then
+  echo "usage: bench/side_by_side.sh BASELINE_COMMIT SCRATCH_FOLDER [benchmark.sh options]" >&2
+  exit 2
+fi
+baseline=$1 scratch=$2
+shift 2
+if ! git rev-parse --verify --quiet "$baseline^{commit}" >/dev/null; then
+  echo "side_by_side.sh: '$baseline' is no commit of this repository" >&2
+  exit 2
+fi
+if [[ -e $scratch ]]; then
+  echo "side_by_side.sh: $scratch exists; give a folder that does not (the clones and results go there)" >&2
+  exit 2
+fi
+repository=$(pwd)
+head=$(git rev-parse --short HEAD)
+mkdir -p "$scratch"
+export CCACHE_DISABLE=1
+seconds_of() {  # M:SS -> seconds
+  local m=${1%%:*} s=${1##*:}
+  echo $((10#$m * 60 + 10#$s))
+}
+declare -A build study size
+for side in baseline head; do
+  commit=$baseline
+  [[ $side == head ]] && commit=$head
+  git clone -q "$repository" "$scratch/$side"
+  git -C "$scratch/$side" checkout -q "$commit"
+  echo "side_by_side: $side ($commit) from $(date +%T), load average $(cut -d' ' -f1-3 /proc/loadavg)"
+  (cd "$scratch/$side" && scripts/benchmark.sh "$@" "$scratch/$side-results") >"$scratch/$side.log" 2>&1 || true
+  build[$side]=$(sed -n 's/^benchmark: installed and built in \([0-9:]*\).*/\1/p' "$scratch/$side.log")
+  study[$side]=$(sed -n 's/^benchmark: .*study done in \([0-9:]*\).*/\1/p' "$scratch/$side.log")
+  size[$side]=$(sed -n 's/^benchmark: .*study done in [0-9:]* (build excluded), \([^ ]*\) of results.*/\1/p' "$scratch/$side.log")
+  echo "side_by_side: $side built in ${build[$side]:-?}, study in ${study[$side]:-?}, ${size[$side]:-?} (log: $scratch/$side.log)"
+done
+ratio() {  # what, the baseline's M:SS, HEAD's M:SS
+  [[ -n $2 && -n $3 ]] || return 0
+  awk -v b="$(seconds_of "$2")" -v h="$(seconds_of "$3")" -v w="$1" \
+    'BEGIN { printf "side_by_side: %s, HEAD / baseline = %.2f\n", w, h / b }'
+}
+ratio build "${build[baseline]}" "${build[head]}"
+ratio study "${study[baseline]}" "${study[head]}"
