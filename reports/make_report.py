@@ -22,7 +22,7 @@ import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from impactbench_report import ablation, analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
+from impactbench_report import ablation, answer, data, figures, first_screen, metric_catalog, performance, tables  # noqa: E402
 from impactbench_report import budget_figures, convergence_table, front_figures, step_figures, zoom_figures  # noqa: E402
 from impactbench_report import dynamics, named_runs, spectral, sweep, sweep_starts  # noqa: E402
 from impactbench_report.page_style import STYLE  # noqa: E402
@@ -206,7 +206,7 @@ def main():
     experiment = data.read_experiment(os.path.join(os.path.dirname(os.path.abspath(__file__)), "experiment.toml"))
     commands = read_commands(args.suite)
     tolerances = next((c["verdict_tolerances"] for c in reversed(commands) if "verdict_tolerances" in c),
-                      analysis.DEFAULT_TOLERANCES)
+                      metric_catalog.DEFAULT_TOLERANCES)
     facts = provenance(suite, commands)
     document = answer.summarise(suite, steps, experiment, tolerances, facts)
     with open(os.path.join(out, "summary.json"), "w") as f:

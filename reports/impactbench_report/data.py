@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import engines
+from . import engines, metric_catalog
 
 G = 9.80665  # standard gravity [m/s^2]
 # The verdicts of a run that gave a usable trajectory (an unstable or failed one did not).
@@ -238,20 +238,6 @@ def contact_stiffness(scenario, law):
     return math.nan
 
 
-# steps.csv (suite --find-steps): the headline metrics whose largest accurate step was searched, as
-# (column prefix, label, kind of tolerance).
-STEP_METRICS = [
-    ("frame1_sensor_peak", "frame 1 sensor peak", "relative"),
-    ("contact_duration", "contact duration", "relative"),
-    ("impacts_per_cycle", "impacts per cycle", "absolute"),
-]
-STEP_TOLERANCE_COLUMNS = {
-    "frame1_sensor_peak": "frame1_sensor_peak_relative_error_tolerance",
-    "contact_duration": "contact_duration_relative_error_tolerance",
-    "impacts_per_cycle": "impacts_per_cycle_difference_tolerance",
-}
-
-
 class StepRow(Record):
     """One row of steps.csv: one engine configuration's step search."""
 
@@ -274,7 +260,7 @@ def read_steps(folder):
                 else:
                     values[name] = text or ""
             key = (values["group_id"], values["step_range_min_s"], values["step_range_max_s"],
-                   tuple(values[c] for c in STEP_TOLERANCE_COLUMNS.values()))
+                   tuple(values[m.step_tolerance_column] for m in metric_catalog.STEP_SEARCHED))
             rows[key] = StepRow(values)
     return list(rows.values())
 

@@ -9,6 +9,7 @@ import math
 import os
 
 from . import data, engines
+from .metric_catalog import CONTACT_DURATION, FRAME1_SENSOR_PEAK, FRAME2_SENSOR_PEAK, IMPACTS_PER_CYCLE
 from .sweep_starts import (START_ENSEMBLE_HEADER, ensemble_member, multistable, multistable_sentence, ratio_text,
                            regime_agrees, regime_of, start_ensemble_rows, start_ensemble_table, start_ensembles)
 
@@ -81,11 +82,12 @@ def label(config):
     return f"{engine} {options or 'default'}, dt {step:g} s"
 
 
-# sweep.csv's numeric columns; a quantity runs.csv has too carries runs.csv's name and unit (docs/sweeps.md).
+# sweep.csv's numeric columns, in its order; a quantity runs.csv has too carries runs.csv's name and unit
+# (docs/sweeps.md), the scored metrics among them metric_catalog's (its SWEEP).
 NUMBERS = ("ratio", "ensemble_start", "ensemble_starts", "initial_displacement_offset_m", "time_step_s", "motor_frequency_hz", "duration_s", "window_s", "impacts",
-           "impacts_per_cycle", "period_n", "impacts_per_period", "frame1_sensor_peak_acceleration_g",
-           "frame2_sensor_peak_acceleration_g", "frame1_peak_displacement_m", "frame2_peak_displacement_m",
-           "mean_approach_velocity_m_s", "contact_duration_mean_s", "poincare_samples", "steps", "cpu_time_s",
+           IMPACTS_PER_CYCLE.column, "period_n", "impacts_per_period", FRAME1_SENSOR_PEAK.column,
+           FRAME2_SENSOR_PEAK.column, "frame1_peak_displacement_m", "frame2_peak_displacement_m",
+           "mean_approach_velocity_m_s", CONTACT_DURATION.column, "poincare_samples", "steps", "cpu_time_s",
            "wall_time_s", "load_average")
 
 
@@ -248,11 +250,12 @@ def agreement(sweep):
                 reached = {id(r): sweep.start_ensembles.get((law, round(r["ratio"], 6))) for r, _ in paired}
                 same = [(r, q) for r, q in paired if regime_agrees(r, q, reached[id(r)])]
                 differ = [(r, q) for r, q in paired if not regime_agrees(r, q, reached[id(r)])]
-                ipc = [abs(r["impacts_per_cycle"] - q["impacts_per_cycle"]) for r, q in paired
-                       if r["verdict"] == "ok" and not math.isnan(r["impacts_per_cycle"]) and not math.isnan(q["impacts_per_cycle"])]
-                peaks = sorted(abs(r["frame1_sensor_peak_acceleration_g"] / q["frame1_sensor_peak_acceleration_g"] - 1)
+                count, peak = IMPACTS_PER_CYCLE.column, FRAME1_SENSOR_PEAK.column  # a difference, a relative error
+                ipc = [abs(r[count] - q[count]) for r, q in paired
+                       if r["verdict"] == "ok" and not math.isnan(r[count]) and not math.isnan(q[count])]
+                peaks = sorted(abs(r[peak] / q[peak] - 1)
                                for r, q in paired
-                               if impacts(r) and impacts(q) and q["frame1_sensor_peak_acceleration_g"] > 0)
+                               if impacts(r) and impacts(q) and q[peak] > 0)
                 table.append({
                     "configuration": label(config), "law": law, "start": start, "ratios": len(paired),
                     "agreement": len(same) / len(paired),
