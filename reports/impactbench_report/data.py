@@ -214,9 +214,20 @@ def read_series_rows(path, text):
     return {name: np.asarray(values, float) for name, values in columns.items()}
 
 
-def read_experiment(path):
+# The experiment's measurements (rig.md section 7), each with its source: data shown beside the simulators.
+EXPERIMENT_FILE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "experiment.toml")
+
+
+def read_experiment(path=EXPERIMENT_FILE):
+    """experiment.toml: {case: {motor_ratio_to_f1, frame1_peak_acceleration_g, impacts_per_beat, observations}}, each
+    case with what was measured in it."""
     with open(path, "rb") as f:
         return tomllib.load(f)
+
+
+def experiment_ratios(experiment):
+    """The motor speed ratios (to f_1) the experiment ran at, ascending: the operating points a sweep marks."""
+    return tuple(sorted(case["motor_ratio_to_f1"] for case in experiment.values() if "motor_ratio_to_f1" in case))
 
 
 def read_scenario(path):

@@ -13,7 +13,9 @@ from .metric_catalog import CONTACT_DURATION, FRAME1_SENSOR_PEAK, FRAME2_SENSOR_
 from .sweep_starts import (START_ENSEMBLE_HEADER, ensemble_member, multistable, multistable_sentence, ratio_text,
                            regime_agrees, regime_of, start_ensemble_rows, start_ensemble_table, start_ensembles)
 
-EXPERIMENT_RATIOS = (0.95, 1.00, 1.17)  # the published operating points (rig.md section 7)
+EXPERIMENT = data.read_experiment()  # experiment.toml: the published operating points (rig.md section 7)
+EXPERIMENT_RATIOS = data.experiment_ratios(EXPERIMENT)
+POST_RESONANCE = EXPERIMENT["post_resonance"]  # its ratio, and the impacts per beat the experiment counted there
 STARTS = ("up", "down", "rest")
 
 
@@ -201,7 +203,8 @@ def branch_facts(sweep, law):
 
 
 def answer_sentences(sweep):
-    """The measured answer to "does a sweep up reach 1.17 f_1 still impacting?", one sentence per law."""
+    """The measured answer to "does a sweep up reach the experiment's post-resonance ratio (1.17 f_1) still
+    impacting?", one sentence per law."""
     sentences = []
     for law in sweep.laws():
         f = branch_facts(sweep, law)
@@ -214,13 +217,15 @@ def answer_sentences(sweep):
             else f"keeps impacting up to r = {ratio_text(last)}")
         if f.get("down_last_impacting_ratio") is not None:
             text += f" (sweeping down, it first impacts at r = {ratio_text(f['down_last_impacting_ratio'])})"
-        at117 = f["up_at_experiment"].get(1.17)
-        if at117 is not None:
-            if impacts(at117):
-                text += (f"; at 1.17 f_1 it impacts, {at117['impacts_per_cycle']:.2f} impacts per cycle "
-                         f"({at117['regime']})")
+        ratio = POST_RESONANCE["motor_ratio_to_f1"]
+        post = f["up_at_experiment"].get(ratio)
+        if post is not None:
+            if impacts(post):
+                text += (f"; at {ratio:g} f_1 it impacts, {post[IMPACTS_PER_CYCLE.column]:.2f} impacts per cycle "
+                         f"({post['regime']})")
             else:
-                text += "; at 1.17 f_1 (the experiment's post-resonance, about 8 impacts per beat) it has no impact"
+                text += (f"; at {ratio:g} f_1 (the experiment's post-resonance, about "
+                         f"{POST_RESONANCE['impacts_per_beat']:g} impacts per beat) it has no impact")
         coexisting = f.get("coexisting", [])
         if coexisting:
             text += ("; up and down differ at r = " + ", ".join(f"{ratio_text(r)} ({u} up, {d} down)" for r, u, d in coexisting))
