@@ -15,14 +15,13 @@ import json
 import math
 import multiprocessing
 import os
-import platform
 import shutil
 import sys
 import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from impactbench_report import ablation, analysis, answer, data, figures, first_screen, performance, tables  # noqa: E402
+from impactbench_report import ablation, answer, data, figures, first_screen, machine, metric_catalog, performance, tables  # noqa: E402
 from impactbench_report import budget_figures, convergence_table, front_figures, step_figures, zoom_figures  # noqa: E402
 from impactbench_report import dynamics, named_runs, spectral, sweep, sweep_starts  # noqa: E402
 from impactbench_report.page_style import STYLE  # noqa: E402
@@ -36,7 +35,8 @@ CAVEATS = [
     "so the time-domain displacement error is of order one there. The headline errors are statistics over the "
     "scoring window (peaks, contact durations, impacts per cycle).",
     "With the corrected mode shapes the post-resonance case produces no impacts (the forced amplitude, 0.46 mm, "
-    "stays below the 1 mm gap); the experiment reported about 8 impacts per beat.",
+    "stays below the 1 mm gap); the experiment reported about "
+    f"{sweep.POST_RESONANCE['impacts_per_beat']:g} impacts per beat.",  # experiment.toml's
     "A fixed-step engine resolves a contact's duration in whole steps; its errors at long steps include that.",
     "Costs are the simulators' own CPU time (stepping only) per simulated second, measured on the machine "
     "named above under the load average stated there; wall times are in runs.csv.",
@@ -46,16 +46,6 @@ CAVEATS = [
 STEPS_NOTE = ("Largest stable and accurate time steps (steps.csv), found by bisection: stable means the verdict "
               "ok or inaccurate; accuracy is judged against the reference on the engine's own chain. Each step is "
               "exact to one grid step (a ratio of 2^(1/4)); a probe that reached the time limit decides nothing.")
-
-
-def machine():
-    model = ""
-    try:
-        with open("/proc/cpuinfo") as f:
-            model = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), "")
-    except OSError:
-        pass
-    return f"{model or platform.processor()} x {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
 def read_commands(folder):
@@ -73,8 +63,9 @@ def read_commands(folder):
     return commands
 
 
-def provenance(suite, commands):
-    """What ran, where and under what load: the page's "What ran" list and summary.json's "suite"."""
+def provenance(suite, commands, ran_on):
+    """What ran, where (ran_on: machine.Machine) and under what load: the page's "What ran" list and summary.json's
+    "suite"."""
     versions = sorted({f"{r['engine']}: {r['engine_version']}" for r in suite.runs if r["engine_version"]})
     scenarios = {}
     for r in suite.runs:
@@ -89,9 +80,10 @@ def provenance(suite, commands):
                     or "not recorded (a results folder older than commands.jsonl)",
         "cases": "; ".join(f"{name}: {text}" for name, text in scenarios.items()),
         "time steps [s]": ", ".join(f"{s:g}" for s in steps) or "adaptive only",
-        "machine": machine(),
-        "load average during the runs (1 min)": (f"{loads[0]:.2f} to {loads[-1]:.2f}, median {loads[len(loads) // 2]:.2f} "
-                                                 f"on {os.cpu_count()} cores") if loads else "not recorded",
+        "machine": ran_on.line,
+        "load average during the runs (1 min)": (f"{loads[0]:.2f} to {loads[-1]:.2f}, median {loads[len(loads) // 2]:.2f}"
+                                                 + (f" on {ran_on.cores} cores" if ran_on.cores else "")) if loads
+                                                else "not recorded",
         "engines": "; ".join(versions),
         "suite folder": os.path.abspath(suite.folder),
     }
@@ -203,15 +195,16 @@ def main():
         steps = data.read_steps(args.suite)  # None unless the suite searched steps (--find-steps)
     except data.ResultsError as error:
         sys.exit(f"make_report: {error}")
-    experiment = data.read_experiment(os.path.join(os.path.dirname(os.path.abspath(__file__)), "experiment.toml"))
+    experiment = data.read_experiment()
     commands = read_commands(args.suite)
     tolerances = next((c["verdict_tolerances"] for c in reversed(commands) if "verdict_tolerances" in c),
-                      analysis.DEFAULT_TOLERANCES)
-    facts = provenance(suite, commands)
+                      metric_catalog.DEFAULT_TOLERANCES)
+    ran_on = machine.of_results(args.suite)
+    facts = provenance(suite, commands, ran_on)
     document = answer.summarise(suite, steps, experiment, tolerances, facts)
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(document, f, indent=1, allow_nan=False)
-    stamp = f"impactbench, {facts['made']}, {facts['machine']}"
+    stamp = f"impactbench, {facts['made']}, {ran_on.stamp}"
 
     sections = []  # (title, markdown text, html text, [figure paths])
     chosen_by_law = {}
@@ -299,11 +292,12 @@ def sweep_report(folder, out):
     if not data_of_sweep.rows:
         sys.exit(f"make_report: {folder}/sweep.csv holds no rows yet (no ratio has ended)")
     made = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    stamp = f"impactbench, {made}, {machine()}"
+    ran_on = machine.of_results(folder)
+    stamp = f"impactbench, {made}, {ran_on.stamp}"
     sections = sweep.sections(data_of_sweep, figures_folder, stamp, "Frequency sweep")
     settings = json.dumps(data_of_sweep.settings, indent=1)
     loads = sorted(r["load_average"] for r in data_of_sweep.rows if not math.isnan(r["load_average"]))
-    machine_line = f"{machine()}; load average {loads[0]:.2f} to {loads[-1]:.2f}" if loads else machine()
+    machine_line = f"{ran_on.line}; load average {loads[0]:.2f} to {loads[-1]:.2f}" if loads else ran_on.line
     warnings = data_of_sweep.warning_entries()
     lines = ["# impactbench: frequency sweep", "", sweep.summary_sentence(data_of_sweep)]
     lines += first_screen.warnings_markdown(warnings, unit="rows") + [""]
@@ -315,8 +309,8 @@ def sweep_report(folder, out):
         lines += [f"## {title}", "", text, ""] + [f"![{os.path.basename(p)}]({os.path.relpath(p, out)})" for p in paths] + [""]
         parts.append(f"<h2 id='{anchor(title)}'>{html.escape(title)}</h2>{table_html}")
         parts += [figure_html(p, out) for p in paths]
-    lines += ["## What ran", "", f"Made {made} on {machine_line}.", "", "```json", settings, "```"]
-    parts += ["<h2 id='provenance'>What ran</h2>", f"<p>Made {made} on {html.escape(machine_line)}.</p>",
+    lines += ["## What ran", "", f"Made {made}. Machine: {machine_line}.", "", "```json", settings, "```"]
+    parts += ["<h2 id='provenance'>What ran</h2>", f"<p>Made {made}. Machine: {html.escape(machine_line)}.</p>",
               f"<pre>{html.escape(settings)}</pre></body></html>"]
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -16,7 +16,7 @@ import math
 from collections import Counter
 from dataclasses import dataclass, field
 
-from impactbench_report import analysis, ensemble_groups, ensembles
+from impactbench_report import analysis, ensemble_groups, ensembles, metric_catalog
 from impactbench_report.ensembles import Interval
 
 # The relative drift of the same run's CPU time between two runs of a study on a shared machine: 15 to 30 %
@@ -189,13 +189,6 @@ def compare(base, new, comparable_cost, cost_floor=COST_NOISE_FLOOR):
     return found
 
 
-# A sweep row's measured numbers (sweep.csv): single, deterministic runs continued from ratio to ratio.
-SWEEP_METRICS = [("impacts per cycle", "impacts_per_cycle", "difference"),
-                 ("frame 1 sensor peak", "frame1_sensor_peak_acceleration_g", "relative"),
-                 ("frame 2 sensor peak", "frame2_sensor_peak_acceleration_g", "relative"),
-                 ("contact duration", "contact_duration_mean_s", "relative")]
-
-
 def sweep_cost(row):
     """A sweep row's (CPU s per simulated s, CPU s, spread): timed once."""
     return (row["cpu_time_s"] / row["duration_s"] if row["duration_s"] > 0 else math.nan), row["cpu_time_s"], 0.0
@@ -207,7 +200,8 @@ def sweep_verdict(row):
 
 def compare_sweep_rows(prefix, base_sweep, new_sweep, comparable, floor):
     """Each row of a sweep (an id: configuration, start and ratio) as a ConfigurationChange; its regime is part
-    of its verdict (a row that changed regime moved)."""
+    of its verdict (a row that changed regime moved). Its metrics are sweep.csv's measured numbers
+    (metric_catalog.SWEEP): single, deterministic runs continued from ratio to ratio."""
     rows_a = {r["id"]: r for r in base_sweep.rows} if base_sweep else {}
     rows_b = {r["id"]: r for r in new_sweep.rows} if new_sweep else {}
     found = []
@@ -220,8 +214,8 @@ def compare_sweep_rows(prefix, base_sweep, new_sweep, comparable, floor):
         change.base_verdicts, change.new_verdicts = sweep_verdict(a), sweep_verdict(b)
         change.newly_failing = bool(b) and b["verdict"] in FAILING and not (a and a["verdict"] in FAILING)
         if a and b:
-            metrics = (judge(label, column, kind, Interval(a.get(column, math.nan), 1, "single run"),
-                             Interval(b.get(column, math.nan), 1, "single run")) for label, column, kind in SWEEP_METRICS)
+            metrics = (judge(m.label, m.column, m.kind, Interval(a.get(m.column, math.nan), 1, "single run"),
+                             Interval(b.get(m.column, math.nan), 1, "single run")) for m in metric_catalog.SWEEP)
             change.metrics = [m for m in metrics if m is not None]
             change.cost = judge_cost(sweep_cost(a), sweep_cost(b), comparable, floor)
         found.append(change)
@@ -249,8 +243,8 @@ def compare_runs(base, new, comparable_cost, cost_floor):
         change.newly_failing = (sum(n for v, n in change.new_verdicts.items() if v in FAILING) >
                                 sum(n for v, n in change.base_verdicts.items() if v in FAILING))
         if a.stable or b.stable or a["engine"] == "reference":
-            for label, column, error_column, kind, _ in analysis.SCORED:
-                metric = judge_metric(base_cases, a, new_cases, b, label, column, error_column, kind)
+            for m in metric_catalog.SCORED:
+                metric = judge_metric(base_cases, a, new_cases, b, m.label, m.column, m.error_column, m.kind)
                 if metric is not None:
                     change.metrics.append(metric)
         change.cost = judge_cost(run_cost(base.suite, a), run_cost(new.suite, b), comparable_cost, cost_floor)

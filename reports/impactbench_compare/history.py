@@ -7,7 +7,7 @@ import html
 import math
 import os
 
-from impactbench_report import analysis
+from impactbench_report import analysis, metric_catalog
 
 from . import changes, page, writers
 from .page import plt
@@ -20,15 +20,15 @@ def series(folders, job_id):
     runs = [folder.configurations.get(job_id) for folder in folders]
     out = {}
     if any(isinstance(r, dict) for r in runs):  # a sweep's row
-        for label, column, kind in changes.SWEEP_METRICS:
-            out[label] = [r.get(column, math.nan) if r is not None else math.nan for r in runs]
+        for m in metric_catalog.SWEEP:
+            out[m.label] = [r.get(m.column, math.nan) if r is not None else math.nan for r in runs]
         out["CPU s per simulated s"] = [changes.sweep_cost(r)[0] if r is not None else math.nan for r in runs]
         return out
-    for label, _, error_column, kind, _ in analysis.SCORED:
-        values = [analysis.signed_error(r, error_column, "beam") if r is not None else math.nan for r in runs]
+    for m in metric_catalog.SCORED:
+        values = [analysis.signed_error(r, m.error_column, "beam") if r is not None else math.nan for r in runs]
         if any(not math.isnan(v) for v in values):
-            out[label + (" error [%]" if kind == "relative" else " error")] = [
-                100 * v if kind == "relative" else v for v in values]
+            out[m.label + (" error [%]" if m.kind == "relative" else " error")] = [
+                100 * v if m.kind == "relative" else v for v in values]
     out["CPU s per simulated s"] = [r.number("cpu_time_per_simulated_s") if r is not None else math.nan for r in runs]
     return out
 

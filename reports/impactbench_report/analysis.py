@@ -1,4 +1,4 @@
-"""What the report picks from the runs: the headline errors and how they are scored, each configuration's
+"""What the report picks from the runs: how the headline errors (metric_catalog.py) are scored, each configuration's
 best run and largest stable step, and which configuration answers a case best out of the box and tuned.
 
 One error convention (issue 16): every error is named by what it is measured against, the BEAM (the
@@ -8,35 +8,9 @@ alone). runs.csv names them vs_reference_* and vs_chain_reference_*."""
 
 import math
 
+from . import metric_catalog
+
 AGAINST = {"beam": "vs_reference_", "own chain": "vs_chain_reference_"}
-
-# The headline errors the figures draw (label, error column without its prefix, kind).
-HEADLINE = [
-    ("sensor peak, frame 1", "frame1_sensor_peak_relative_error", "relative"),
-    ("contact duration", "contact_duration_relative_error", "relative"),
-    ("impacts per cycle", "impacts_per_cycle_difference", "difference"),
-]
-
-# The metrics a run is scored on: (label, runs.csv column of the metric, error column without its prefix, kind,
-# tolerance key in commands.jsonl's verdict_tolerances). Relative errors are fractions; impacts per cycle
-# is a difference.
-SCORED = [
-    ("frame 1 sensor peak", "frame1_sensor_peak_acceleration_g", "frame1_sensor_peak_relative_error", "relative",
-     "sensor_peak_relative_error"),
-    ("frame 2 sensor peak", "frame2_sensor_peak_acceleration_g", "frame2_sensor_peak_relative_error", "relative",
-     "sensor_peak_relative_error"),
-    ("contact duration", "contact_duration_mean_s", "contact_duration_relative_error", "relative",
-     "contact_duration_relative_error"),
-    ("impacts per cycle", "impacts_per_cycle", "impacts_per_cycle_difference", "difference",
-     "impacts_per_cycle_difference"),
-    ("frame 1 log decrement", "frame1_log_decrement", "frame1_log_decrement_relative_error", "relative",
-     "log_decrement_relative_error"),
-]
-
-# The harness's verdict tolerances (harness/scoring/verdict.h), used only for a results folder that predates
-# commands.jsonl (which states the tolerances its verdicts used).
-DEFAULT_TOLERANCES = {"sensor_peak_relative_error": 0.10, "contact_duration_relative_error": 0.10,
-                      "impacts_per_cycle_difference": 0.10, "log_decrement_relative_error": 0.10}
 
 NATIVE, TUNED = "native", ("matched", "injected")
 
@@ -85,15 +59,15 @@ def score(run, tolerances, against="beam", skip=()):
     chain convergence flags, chain_convergence.py), that metric's label, its signed error): errors of different
     kinds compare through their tolerances. (inf, None, NaN) without any error."""
     worst = (math.inf, None, math.nan)
-    for label, _, column, _, key in SCORED:
-        if label in skip:
+    for metric in metric_catalog.SCORED:
+        if metric.label in skip:
             continue
-        value = signed_error(run, column, against)
+        value = signed_error(run, metric.error_column, against)
         if math.isnan(value):
             continue
-        multiple = abs(value) / tolerances[key]
+        multiple = abs(value) / tolerances[metric.tolerance_key]
         if worst[1] is None or multiple > worst[0]:
-            worst = (multiple, label, value)
+            worst = (multiple, metric.label, value)
     return worst
 
 

@@ -12,7 +12,7 @@ ensemble's intervals beside it, each naming the job ids of the members it was co
 import math
 
 from . import ablation, analysis, answer_sentence, budget, chain_convergence, data, engines, ensemble_groups, fronts, \
-    settings, significance
+    metric_catalog, settings, significance
 from .tables import percent
 
 SCHEMA_VERSION = 4
@@ -41,8 +41,8 @@ def run_entry(run, tolerances, experiment_peak_g=None, need=None, skip=()):
         entry["contact_path"] = analysis.contact_path(run)
     entry["runs_csv"] = {c: value(run, c) for c in RUN_COLUMNS if c in run.values}
     for name, prefix in analysis.AGAINST.items():
-        errors = {prefix + column: value(run, prefix + column) for _, _, column, _, _ in analysis.SCORED
-                  if prefix + column in run.values}
+        errors = {prefix + m.error_column: value(run, prefix + m.error_column) for m in metric_catalog.SCORED
+                  if prefix + m.error_column in run.values}
         entry["errors_vs_" + name.replace(" ", "_")] = errors
     for against in analysis.AGAINST:
         multiple, label, error = analysis.score(run, tolerances, against, skip)
@@ -87,7 +87,7 @@ def ensemble_entry(run):
 
 
 def tolerance_of(label, tolerances):
-    return next(tolerances[key] for name, _, _, _, key in analysis.SCORED if name == label)
+    return tolerances[metric_catalog.by_label(label).tolerance_key]
 
 
 def step_limit(suite, steps, scenario, law, config):
@@ -294,7 +294,7 @@ def error_text(largest):
     'frame 1 sensor peak -6.5 % ± 1.2 %'."""
     if not largest:
         return "no error defined"
-    kind = next(k for name, _, _, k, _ in analysis.SCORED if name == largest["metric"])
+    kind = metric_catalog.by_label(largest["metric"]).kind
     text = f"{largest['metric']} " + (percent(largest["error"]) if kind == "relative" else f"{largest['error']:+.3g}")
     if largest.get("half_width") is not None:
         text += " " + half_width_text(largest["half_width"], kind)
@@ -307,7 +307,7 @@ def error_cell(largest, intervals_exist=True):
     text = error_text(largest)
     if not largest or largest.get("half_width") is not None or not intervals_exist or not largest.get("interval_method"):
         return text
-    kind = next(k for name, _, _, k, _ in analysis.SCORED if name == largest["metric"])
+    kind = metric_catalog.by_label(largest["metric"]).kind
     if largest.get("single_run_noise") is not None:
         return text + f" (single run; noise {half_width_text(largest['single_run_noise'], kind)})"
     return text + " (" + largest["interval_method"].split(";")[0] + ")"

@@ -13,7 +13,7 @@ missing. The reference's own numerical error sits beside them (reference_numeric
 
 import math
 
-from . import analysis, ensemble_groups, significance
+from . import analysis, ensemble_groups, metric_catalog, significance
 
 # Residual, relative to the largest part (at least one), below which the parts are said to add up: runs.csv
 # writes each error with nine significant digits (harness/records/number_text.h), so three agree to about 1e-9.
@@ -66,10 +66,10 @@ def run_budget(suite, index, run, need):
     chain_run = ensemble_groups.reference_of(index, run, "own chain")
     noise = significance.noise_of(run, need)
     metrics = {}
-    for label, _, column, kind, _ in analysis.SCORED:
-        entry = metric_budget(run, chain_run, column, kind, noise)
+    for m in metric_catalog.SCORED:
+        entry = metric_budget(run, chain_run, m.error_column, m.kind, noise)
         if entry is not None:
-            metrics[label] = {"kind": kind, **entry}
+            metrics[m.label] = {"kind": m.kind, **entry}
     links = run.number("chain_links")
     return {"chain_links": None if math.isnan(links) or links <= 0 else int(links),
             "chain_reference_job_id": chain_run["job_id"] if chain_run is not None else None, "metrics": metrics}
@@ -92,7 +92,7 @@ def reference_numerical_error(suite, scenario, law):
     if beam is None or tight is None:
         return None
     metrics = {}
-    for label, column, _, kind, _ in analysis.SCORED:
+    for label, column, kind in ((m.label, m.column, m.kind) for m in metric_catalog.SCORED):
         value, exact = beam.number(column), tight.number(column)
         if math.isnan(value) or math.isnan(exact) or (kind == "relative" and exact == 0):
             continue

@@ -9,7 +9,7 @@ import math
 import matplotlib.pyplot as plt
 from matplotlib import ticker
 
-from . import analysis, engines, fronts
+from . import analysis, engines, fronts, metric_catalog
 from .figures import save
 from .tables import step_text
 
@@ -87,8 +87,8 @@ def draw_metric(ax, label, rows, tolerance, kind, flagged):
 def case_figure(case, tolerances, folder, name, stamp):
     """A case's budget figure; None where no named point has a budget."""
     rows = named_points(case)
-    metrics = [(label, kind, key) for label, _, _, kind, key in analysis.SCORED
-               if any(label in p["budget"]["metrics"] for p, _ in rows)]
+    metrics = [(m.label, m.kind, m.tolerance_key) for m in metric_catalog.SCORED
+               if any(m.label in p["budget"]["metrics"] for p, _ in rows)]
     if not rows or not metrics:
         return None
     flagged = {f["metric"] for f in case.get("metrics_not_ranked") or []}

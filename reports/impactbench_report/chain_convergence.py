@@ -14,7 +14,7 @@ and ranks no engine in that case (budget.sound_metrics), when
 
 import math
 
-from . import analysis
+from . import analysis, metric_catalog
 from .tables import signed_text
 
 # How much of a tolerance the chain may take for its resolution to count as settled: a quarter leaves three
@@ -95,7 +95,7 @@ def case_convergence(suite, scenario, law, tolerances):
     if len(references) < 2:
         return None
     metrics = {}
-    for label, _, column, kind, key in analysis.SCORED:
+    for label, column, kind, key in ((m.label, m.error_column, m.kind, m.tolerance_key) for m in metric_catalog.SCORED):
         entry = metric_convergence(references, column, kind, tolerances[key])
         if entry["errors_vs_beam"]:
             metrics[label] = {"error_column": analysis.AGAINST["beam"] + column, "kind": kind,

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import engines
+from . import engines, metric_catalog
 
 G = 9.80665  # standard gravity [m/s^2]
 # The verdicts of a run that gave a usable trajectory (an unstable or failed one did not).
@@ -214,9 +214,20 @@ def read_series_rows(path, text):
     return {name: np.asarray(values, float) for name, values in columns.items()}
 
 
-def read_experiment(path):
+# The experiment's measurements (rig.md section 7), each with its source: data shown beside the simulators.
+EXPERIMENT_FILE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "experiment.toml")
+
+
+def read_experiment(path=EXPERIMENT_FILE):
+    """experiment.toml: {case: {motor_ratio_to_f1, frame1_peak_acceleration_g, impacts_per_beat, observations}}, each
+    case with what was measured in it."""
     with open(path, "rb") as f:
         return tomllib.load(f)
+
+
+def experiment_ratios(experiment):
+    """The motor speed ratios (to f_1) the experiment ran at, ascending: the operating points a sweep marks."""
+    return tuple(sorted(case["motor_ratio_to_f1"] for case in experiment.values() if "motor_ratio_to_f1" in case))
 
 
 def read_scenario(path):
@@ -236,20 +247,6 @@ def contact_stiffness(scenario, law):
     if law == "viscoelastic":
         return float(contact.get("viscoelastic", {}).get("stiffness_n_per_m", math.nan))
     return math.nan
-
-
-# steps.csv (suite --find-steps): the headline metrics whose largest accurate step was searched, as
-# (column prefix, label, kind of tolerance).
-STEP_METRICS = [
-    ("frame1_sensor_peak", "frame 1 sensor peak", "relative"),
-    ("contact_duration", "contact duration", "relative"),
-    ("impacts_per_cycle", "impacts per cycle", "absolute"),
-]
-STEP_TOLERANCE_COLUMNS = {
-    "frame1_sensor_peak": "frame1_sensor_peak_relative_error_tolerance",
-    "contact_duration": "contact_duration_relative_error_tolerance",
-    "impacts_per_cycle": "impacts_per_cycle_difference_tolerance",
-}
 
 
 class StepRow(Record):
@@ -274,7 +271,7 @@ def read_steps(folder):
                 else:
                     values[name] = text or ""
             key = (values["group_id"], values["step_range_min_s"], values["step_range_max_s"],
-                   tuple(values[c] for c in STEP_TOLERANCE_COLUMNS.values()))
+                   tuple(values[m.step_tolerance_column] for m in metric_catalog.STEP_SEARCHED))
             rows[key] = StepRow(values)
     return list(rows.values())
 

@@ -9,7 +9,7 @@ the reference ensemble of its kind (the beam, or the reference on the engine's o
 import math
 from dataclasses import dataclass, field
 
-from . import analysis, ensembles
+from . import analysis, ensembles, metric_catalog
 
 
 def start_of(run):
@@ -115,13 +115,13 @@ def attach(suite, members):
             references = {"beam": reference_of(index, run, "beam")} if "modes=chain" in run["options"] else {}
         if ensemble.n <= 1 and all(r is None or ensembles_by_id[r["job_id"]].n <= 1 for r in references.values()):
             continue
-        for _, column, _, _, _ in analysis.SCORED:
-            ensemble.metrics[column] = metric_interval(ensemble, column)
+        for m in metric_catalog.SCORED:
+            ensemble.metrics[m.column] = metric_interval(ensemble, m.column)
         for against, reference in references.items():
             if reference is None:
                 continue
             reference_ensemble = ensembles_by_id[reference["job_id"]]
-            for _, column, error_column, kind, _ in analysis.SCORED:
+            for column, error_column, kind in ((m.column, m.error_column, m.kind) for m in metric_catalog.SCORED):
                 if math.isnan(run.number(analysis.AGAINST[against] + error_column)):
                     continue  # not defined for this run (no motor, a reference that failed): as the row says
                 error = ensembles.ensemble_error(ensemble.metrics[column], metric_interval(reference_ensemble, column),
@@ -138,4 +138,4 @@ def reference_intervals(suite, scenario, law):
         return None, {}
     group = suite.members.get(reference["job_id"], [reference])
     ensemble = Ensemble(group)
-    return ensemble, {column: metric_interval(ensemble, column) for _, column, _, _, _ in analysis.SCORED}
+    return ensemble, {m.column: metric_interval(ensemble, m.column) for m in metric_catalog.SCORED}

@@ -16,7 +16,7 @@ plt.rcParams["svg.fonttype"] = "none"
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from . import analysis, engines, svg_saving  # noqa: E402
+from . import analysis, engines, metric_catalog, svg_saving  # noqa: E402
 from .label_placement import POSITIONS, label_point, place_labels  # noqa: E402
 from .tables import step_text  # noqa: E402
 
@@ -106,8 +106,8 @@ def run_cost(run):
 
 
 def tolerance_of(column, tolerances):
-    key = next(key for _, _, error_column, _, key in analysis.SCORED if error_column == column)
-    return tolerances.get(key, analysis.DEFAULT_TOLERANCES[key])
+    key = next(m.tolerance_key for m in metric_catalog.SCORED if m.error_column == column)
+    return tolerances.get(key, metric_catalog.DEFAULT_TOLERANCES[key])
 
 
 def why_undefined(column, scenario, law, suite):
@@ -125,7 +125,7 @@ def error_against_cost(suite, scenario, law, folder, provenance, tolerances=None
     one curve per engine configuration through its stable runs (filled and solid: vs beam; hollow and
     dashed: vs own chain), the time step at each point, the tolerance, exact zeros on the bottom axis,
     unstable and failed runs as crosses at the top, the references' costs."""
-    tolerances = tolerances or analysis.DEFAULT_TOLERANCES
+    tolerances = tolerances or metric_catalog.DEFAULT_TOLERANCES
     runs = suite.runs_of(scenario, law)
     engine_runs = [r for r in runs if r["engine"] not in ("reference", "")]
     configs = analysis.configurations(runs)
@@ -133,8 +133,9 @@ def error_against_cost(suite, scenario, law, folder, provenance, tolerances=None
     chains = [r for r in runs if r["engine"] == "reference" and not r.is_beam_reference]
     defined = lambda column: any(not math.isnan(analysis.signed_error(r, column, prefix))  # noqa: E731
                                  for r in engine_runs + chains for prefix in analysis.AGAINST.values())
-    metrics = [m for m in analysis.HEADLINE if defined(m[1])]
-    dropped = [why_undefined(column, scenario, law, suite) for _, column, _ in analysis.HEADLINE if not defined(column)]
+    headline = [(m.figure_label, m.error_column, m.kind) for m in metric_catalog.HEADLINE]
+    metrics = [m for m in headline if defined(m[1])]
+    dropped = [why_undefined(column, scenario, law, suite) for _, column, _ in headline if not defined(column)]
     panels = max(1, len(metrics))
     stopped = [r for r in engine_runs if not r.stable]
     stopped_configs = [c for c in configs if any(r.config == c for r in stopped)]

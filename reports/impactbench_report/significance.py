@@ -4,7 +4,7 @@ tolerances that an interval leaves undecided. The statistics themselves: ensembl
 
 import math
 
-from . import analysis, ensemble_groups, ensembles
+from . import analysis, ensemble_groups, ensembles, metric_catalog
 from .ensembles import ENSEMBLE_NEED_FRACTION_OF_TOLERANCE, Interval
 
 
@@ -23,7 +23,8 @@ def case_need(suite, scenario, law, tolerances):
         return {"needed": None, "reference_starts": 1, "reference_job_ids": ensemble.job_ids,
                 "why": "the reference ran once: its scatter over starts is not measured"}
     spread, noise, above = {}, {}, []
-    for label, column, error_column, kind, key in analysis.SCORED:
+    for m in metric_catalog.SCORED:
+        label, column, error_column, kind, key = m.label, m.column, m.error_column, m.kind, m.tolerance_key
         interval = intervals[column]
         half = ensembles.single_run_noise(interval, kind)
         if half is None:
@@ -42,7 +43,7 @@ def case_need(suite, scenario, law, tolerances):
             "rule": f"a single reference start's 95 % scatter in a verdict metric above "
                     f"{ENSEMBLE_NEED_FRACTION_OF_TOLERANCE:g} of that metric's tolerance",
             "spread": spread, "engines_ran_once": ran_once, "single_run_noise": noise}
-    labels = {column: label for label, column, _, _, _ in analysis.SCORED}
+    labels = {m.column: m.label for m in metric_catalog.SCORED}
     if above:
         thresholds = ", ".join(dict.fromkeys(t for _, t in above))
         need["why"] = (f"one reference start scatters {', '.join(a for a, _ in above)} (95 %, {ensemble.n} starts), "
@@ -60,7 +61,7 @@ def case_need(suite, scenario, law, tolerances):
 def single_runs_note(need):
     """'single runs: differences below ±6 % (frame 1 sensor peak) are not significant', per metric that
     needed the ensemble."""
-    labels = {column: label for label, column, _, _, _ in analysis.SCORED}
+    labels = {m.column: m.label for m in metric_catalog.SCORED}
     parts = [f"±{metric_text(s['kind'], s['single_run_half_width'])} ({labels[column]})"
              for column, s in need["spread"].items() if s["exceeds"]]
     return "single runs: differences below " + ", ".join(parts) + " are not significant"
@@ -94,7 +95,8 @@ def score_interval(run, tolerances, need=None, against="beam", skip=()):
     multiple, label, _ = analysis.score(run, tolerances, against, skip)
     if label is None:
         return None
-    _, _, column, _, key = next(m for m in analysis.SCORED if m[0] == label)
+    metric = metric_catalog.by_label(label)
+    column, key = metric.error_column, metric.tolerance_key
     error = error_with_interval(run, column, against, noise_of(run, need))
     tolerance = tolerances[key]
     if error.half_width is None:
@@ -113,13 +115,13 @@ def verdict(run, tolerances, need=None, against="beam", skip=()):
     the intervals; None for a single run without a measured noise (its ✗ is its error's own)."""
     noise = noise_of(run, need)
     errors = []
-    for label, _, column, _, key in analysis.SCORED:
-        if label in skip:
+    for m in metric_catalog.SCORED:
+        if m.label in skip:
             continue
-        if math.isnan(analysis.signed_error(run, column, against)):
+        if math.isnan(analysis.signed_error(run, m.error_column, against)):
             continue
-        errors.append((label, error_with_interval(run, column, against, noise)))
-    tolerance_of = {label: tolerances[key] for label, _, _, _, key in analysis.SCORED}.get
+        errors.append((m.label, error_with_interval(run, m.error_column, against, noise)))
+    tolerance_of = {m.label: tolerances[m.tolerance_key] for m in metric_catalog.SCORED}.get
     return ensembles.verdict(errors, tolerance_of)
 
 

@@ -7,7 +7,7 @@ import textwrap
 
 from matplotlib import ticker, transforms
 
-from . import analysis, data
+from . import analysis, data, metric_catalog
 from .figures import (METRIC_COLOURS, REPOSITORY, STEP_MARKERS, VERDICT_COLOURS, VERDICT_MARKERS, legend_axis,
                       log_axis, padded, plt, proxy, save)
 from .tables import step_text
@@ -50,7 +50,7 @@ def stability_map(suite, law, folder, provenance, steps=None):
     grid = figure.add_gridspec(rows, columns + 1, width_ratios=[1] * columns + [0.7])
     all_steps = [r.number("time_step_s") for r in runs] + [
         s.number(c) for s in searched for c in ["largest_stable_step_s"] +
-        [f"{p}_largest_step_within_tolerance_s" for p, _, _ in data.STEP_METRICS] if s.number(c) > 0]
+        [f"{m.step_prefix}_largest_step_within_tolerance_s" for m in metric_catalog.STEP_SEARCHED] if s.number(c) > 0]
     palette = METRIC_COLOURS
     for index, config in enumerate(configs):
         ax = figure.add_subplot(grid[index // columns, index % columns])
@@ -68,7 +68,7 @@ def stability_map(suite, law, folder, provenance, steps=None):
             if row.number("largest_stable_step_s") > 0:
                 ax.plot([x], [row.number("largest_stable_step_s")], "_", color="black", markersize=16,
                         markeredgewidth=2, zorder=4)
-            for i, (prefix, _, _) in enumerate(data.STEP_METRICS):
+            for i, prefix in enumerate(m.step_prefix for m in metric_catalog.STEP_SEARCHED):
                 value = row.number(f"{prefix}_largest_step_within_tolerance_s")
                 if value > 0:
                     ax.scatter([x + 0.1 * (i - 1)], [value], marker=STEP_MARKERS[prefix], facecolors="none",
@@ -95,7 +95,7 @@ def stability_map(suite, law, folder, provenance, steps=None):
                              markeredgewidth=2))
         handles += [proxy(f"step search: largest step with\n{label} within tolerance", marker=STEP_MARKERS[prefix],
                           color=palette[i], markerfacecolor="none")
-                    for i, (prefix, label, _) in enumerate(data.STEP_METRICS)]
+                    for i, (prefix, label) in enumerate((m.step_prefix, m.label) for m in metric_catalog.STEP_SEARCHED)]
     legend_axis(figure.add_subplot(grid[:, columns]), handles)
     return save(figure, folder, f"stability_{law}",
                 f"{law}: the verdict of every engine run, by case (its contact parameter under its name) and time "
@@ -156,15 +156,15 @@ def step_limits(steps, scenario, law, folder, provenance):
             failed = min(probes.items(), key=lambda p: abs(p[0] / unstable - 1), default=(0, ""))[1] == "failed"
             ax.scatter([unstable], [y], marker="x", color=VERDICT_COLOURS["failed" if failed else "unstable"], s=40,
                        zorder=3)
-        for i, (prefix, label, _) in enumerate(data.STEP_METRICS):
+        for i, prefix in enumerate(m.step_prefix for m in metric_catalog.STEP_SEARCHED):
             step = row.number(f"{prefix}_largest_step_within_tolerance_s")
             if not math.isnan(step):
                 ax.scatter([step], [y + 0.12 * (i - 1)], marker=STEP_MARKERS[prefix], color=metric_colours[i], s=30,
                            zorder=4)
         # what the markers cannot show: a metric within tolerance at no step of the range, or not decided
-        missing = [f"{label}: {row[prefix + '_status']}" for prefix, label, _ in data.STEP_METRICS
-                   if math.isnan(row.number(f"{prefix}_largest_step_within_tolerance_s"))
-                   and not row[f"{prefix}_status"].startswith("not applicable")]
+        missing = [f"{m.label}: {row[m.step_prefix + '_status']}" for m in metric_catalog.STEP_SEARCHED
+                   if math.isnan(row.number(f"{m.step_prefix}_largest_step_within_tolerance_s"))
+                   and not row[f"{m.step_prefix}_status"].startswith("not applicable")]
         if missing:
             ax.annotate(textwrap.fill("; ".join(missing), 120), (low, y + 0.34), fontsize=6, color="#555555",
                         va="center")
@@ -183,11 +183,11 @@ def step_limits(steps, scenario, law, folder, provenance):
     handles += [proxy(f"a step probed by the search: {verdict}", marker="|", color=colour, markersize=10)
                 for verdict, colour in VERDICT_COLOURS.items()]
     handles += [proxy(f"{label}: largest step within tolerance", marker=STEP_MARKERS[prefix], color=metric_colours[i])
-                for i, (prefix, label, _) in enumerate(data.STEP_METRICS)]
+                for i, (prefix, label) in enumerate((m.step_prefix, m.label) for m in metric_catalog.STEP_SEARCHED)]
     ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1))
-    tolerances = ", ".join(f"{label} {rows[0].number(data.STEP_TOLERANCE_COLUMNS[prefix]):g}"
-                           + (" relative" if kind == "relative" else "")
-                           for prefix, label, kind in data.STEP_METRICS)
+    tolerances = ", ".join(f"{m.label} {rows[0].number(m.step_tolerance_column):g}"
+                           + (" relative" if m.kind == "relative" else "")
+                           for m in metric_catalog.STEP_SEARCHED)
     return save(figure, folder, f"steps_{scenario}_{law}",
                 f"{scenario}, {law}: largest stable step and largest step within tolerance of the reference on the "
                 f"engine's own chain ({tolerances}), found by bisection on a grid of "

@@ -9,10 +9,13 @@ import math
 import os
 
 from . import data, engines
+from .metric_catalog import CONTACT_DURATION, FRAME1_SENSOR_PEAK, FRAME2_SENSOR_PEAK, IMPACTS_PER_CYCLE
 from .sweep_starts import (START_ENSEMBLE_HEADER, ensemble_member, multistable, multistable_sentence, ratio_text,
                            regime_agrees, regime_of, start_ensemble_rows, start_ensemble_table, start_ensembles)
 
-EXPERIMENT_RATIOS = (0.95, 1.00, 1.17)  # the published operating points (rig.md section 7)
+EXPERIMENT = data.read_experiment()  # experiment.toml: the published operating points (rig.md section 7)
+EXPERIMENT_RATIOS = data.experiment_ratios(EXPERIMENT)
+POST_RESONANCE = EXPERIMENT["post_resonance"]  # its ratio, and the impacts per beat the experiment counted there
 STARTS = ("up", "down", "rest")
 
 
@@ -81,11 +84,12 @@ def label(config):
     return f"{engine} {options or 'default'}, dt {step:g} s"
 
 
-# sweep.csv's numeric columns; a quantity runs.csv has too carries runs.csv's name and unit (docs/sweeps.md).
+# sweep.csv's numeric columns, in its order; a quantity runs.csv has too carries runs.csv's name and unit
+# (docs/sweeps.md), the scored metrics among them metric_catalog's (its SWEEP).
 NUMBERS = ("ratio", "ensemble_start", "ensemble_starts", "initial_displacement_offset_m", "time_step_s", "motor_frequency_hz", "duration_s", "window_s", "impacts",
-           "impacts_per_cycle", "period_n", "impacts_per_period", "frame1_sensor_peak_acceleration_g",
-           "frame2_sensor_peak_acceleration_g", "frame1_peak_displacement_m", "frame2_peak_displacement_m",
-           "mean_approach_velocity_m_s", "contact_duration_mean_s", "poincare_samples", "steps", "cpu_time_s",
+           IMPACTS_PER_CYCLE.column, "period_n", "impacts_per_period", FRAME1_SENSOR_PEAK.column,
+           FRAME2_SENSOR_PEAK.column, "frame1_peak_displacement_m", "frame2_peak_displacement_m",
+           "mean_approach_velocity_m_s", CONTACT_DURATION.column, "poincare_samples", "steps", "cpu_time_s",
            "wall_time_s", "load_average")
 
 
@@ -199,7 +203,8 @@ def branch_facts(sweep, law):
 
 
 def answer_sentences(sweep):
-    """The measured answer to "does a sweep up reach 1.17 f_1 still impacting?", one sentence per law."""
+    """The measured answer to "does a sweep up reach the experiment's post-resonance ratio (1.17 f_1) still
+    impacting?", one sentence per law."""
     sentences = []
     for law in sweep.laws():
         f = branch_facts(sweep, law)
@@ -212,13 +217,15 @@ def answer_sentences(sweep):
             else f"keeps impacting up to r = {ratio_text(last)}")
         if f.get("down_last_impacting_ratio") is not None:
             text += f" (sweeping down, it first impacts at r = {ratio_text(f['down_last_impacting_ratio'])})"
-        at117 = f["up_at_experiment"].get(1.17)
-        if at117 is not None:
-            if impacts(at117):
-                text += (f"; at 1.17 f_1 it impacts, {at117['impacts_per_cycle']:.2f} impacts per cycle "
-                         f"({at117['regime']})")
+        ratio = POST_RESONANCE["motor_ratio_to_f1"]
+        post = f["up_at_experiment"].get(ratio)
+        if post is not None:
+            if impacts(post):
+                text += (f"; at {ratio:g} f_1 it impacts, {post[IMPACTS_PER_CYCLE.column]:.2f} impacts per cycle "
+                         f"({post['regime']})")
             else:
-                text += "; at 1.17 f_1 (the experiment's post-resonance, about 8 impacts per beat) it has no impact"
+                text += (f"; at {ratio:g} f_1 (the experiment's post-resonance, about "
+                         f"{POST_RESONANCE['impacts_per_beat']:g} impacts per beat) it has no impact")
         coexisting = f.get("coexisting", [])
         if coexisting:
             text += ("; up and down differ at r = " + ", ".join(f"{ratio_text(r)} ({u} up, {d} down)" for r, u, d in coexisting))
@@ -248,11 +255,12 @@ def agreement(sweep):
                 reached = {id(r): sweep.start_ensembles.get((law, round(r["ratio"], 6))) for r, _ in paired}
                 same = [(r, q) for r, q in paired if regime_agrees(r, q, reached[id(r)])]
                 differ = [(r, q) for r, q in paired if not regime_agrees(r, q, reached[id(r)])]
-                ipc = [abs(r["impacts_per_cycle"] - q["impacts_per_cycle"]) for r, q in paired
-                       if r["verdict"] == "ok" and not math.isnan(r["impacts_per_cycle"]) and not math.isnan(q["impacts_per_cycle"])]
-                peaks = sorted(abs(r["frame1_sensor_peak_acceleration_g"] / q["frame1_sensor_peak_acceleration_g"] - 1)
+                count, peak = IMPACTS_PER_CYCLE.column, FRAME1_SENSOR_PEAK.column  # a difference, a relative error
+                ipc = [abs(r[count] - q[count]) for r, q in paired
+                       if r["verdict"] == "ok" and not math.isnan(r[count]) and not math.isnan(q[count])]
+                peaks = sorted(abs(r[peak] / q[peak] - 1)
                                for r, q in paired
-                               if impacts(r) and impacts(q) and q["frame1_sensor_peak_acceleration_g"] > 0)
+                               if impacts(r) and impacts(q) and q[peak] > 0)
                 table.append({
                     "configuration": label(config), "law": law, "start": start, "ratios": len(paired),
                     "agreement": len(same) / len(paired),

@@ -4,7 +4,7 @@ values in runs.csv and nothing else, so that a table can be checked against the 
 import html
 import math
 
-from . import analysis
+from . import analysis, metric_catalog
 
 EXPERIMENT_NOTE = "experiment (rig.md section 7)"
 
@@ -37,8 +37,7 @@ def percent(value):
 
 
 # The case table's metrics: (label with unit, runs.csv column, error column without prefix, kind).
-CASE_METRICS = [(f"{label} [{unit}]", column, error, kind) for (label, column, error, kind, _), unit in
-                zip(analysis.SCORED, ("g", "g", "s", "-", "-"))]
+CASE_METRICS = [(f"{m.label} [{m.unit}]", m.column, m.error_column, m.kind) for m in metric_catalog.SCORED]
 
 
 def error_cell(run, column, kind, against):
@@ -143,19 +142,19 @@ def step_cell(row, prefix):
 def steps_table(steps, scenario, law):
     """From steps.csv: per engine configuration, the largest stable step, the smallest unstable step
     found, the largest step within tolerance per headline metric, and the search's cost and notes."""
-    from .data import STEP_METRICS, STEP_TOLERANCE_COLUMNS, steps_of
+    from .data import steps_of
     rows = steps_of(steps, scenario, law)
     if not rows:
         return None, None
     header = ["configuration", "largest stable step [s]", "smallest unstable step [s]"]
-    for prefix, label, kind in STEP_METRICS:
-        tolerance = rows[0].number(STEP_TOLERANCE_COLUMNS[prefix])
-        header.append(f"{label} within {100 * tolerance:g} % up to [s]" if kind == "relative"
-                      else f"{label} within {tolerance:g} up to [s]")
+    for m in metric_catalog.STEP_SEARCHED:
+        tolerance = rows[0].number(m.step_tolerance_column)
+        header.append(f"{m.label} within {100 * tolerance:g} % up to [s]" if m.kind == "relative"
+                      else f"{m.label} within {tolerance:g} up to [s]")
     header += ["probes", "probe run time [s]", "notes"]
     table = []
     for row in rows:
         table.append([row.config, step_cell(row, "stability"), fmt(row.number("smallest_unstable_step_s"))]
-                     + [step_cell(row, prefix) for prefix, _, _ in STEP_METRICS]
+                     + [step_cell(row, m.step_prefix) for m in metric_catalog.STEP_SEARCHED]
                      + [fmt(row.number("probes")), fmt(row.number("probes_wall_time_s"), 3), row["notes"] or ""])
     return header, table

@@ -21,7 +21,7 @@ import unittest
 from scipy import stats
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from impactbench_report import analysis, answer, data, ensembles, first_screen, tables  # noqa: E402
+from impactbench_report import answer, data, ensembles, first_screen, metric_catalog, tables  # noqa: E402
 
 ROWS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "ensemble_rows.csv")
 BEAM = "resonance/reference/hertz"
@@ -38,7 +38,7 @@ def engine_job_ids():
 
 BEST, OTHER = engine_job_ids()
 BEST_ENGINE, OTHER_ENGINE = BEST.split("/")[1], OTHER.split("/")[1]
-TOLERANCES = analysis.DEFAULT_TOLERANCES
+TOLERANCES = metric_catalog.DEFAULT_TOLERANCES
 PEAKS = ("frame1_sensor_peak_acceleration_g", "frame2_sensor_peak_acceleration_g")
 
 
@@ -278,7 +278,7 @@ class Folders(unittest.TestCase):
             self.assertEqual(run["errors_vs_beam"], {k: float(row[k]) if row[k] else None for k in run["errors_vs_beam"]})
             largest = run["largest_error_vs_beam"]
             self.assertEqual(largest["error"], float(rows[run["job_id"]][
-                next(c for n, _, c, _, _ in analysis.SCORED if n == largest["metric"]).join(["vs_reference_", ""])]))
+                metric_catalog.by_label(largest["metric"]).error_column.join(["vs_reference_", ""])]))
 
 
 if __name__ == "__main__":

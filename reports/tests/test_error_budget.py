@@ -15,9 +15,9 @@ import sys
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from impactbench_report import analysis, answer_sentence, budget, chain_convergence, data, fronts  # noqa: E402
+from impactbench_report import analysis, answer_sentence, budget, chain_convergence, data, fronts, metric_catalog  # noqa: E402
 
-TOLERANCES = analysis.DEFAULT_TOLERANCES
+TOLERANCES = metric_catalog.DEFAULT_TOLERANCES
 PEAK = "frame1_sensor_peak_relative_error"
 
 

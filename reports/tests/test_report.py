@@ -17,7 +17,7 @@ import unittest
 import xml.etree.ElementTree as ElementTree
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from impactbench_report import tables  # noqa: E402
+from impactbench_report import metric_catalog, tables  # noqa: E402
 
 EXECUTABLE = SCENARIOS = None
 
@@ -44,12 +44,6 @@ def independent_score(row, tolerances, prefix="vs_reference_"):
              ("frame1_log_decrement_relative_error", "log_decrement_relative_error")]
     multiples = [abs(float(row[prefix + c])) / tolerances[t] for c, t in pairs if row.get(prefix + c)]
     return max(multiples) if multiples else math.inf
-
-
-def metric_of(column):
-    """The scored metric's label (analysis.SCORED) of an error column, or None."""
-    from impactbench_report import analysis
-    return next((label for label, _, error, _, _ in analysis.SCORED if column.endswith(error)), None)
 
 
 class Report(unittest.TestCase):
@@ -232,7 +226,8 @@ class Report(unittest.TestCase):
                     row = by_id[point["job_id"]]
                     self.assertIsNotNone(point["budget"], point["job_id"])
                     for metric, part in point["budget"]["metrics"].items():
-                        column = next(c for c in row if c.startswith("vs_reference_") and metric_of(c) == metric)
+                        column = next(c for c in row if c.startswith("vs_reference_")  # the metric's, in runs.csv
+                                      and getattr(metric_catalog.by_error_column(c), "label", None) == metric)
                         self.assertAlmostEqual(part["total"], float(row[column]), places=12)
                         if part["residual"] is None:
                             self.assertTrue(part["why_not_additive"], point["job_id"])
