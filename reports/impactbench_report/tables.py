@@ -24,9 +24,12 @@ def step_text(step):
 
 
 def signed_text(value, kind):
-    """'+2.5 %' for a relative error (a fraction), '+0.14' for a difference; 'n/a' where not defined."""
+    """'+2.5 %' for a relative error (a fraction), '+0.14' for a difference; 'n/a' where not defined; an exact
+    zero without a sign ('0', not '+0': no error has a direction)."""
     if value is None or math.isnan(value):
         return "n/a"
+    if value == 0:
+        return "0 %" if kind == "relative" else "0"
     return f"{100 * value:+.2g} %" if kind == "relative" else f"{value:+.2g}"
 
 

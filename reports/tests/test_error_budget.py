@@ -15,7 +15,7 @@ import sys
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from impactbench_report import analysis, answer_sentence, budget, chain_convergence, data, fronts, metric_catalog  # noqa: E402
+from impactbench_report import analysis, answer_sentence, budget, chain_convergence, data, fronts, metric_catalog, tables  # noqa: E402
 
 TOLERANCES = metric_catalog.DEFAULT_TOLERANCES
 PEAK = "frame1_sensor_peak_relative_error"
@@ -159,6 +159,17 @@ class TheChainsConvergence(unittest.TestCase):
         self.assertEqual(result["settled_links"], 8)
         beyond = chain_convergence.metric_convergence(chains({8: share * 1.001, 16: share}), self.COLUMN, "relative", 0.10)
         self.assertEqual(beyond["settled_links"], 16)
+
+
+class ASignedError(unittest.TestCase):
+    """The budget's parts as the sentences write them: a sign for a direction, none for an exact zero."""
+
+    def test_a_direction_is_signed_and_a_zero_is_not(self):
+        self.assertEqual(tables.signed_text(0.025, "relative"), "+2.5 %")
+        self.assertEqual(tables.signed_text(-0.14, "difference"), "-0.14")
+        self.assertEqual(tables.signed_text(0.0, "difference"), "0")
+        self.assertEqual(tables.signed_text(-0.0, "relative"), "0 %")
+        self.assertEqual(tables.signed_text(float("nan"), "relative"), "n/a")
 
 
 if __name__ == "__main__":
