@@ -161,7 +161,9 @@ def case_answer(suite, steps, scenario, law, experiment, tolerances):
             run, entry = best[kind]
             others = [(c, r) for c, r in chosen_runs.items() if c != entry["configuration"]
                       and (analysis.contact_path(r) == analysis.NATIVE) == (kind == "out_of_box")]
-            against = "own chain" if run.number("chain_links") > 0 else "beam"
+            # ties are judged against what ranked it (analysis.engine_score): its own chain, or the beam where its
+            # chain reference gave no score
+            against = analysis.engine_score(analysis.score(run, tolerances, "own chain", skip)[0], 0.0)[1]
             tied, significant = significance.ties(run, others, tolerances, need, against, skip)
             case["best_" + kind] = {"configuration": entry["configuration"], "job_id": run["job_id"],
                                     "ranked_by": f"error vs {against}, a run that passes its verdict first",
