@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
+#include "modal_identification.h"
 #include "model/scenario.h"
 #include "model/scenario_toml.h"
-#include "modal_identification.h"
 #include "physics/link_chain.h"
 #include "reference/reference_simulator.h"
 #include "simulators/catalog.h"
@@ -146,17 +146,25 @@ int main(int argc, char** argv) {
   std::string only, csv;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
-    if (key == "--links") links = std::atoi(argv[i + 1]);
-    else if (key == "--only") only = "," + std::string(argv[i + 1]) + ",";
-    else if (key == "--csv") csv = argv[i + 1];
-    else if (key == "--series") series_folder = argv[i + 1];
+    if (key == "--links")
+      links = std::atoi(argv[i + 1]);
+    else if (key == "--only")
+      only = "," + std::string(argv[i + 1]) + ",";
+    else if (key == "--csv")
+      csv = argv[i + 1];
+    else if (key == "--series")
+      series_folder = argv[i + 1];
     else {
-      std::fprintf(stderr, "chain_ringing: unknown argument %s; allowed: --links K, --only NAME,NAME, --csv FILE, --series DIR\n",
-                   argv[i]);
+      std::fprintf(
+          stderr,
+          "chain_ringing: unknown argument %s; allowed: --links K, --only NAME,NAME, --csv FILE, --series DIR\n",
+          argv[i]);
       return 2;
     }
   }
-  auto wanted = [&](const std::string& name) { return only.empty() || only.find("," + name + ",") != std::string::npos; };
+  auto wanted = [&](const std::string& name) {
+    return only.empty() || only.find("," + name + ",") != std::string::npos;
+  };
   std::vector<Row> rows;
   // the beam reference: 10 modes per frame, the pencil asked for 2 x 10 poles
   rows.push_back(measure("beam reference", "reference", "-", {}, 20, nullptr));
@@ -172,12 +180,15 @@ int main(int argc, char** argv) {
                                {{"contact", "matched"}, {"links", std::to_string(links)}, {ib::kChainDampingOption, d}},
                                2 * links, beam_rms));
   }
-  std::printf("| simulator | chain damping | 60-90 Hz RMS frame 1 [m/s^2] (share of beam) | frame 2 | mode 1 f [Hz], zeta | mode 2 f [Hz], zeta | CPU [s] |\n");
+  std::printf(
+      "| simulator | chain damping | 60-90 Hz RMS frame 1 [m/s^2] (share of beam) | frame 2 | mode 1 f [Hz], zeta | "
+      "mode 2 f [Hz], zeta | CPU [s] |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows)
-    std::printf("| %s | %s | %.3g (%.0f %%) | %.3g (%.0f %%) | %.3f, %.5f | %.2f, %.5f | %.1f%s |\n", r.simulator.c_str(),
-                r.damping.c_str(), r.rms_m_s2[0], 100 * r.share[0], r.rms_m_s2[1], 100 * r.share[1], r.frequency_hz[0],
-                r.zeta[0], r.frequency_hz[1], r.zeta[1], r.cpu_s, r.status == "ok" ? "" : (" " + r.status).c_str());
+    std::printf("| %s | %s | %.3g (%.0f %%) | %.3g (%.0f %%) | %.3f, %.5f | %.2f, %.5f | %.1f%s |\n",
+                r.simulator.c_str(), r.damping.c_str(), r.rms_m_s2[0], 100 * r.share[0], r.rms_m_s2[1],
+                100 * r.share[1], r.frequency_hz[0], r.zeta[0], r.frequency_hz[1], r.zeta[1], r.cpu_s,
+                r.status == "ok" ? "" : (" " + r.status).c_str());
   if (!csv.empty()) {
     std::ofstream out(csv);
     out << "simulator,chain_damping,status,rms_60_90_hz_frame1_m_s2,rms_60_90_hz_frame2_m_s2,share_of_beam_frame1,"

@@ -87,24 +87,27 @@ void print_block(const Block& b) {
 
 void run_case(const Case& c, int max_contacts, const std::vector<ContactStepper>& steppers,
               const std::vector<double>& rtols, int repeat) {
-  const CaseContacts contacts = contacts_of(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/" + c.scenario, c.law, max_contacts);
+  const CaseContacts contacts =
+      contacts_of(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/" + c.scenario, c.law, max_contacts);
   const ContactPhaseSystem system(contacts.model);
   const int n = static_cast<int>(contacts.onsets.size());
-  std::printf("\n%s (%s, %s): %d of the run's %d contacts, max step %.3g s; rebuilt onsets: |delta| <= %.2g m, "
-              "<= %.2g s from the reference's\n",
-              c.name.c_str(), c.scenario.c_str(), ib::to_string(c.law), n, contacts.contacts_in_run,
-              contacts.max_step_s, contacts.worst_onset_indentation_m, contacts.largest_onset_shift_s);
+  std::printf(
+      "\n%s (%s, %s): %d of the run's %d contacts, max step %.3g s; rebuilt onsets: |delta| <= %.2g m, "
+      "<= %.2g s from the reference's\n",
+      c.name.c_str(), c.scenario.c_str(), ib::to_string(c.law), n, contacts.contacts_in_run, contacts.max_step_s,
+      contacts.worst_onset_indentation_m, contacts.largest_onset_shift_s);
   const std::vector<ContactOutcome> tight = integrate_all(system, contacts, ContactStepper::dopri5, 1e-13);
   double mean_duration = 0;
   for (const ContactOutcome& t : tight) mean_duration += t.duration_s / n;
   std::printf("tight answer: dopri5 at 1e-13; mean contact %.3g us; other tight answers differ from it by:\n",
               1e6 * mean_duration);
-  for (auto [stepper, rtol] : {std::pair{ContactStepper::fehlberg78, 1e-13}, std::pair{ContactStepper::bulirsch_stoer, 1e-14}}) {
+  for (auto [stepper, rtol] :
+       {std::pair{ContactStepper::fehlberg78, 1e-13}, std::pair{ContactStepper::bulirsch_stoer, 1e-14}}) {
     const std::vector<ContactOutcome> other = integrate_all(system, contacts, stepper, rtol);
     Deviation d;
     for (int i = 0; i < n; ++i) d.add(other[i], tight[i], contacts.reference_events[i].approach_velocity_m_s);
-    std::printf("  %s %.0e: duration %.1e impulse %.1e rebound %.1e peak %.1e\n", to_string(stepper), rtol,
-                d.duration, d.impulse, d.rebound, d.peak_force);
+    std::printf("  %s %.0e: duration %.1e impulse %.1e rebound %.1e peak %.1e\n", to_string(stepper), rtol, d.duration,
+                d.impulse, d.rebound, d.peak_force);
   }
   // The reference's own record of the same contacts (its Dormand-Prince at 1e-9, its root searches in run time).
   Deviation recorded;
@@ -159,14 +162,17 @@ void run_case(const Case& c, int max_contacts, const std::vector<ContactStepper>
     }
   }
   if (under_valgrind) CALLGRIND_STOP_INSTRUMENTATION;
-  std::printf("equal accuracy (duration and impulse within %.0e of the tight answer), at each stepper's loosest such rtol:\n",
-              kEqualAccuracy);
+  std::printf(
+      "equal accuracy (duration and impulse within %.0e of the tight answer), at each stepper's loosest such rtol:\n",
+      kEqualAccuracy);
   for (ContactStepper stepper : steppers) {
     const Block* loosest = nullptr;
     for (const Block& b : blocks)
       if (b.stepper == stepper && b.deviation.equal_accuracy() && (!loosest || b.rtol > loosest->rtol)) loosest = &b;
-    if (loosest) print_block(*loosest);
-    else std::printf("  %-15s never, on this ladder\n", to_string(stepper));
+    if (loosest)
+      print_block(*loosest);
+    else
+      std::printf("  %-15s never, on this ladder\n", to_string(stepper));
   }
 }
 
@@ -174,7 +180,8 @@ void run_case(const Case& c, int max_contacts, const std::vector<ContactStepper>
 // tolerance gives the reference's own events back, and every stepper at rtol 1e-12 agrees with the tight answer.
 int check(int max_contacts) {
   const Case& c = kCases.back();
-  const CaseContacts contacts = contacts_of(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/" + c.scenario, c.law, max_contacts);
+  const CaseContacts contacts =
+      contacts_of(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/" + c.scenario, c.law, max_contacts);
   const ContactPhaseSystem system(contacts.model);
   const int n = static_cast<int>(contacts.onsets.size());
   int failures = 0;
@@ -182,8 +189,8 @@ int check(int max_contacts) {
     std::printf("%s %s: %.2e (limit %.0e)\n", ok ? "ok  " : "FAIL", what.c_str(), value, limit);
     failures += ok ? 0 : 1;
   };
-  expect(contacts.worst_onset_indentation_m < 1e-15, "rebuilt onsets on delta = 0 [m]", contacts.worst_onset_indentation_m,
-         1e-15);
+  expect(contacts.worst_onset_indentation_m < 1e-15, "rebuilt onsets on delta = 0 [m]",
+         contacts.worst_onset_indentation_m, 1e-15);
   const std::vector<ContactOutcome> as_reference = integrate_all(system, contacts, ContactStepper::dopri5, 1e-9);
   double duration = 0, impulse = 0;
   for (int i = 0; i < n; ++i) {
@@ -219,9 +226,11 @@ int main(int argc, char** argv) {
   std::string all_cases;
   for (const Case& c : kCases) all_cases += (all_cases.empty() ? "" : ", ") + c.name;
   app.add_option("--case", case_names, "cases (default all): " + all_cases);
-  app.add_option("--stepper", stepper_names, "steppers (default all): dopri5, cash_karp54, fehlberg78, bulirsch_stoer, rosenbrock4");
+  app.add_option("--stepper", stepper_names,
+                 "steppers (default all): dopri5, cash_karp54, fehlberg78, bulirsch_stoer, rosenbrock4");
   app.add_option("--rtol", rtols, "the tolerance ladder (atol = rtol / 1000)");
-  app.add_option("--contacts", max_contacts, "at most this many contacts per case, spread over the run")->check(CLI::PositiveNumber);
+  app.add_option("--contacts", max_contacts, "at most this many contacts per case, spread over the run")
+      ->check(CLI::PositiveNumber);
   app.add_option("--repeat", repeat, "CPU time: the least of this many passes")->check(CLI::PositiveNumber);
   app.add_flag("--check", run_check, "the correctness check only (ctest): exit 1 on failure");
   CLI11_PARSE(app, argc, argv);

@@ -27,7 +27,8 @@ CaseContacts contacts_of(const std::string& scenario_path, ContactLaw law, int m
   const ModalState initial = initial_state(scenario, model);
   const OutputWindow one_sample{scenario.duration_s, scenario.duration_s, 4096};
   const ReferenceSolution run = solve_reference(model, initial, scenario.duration_s, one_sample, settings);
-  if (run.status != RunStatus::ok) throw std::runtime_error(scenario_path + ": the reference run failed: " + run.reason);
+  if (run.status != RunStatus::ok)
+    throw std::runtime_error(scenario_path + ": the reference run failed: " + run.reason);
   const std::vector<ContactEvent>& events = run.trajectory.events;
   out.contacts_in_run = static_cast<int>(events.size());
   if (events.empty()) throw std::runtime_error(scenario_path + ": the reference run has no contacts");

@@ -15,12 +15,12 @@ namespace ib::bench {
 
 struct CaseContacts {
   ModalModel model;
-  double max_step_s = 0;                        // the reference's scan grid step, its contact phases' largest step
-  std::vector<ContactOnset> onsets;             // the chosen contacts
-  std::vector<ContactEvent> reference_events;   // the reference's record of the same contacts
-  int contacts_in_run = 0;                      // all of the run's contact episodes
-  double worst_onset_indentation_m = 0;         // max |delta| at the rebuilt onsets: ~0 when they are right
-  double largest_onset_shift_s = 0;             // max |rebuilt onset - the reference's onset time|
+  double max_step_s = 0;                       // the reference's scan grid step, its contact phases' largest step
+  std::vector<ContactOnset> onsets;            // the chosen contacts
+  std::vector<ContactEvent> reference_events;  // the reference's record of the same contacts
+  int contacts_in_run = 0;                     // all of the run's contact episodes
+  double worst_onset_indentation_m = 0;        // max |delta| at the rebuilt onsets: ~0 when they are right
+  double largest_onset_shift_s = 0;            // max |rebuilt onset - the reference's onset time|
 };
 
 // At most max_contacts of the run's contacts, evenly spread over it (all when it has no more).

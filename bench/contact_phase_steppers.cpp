@@ -61,8 +61,8 @@ State start_state(const ContactPhaseSystem& system, const ContactOnset& onset) {
 }
 
 template <class State>
-ContactOutcome finish(const ContactPhaseSystem& system, double t_end, const State& y_end,
-                      double peak_force, long long steps) {
+ContactOutcome finish(const ContactPhaseSystem& system, double t_end, const State& y_end, double peak_force,
+                      long long steps) {
   ContactOutcome out;
   out.duration_s = t_end;  // time runs from the onset (contact_phase_system.h)
   out.rebound_velocity_m_s = -kinematics_of(system, y_end, t_end).indentation_rate;
@@ -178,11 +178,16 @@ ContactOutcome run_controlled(const ContactPhaseSystem& system, const StepperTol
 
 const char* to_string(ContactStepper stepper) {
   switch (stepper) {
-    case ContactStepper::dopri5: return "dopri5";
-    case ContactStepper::cash_karp54: return "cash_karp54";
-    case ContactStepper::fehlberg78: return "fehlberg78";
-    case ContactStepper::bulirsch_stoer: return "bulirsch_stoer";
-    case ContactStepper::rosenbrock4: return "rosenbrock4";
+    case ContactStepper::dopri5:
+      return "dopri5";
+    case ContactStepper::cash_karp54:
+      return "cash_karp54";
+    case ContactStepper::fehlberg78:
+      return "fehlberg78";
+    case ContactStepper::bulirsch_stoer:
+      return "bulirsch_stoer";
+    case ContactStepper::rosenbrock4:
+      return "rosenbrock4";
   }
   return "?";
 }
@@ -196,7 +201,8 @@ ContactStepper contact_stepper_from_string(const std::string& name) {
 }
 
 ContactOutcome integrate_contact_phase(const ContactPhaseSystem& system, ContactStepper stepper,
-                                       const StepperTolerance& tolerance, double max_step_s, const ContactOnset& onset) {
+                                       const StepperTolerance& tolerance, double max_step_s,
+                                       const ContactOnset& onset) {
   const long long rhs_before = system.rhs_calls, jacobian_before = system.jacobian_calls;
   system.time_origin_s = onset.t_s;
   auto vector_ode = [&](const VectorState& s, VectorState& ds, double ts) { system.rhs(s, ds, ts); };
@@ -213,10 +219,11 @@ ContactOutcome integrate_contact_phase(const ContactPhaseSystem& system, Contact
     }
     case ContactStepper::bulirsch_stoer: {
       // control_interpolation: the dense output's own error is controlled too, as the end state is read from it
-      odeint::bulirsch_stoer_dense_out<VectorState> dense(tolerance.absolute, tolerance.relative, 1.0, 1.0,
-                                                          max_step_s, true);
-      out = run_dense<VectorState>(system, dense, vector_ode, max_step_s, onset,
-                                   [&](const VectorState&, double, double ts, VectorState& y) { dense.calc_state(ts, y); });
+      odeint::bulirsch_stoer_dense_out<VectorState> dense(tolerance.absolute, tolerance.relative, 1.0, 1.0, max_step_s,
+                                                          true);
+      out = run_dense<VectorState>(
+          system, dense, vector_ode, max_step_s, onset,
+          [&](const VectorState&, double, double ts, VectorState& y) { dense.calc_state(ts, y); });
       break;
     }
     case ContactStepper::rosenbrock4: {
@@ -225,8 +232,8 @@ ContactOutcome integrate_contact_phase(const ContactPhaseSystem& system, Contact
         system.jacobian(s, J, ts, dfdt);
       };
       auto equations = std::make_pair(rhs, jacobian);
-      auto dense = odeint::make_dense_output(tolerance.absolute, tolerance.relative, max_step_s,
-                                             odeint::rosenbrock4<double>());
+      auto dense =
+          odeint::make_dense_output(tolerance.absolute, tolerance.relative, max_step_s, odeint::rosenbrock4<double>());
       out = run_dense<UblasState>(system, dense, equations, max_step_s, onset,
                                   [&](const UblasState& y0, double ta, double ts, UblasState& y) {
                                     odeint::rosenbrock4<double>().do_step(equations, y0, ta, y, ts - ta);

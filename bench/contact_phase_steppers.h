@@ -34,7 +34,7 @@ struct ContactOutcome {
   double rebound_velocity_m_s = 0;  // -delta' at separation
   double impulse_n_s = 0;           // integral of F_c over the phase
   double peak_force_n = 0;
-  long long steps = 0;              // accepted steps
+  long long steps = 0;  // accepted steps
   long long rhs_calls = 0, jacobian_calls = 0;
 };
 

@@ -38,8 +38,7 @@ struct ForceSlopes {
 
 class ContactPhaseSystem {
  public:
-  explicit ContactPhaseSystem(const ModalModel& model)
-      : model_(model), m_(model.mode_count()) {
+  explicit ContactPhaseSystem(const ModalModel& model) : model_(model), m_(model.mode_count()) {
     stiffness_ = model.omega_rad_s.array().square();
     damping_rate_ = 2 * model.zeta.array() * model.omega_rad_s.array();
     lever_norm2_ = model.contact_lever.squaredNorm();

@@ -12,7 +12,9 @@ namespace {
 using Json = nlohmann::json;
 
 // Every message names the file and the key, as bench/scipy_modal_model.py's do.
-[[noreturn]] void fail(const std::string& path, const std::string& text) { throw std::runtime_error(path + ": " + text); }
+[[noreturn]] void fail(const std::string& path, const std::string& text) {
+  throw std::runtime_error(path + ": " + text);
+}
 
 const Json& get(const Json& data, const std::string& key, const std::string& path, const std::string& where = "") {
   if (!data.is_object() || !data.contains(key)) fail(path, "missing key '" + where + key + "'");
@@ -27,14 +29,15 @@ double number(const Json& data, const std::string& key, const std::string& path,
   if (!value.is_number() || !std::isfinite(value.get<double>()))
     fail(path, "'" + where + key + "' = " + value.dump() + ": allowed: a finite number");
   const double x = value.get<double>();
-  if (sign == Sign::positive && !(x > 0)) fail(path, "'" + where + key + "' = " + value.dump() + ": allowed: a number > 0");
+  if (sign == Sign::positive && !(x > 0))
+    fail(path, "'" + where + key + "' = " + value.dump() + ": allowed: a number > 0");
   if (sign == Sign::non_negative && !(x >= 0))
     fail(path, "'" + where + key + "' = " + value.dump() + ": allowed: a number >= 0");
   return x;
 }
 
 std::vector<double> numbers(const Json& data, const std::string& key, const std::string& path, std::size_t size,
-                           const std::string& where = "") {
+                            const std::string& where = "") {
   const Json& value = get(data, key, path, where);
   bool ok = value.is_array() && (size == 0 ? !value.empty() : value.size() == size);
   std::vector<double> out;
@@ -43,7 +46,8 @@ std::vector<double> numbers(const Json& data, const std::string& key, const std:
     if (ok) out.push_back(x.get<double>());
   }
   if (!ok)
-    fail(path, "'" + where + key + "': allowed: a list of " + (size ? std::to_string(size) : std::string("one or more")) +
+    fail(path, "'" + where + key + "': allowed: a list of " +
+                   (size ? std::to_string(size) : std::string("one or more")) +
                    " finite numbers (one per stacked mode)");
   return out;
 }
@@ -69,7 +73,8 @@ ContactLaw read_law(const Json& data, const std::string& path) {
   } else if (law.name == "newton") {
     law.kind = ContactLaw::Kind::newton;
     law.restitution = number(data, "restitution", path, w, Sign::non_negative);
-    if (law.restitution > 1) fail(path, "'contact_law.restitution' = " + std::to_string(law.restitution) + ": allowed: 0 <= e <= 1");
+    if (law.restitution > 1)
+      fail(path, "'contact_law.restitution' = " + std::to_string(law.restitution) + ": allowed: 0 <= e <= 1");
   } else {
     fail(path, "'contact_law.name' = " + name.dump() + ": allowed: hertz, viscoelastic, newton");
   }
@@ -85,14 +90,16 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
 }  // namespace
 
 double ContactLaw::unclipped(double delta, double rate) const {
-  if (kind == Kind::hertz) return stiffness * std::copysign(std::pow(std::abs(delta), exponent), delta) * (1 + damping / stiffness * rate);
+  if (kind == Kind::hertz)
+    return stiffness * std::copysign(std::pow(std::abs(delta), exponent), delta) * (1 + damping / stiffness * rate);
   return stiffness * delta + damping * rate;
 }
 
 double ContactLaw::force(double delta, double rate) const {
   if (kind == Kind::newton) return 0;
   if (kind == Kind::hertz)
-    return stiffness * std::copysign(std::pow(std::abs(delta), exponent), delta) * std::max(0.0, 1 + damping / stiffness * rate);
+    return stiffness * std::copysign(std::pow(std::abs(delta), exponent), delta) *
+           std::max(0.0, 1 + damping / stiffness * rate);
   const double f = stiffness * delta + damping * rate;
   return clipped ? std::max(0.0, f) : f;
 }
@@ -119,8 +126,9 @@ ModalModel read_modal_model(const std::string& path) {
     fail(path, std::string("not JSON: ") + error.what());
   }
   if (!data.is_object() || data.value("format", std::string()) != "impactbench modal model 1")
-    fail(path, "'format': allowed: 'impactbench modal model 1' (write it with: impactbench export SCENARIO --engine "
-               "reference --law LAW --out FILE)");
+    fail(path,
+         "'format': allowed: 'impactbench modal model 1' (write it with: impactbench export SCENARIO --engine "
+         "reference --law LAW --out FILE)");
   ModalModel m;
   m.path = path;
   m.scenario = data.value("scenario", std::string());

@@ -37,25 +37,25 @@ struct ContactLaw {
 
 struct ModalModel {
   std::string path, scenario;
-  std::vector<double> omega, zeta;     // [rad/s], [-]
-  std::vector<double> b, p;            // contact and motor levers [1/sqrt(kg)]
-  std::vector<double> tip1, tip2;      // each frame's recorded tip lever [1/sqrt(kg)]
-  std::vector<double> q0, v0;          // initial state [m sqrt(kg)], [m/s sqrt(kg)]
-  std::vector<double> damping_rate;    // 2 zeta omega [1/s]
-  std::vector<double> stiffness;       // omega^2 [1/s^2]
-  double gap = 0;                      // [m]
-  double motor_amplitude = 0;          // [N]
-  double motor_omega = 0;              // [rad/s]
+  std::vector<double> omega, zeta;   // [rad/s], [-]
+  std::vector<double> b, p;          // contact and motor levers [1/sqrt(kg)]
+  std::vector<double> tip1, tip2;    // each frame's recorded tip lever [1/sqrt(kg)]
+  std::vector<double> q0, v0;        // initial state [m sqrt(kg)], [m/s sqrt(kg)]
+  std::vector<double> damping_rate;  // 2 zeta omega [1/s]
+  std::vector<double> stiffness;     // omega^2 [1/s^2]
+  double gap = 0;                    // [m]
+  double motor_amplitude = 0;        // [N]
+  double motor_omega = 0;            // [rad/s]
   ContactLaw law;
-  double duration = 0;                 // [s]
-  double series_start = 0;             // first output sample [s]
-  double output_rate = 0;              // [Hz]
-  double rtol = 0, atol = 0;           // the reference's tolerances [-], [m sqrt(kg)]
-  double accumulation_time = 0;        // Newton: the reference sticks when impacts accumulate within this [s]
-  double lever_norm2 = 0;              // b . b = 1 / effective mass of the relative tip motion [1/kg]
+  double duration = 0;           // [s]
+  double series_start = 0;       // first output sample [s]
+  double output_rate = 0;        // [Hz]
+  double rtol = 0, atol = 0;     // the reference's tolerances [-], [m sqrt(kg)]
+  double accumulation_time = 0;  // Newton: the reference sticks when impacts accumulate within this [s]
+  double lever_norm2 = 0;        // b . b = 1 / effective mass of the relative tip motion [1/kg]
 
   std::size_t modes() const { return omega.size(); }
-  double motor(double t) const;        // F_m(t) [N]
+  double motor(double t) const;  // F_m(t) [N]
 };
 
 // Reads and checks the file; throws std::runtime_error naming the file, the key, the value and what is allowed.

@@ -42,8 +42,8 @@ void write_events(const std::string& path, const CvodeResult& result) {
          "impulse_n_s,max_indentation_m\n";
   for (const auto& e : result.events)
     out << number(e.onset) << ',' << number(e.end) << ',' << number(e.end - e.onset) << ',' << number(e.approach) << ','
-        << number(e.rebound) << ',' << number(e.restitution) << ',' << number(e.peak_force) << ','
-        << number(e.impulse) << ',' << number(e.max_indentation) << '\n';
+        << number(e.rebound) << ',' << number(e.restitution) << ',' << number(e.peak_force) << ',' << number(e.impulse)
+        << ',' << number(e.max_indentation) << '\n';
   if (!out) throw std::runtime_error(path + ": cannot write");
 }
 
@@ -51,8 +51,8 @@ void write_samples(const std::string& path, const CvodeResult& result) {
   std::ofstream out(path);
   out << "time_s,frame1_displacement_m,frame2_displacement_m,frame1_velocity_m_s,frame2_velocity_m_s\n";
   for (const auto& s : result.samples)
-    out << number(s.t) << ',' << number(s.displacement1) << ',' << number(s.displacement2) << ','
-        << number(s.velocity1) << ',' << number(s.velocity2) << '\n';
+    out << number(s.t) << ',' << number(s.displacement1) << ',' << number(s.displacement2) << ',' << number(s.velocity1)
+        << ',' << number(s.velocity2) << '\n';
   if (!out) throw std::runtime_error(path + ": cannot write");
 }
 
@@ -65,8 +65,9 @@ double median(std::vector<double> values) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"The reference's modal equations integrated with SUNDIALS CVODE (root finding for contact onset and "
-               "release): events.csv and the integration's cost"};
+  CLI::App app{
+      "The reference's modal equations integrated with SUNDIALS CVODE (root finding for contact onset and "
+      "release): events.csv and the integration's cost"};
   std::string model_path, out;
   ib::bench::CvodeSettings settings;
   double rtol = 0, atol = 0;
@@ -77,7 +78,8 @@ int main(int argc, char** argv) {
   app.add_option("--method", settings.method,
                  "adams (Adams-Moulton, fixed-point iteration; default), adams-newton, bdf (Newton, dense Jacobian)")
       ->check(CLI::IsMember({"adams", "adams-newton", "bdf"}));
-  app.add_option("--rtol", rtol, "relative tolerance (default: the model's reference rtol)")->check(CLI::PositiveNumber);
+  app.add_option("--rtol", rtol, "relative tolerance (default: the model's reference rtol)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--atol", atol, "absolute tolerance [m sqrt(kg)] (default: the model's reference atol)")
       ->check(CLI::PositiveNumber);
   app.add_option("--repeat", repeat, "integrations timed, the median kept (default 1)")->check(CLI::Range(1, 1000));
@@ -135,10 +137,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "cvode_reference: %s\n", result.reason.c_str());
       return 1;
     }
-    std::printf("cvode_reference: %s %s %s: CPU %.4f s (%.3g s per simulated s), %ld steps, %ld f evaluations, "
-                "%zu contact episodes; files in %s\n",
-                model.scenario.c_str(), model.law.name.c_str(), settings.method.c_str(), cpu_s, cpu_s / model.duration,
-                result.steps, result.rhs_evaluations, result.events.size(), out.c_str());
+    std::printf(
+        "cvode_reference: %s %s %s: CPU %.4f s (%.3g s per simulated s), %ld steps, %ld f evaluations, "
+        "%zu contact episodes; files in %s\n",
+        model.scenario.c_str(), model.law.name.c_str(), settings.method.c_str(), cpu_s, cpu_s / model.duration,
+        result.steps, result.rhs_evaluations, result.events.size(), out.c_str());
   } catch (const std::exception& error) {
     std::fprintf(stderr, "cvode_reference: %s\n", error.what());
     return 1;

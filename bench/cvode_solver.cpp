@@ -92,7 +92,8 @@ class CvodeRun {
     if (settings.method == "adams") {
       nonlinear_ = SUNNonlinSol_FixedPoint(y_, 0, context_);
     } else {
-      matrix_ = SUNDenseMatrix(static_cast<sunindextype>(2 * problem_.m + 1), static_cast<sunindextype>(2 * problem_.m + 1), context_);
+      matrix_ = SUNDenseMatrix(static_cast<sunindextype>(2 * problem_.m + 1),
+                               static_cast<sunindextype>(2 * problem_.m + 1), context_);
       linear_ = SUNLinSol_Dense(y_, matrix_, context_);
     }
     if (record_) {
@@ -214,8 +215,9 @@ class CvodeRun {
     int found[4] = {0, 0, 0, 0};
     while (true) {
       record_samples_up_to(t);
-      const double target = record_ && next_sample_ < sample_count_ ? std::min(sample_time(next_sample_), model_.duration)
-                                                                    : model_.duration;
+      const double target = record_ && next_sample_ < sample_count_
+                                ? std::min(sample_time(next_sample_), model_.duration)
+                                : model_.duration;
       if (t >= model_.duration) break;
       const int flag = CVode(memory_, target, y_, &t, CV_NORMAL);
       check(flag, "CVode");

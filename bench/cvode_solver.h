@@ -26,7 +26,7 @@ namespace ib::bench {
 
 struct CvodeSettings {
   double rtol = 1e-9;
-  double atol = 1e-12;             // [m sqrt(kg)] on every state (and on the impulse, in N s)
+  double atol = 1e-12;  // [m sqrt(kg)] on every state (and on the impulse, in N s)
   // adams: Adams-Moulton with fixed-point iteration, CVODE's choice for non-stiff problems (no Jacobian);
   // adams-newton: the same with Newton iteration on a dense difference-quotient Jacobian; bdf: BDF with it.
   std::string method = "adams";
@@ -34,13 +34,13 @@ struct CvodeSettings {
 
 // One contact episode, the fields of model/trajectory.h's ContactEvent (events.csv).
 struct CvodeEvent {
-  double onset = 0, end = 0;       // [s]
-  double approach = 0;             // delta' at the onset [m/s]
-  double rebound = 0;              // -delta' at the end [m/s]
-  double restitution = 0;          // rebound / approach [-]
-  double peak_force = 0;           // [N]; NaN for Newton
-  double impulse = 0;              // [N s]
-  double max_indentation = 0;      // [m]
+  double onset = 0, end = 0;   // [s]
+  double approach = 0;         // delta' at the onset [m/s]
+  double rebound = 0;          // -delta' at the end [m/s]
+  double restitution = 0;      // rebound / approach [-]
+  double peak_force = 0;       // [N]; NaN for Newton
+  double impulse = 0;          // [N s]
+  double max_indentation = 0;  // [m]
 };
 
 // Tip displacement and velocity of both frames at one output sample (only with record_samples).
@@ -50,11 +50,11 @@ struct CvodeSample {
 
 struct CvodeResult {
   bool ok = true;
-  std::string reason;              // why the run stopped, when !ok
+  std::string reason;  // why the run stopped, when !ok
   std::vector<CvodeEvent> events;
   std::vector<CvodeSample> samples;
   long steps = 0, rhs_evaluations = 0, root_evaluations = 0, nonlinear_iterations = 0, jacobian_evaluations = 0;
-  long phases = 0;                 // CVODE (re)initialisations: one per free flight or contact phase
+  long phases = 0;                         // CVODE (re)initialisations: one per free flight or contact phase
   double cpu_time_s = 0, wall_time_s = 0;  // the integration, events included; reading the model not
 };
 

@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "rig_case.h"
 #include "model/simulator.h"
+#include "rig_case.h"
 #include "simulators/catalog.h"
 
 namespace {
@@ -37,9 +37,9 @@ void register_all() {
   for (const std::string& engine : ib::simulator_names()) {
     if (engine == "reference") continue;  // adaptive, no fixed step: see reference_benchmark
     for (ib::ContactLaw law : {ib::ContactLaw::hertz, ib::ContactLaw::viscoelastic, ib::ContactLaw::newton})
-      benchmark::RegisterBenchmark((engine + "/" + ib::to_string(law)).c_str(),
-                                   [engine, law](benchmark::State& st) { run_engine(st, engine, law); })
-          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark((engine + "/" + ib::to_string(law)).c_str(), [engine, law](benchmark::State& st) {
+        run_engine(st, engine, law);
+      })->Unit(benchmark::kMillisecond);
   }
 }
 

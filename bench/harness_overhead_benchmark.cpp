@@ -23,11 +23,11 @@
 #include <vector>
 
 #include "adapters/common/injected_contact.h"
-#include "simulators/catalog.h"
 #include "adapters/common/rig.h"
-#include "rig_case.h"
 #include "harness/jobs/run_job.h"
 #include "model/simulator.h"
+#include "rig_case.h"
+#include "simulators/catalog.h"
 
 #if IMPACTBENCH_WITH_MUJOCO
 #include "adapters/mujoco/mujoco_engine.h"
@@ -48,7 +48,9 @@ namespace {
 // scenario; returns frame 1's final tip displacement [m] (so that nothing is optimised away).
 using BareLoop = std::function<double(const ib::Scenario&, const ib::RunSettings&, double h)>;
 
-long long step_count(const ib::Scenario& s, double h) { return static_cast<long long>(std::ceil(s.duration_s / h - 1e-9)); }
+long long step_count(const ib::Scenario& s, double h) {
+  return static_cast<long long>(std::ceil(s.duration_s / h - 1e-9));
+}
 
 #if IMPACTBENCH_WITH_MUJOCO
 // mj_step1 (positions, velocities), the loads from that state, mj_step2 (forces, solve, Euler): MuJoCo's
@@ -173,7 +175,8 @@ void compare(benchmark::State& state, const std::string& engine, ib::ContactLaw 
   // when the settings give none), so that both loops step alike.
   const ib::RunResult warm_up = simulator->run(s, settings);
   if (warm_up.status != ib::RunStatus::ok) {
-    state.SkipWithError(("the run ended " + std::string(ib::to_string(warm_up.status)) + ": " + warm_up.reason).c_str());
+    state.SkipWithError(
+        ("the run ended " + std::string(ib::to_string(warm_up.status)) + ": " + warm_up.reason).c_str());
     return;
   }
   const double h = diagnostic(warm_up, "time_step_s");
@@ -222,9 +225,10 @@ void register_all() {
 #endif
   for (const auto& [engine, bare] : engines)
     for (ib::ContactLaw law : {ib::ContactLaw::hertz, ib::ContactLaw::viscoelastic, ib::ContactLaw::newton})
-      benchmark::RegisterBenchmark((engine + "/" + ib::to_string(law)).c_str(),
-                                   [engine = engine, bare = bare, law](benchmark::State& st) { compare(st, engine, law, bare); })
-          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark((engine + "/" + ib::to_string(law)).c_str(), [engine = engine, bare = bare,
+                                                                                 law](benchmark::State& st) {
+        compare(st, engine, law, bare);
+      })->Unit(benchmark::kMillisecond);
 }
 
 // Registered before main runs, as Google Benchmark's own BENCHMARK() macros do.

@@ -5,9 +5,9 @@
 
 #include <string>
 
+#include "model/scenario_toml.h"
 #include "physics/modal_model.h"
 #include "reference/reference_solver.h"
-#include "model/scenario_toml.h"
 
 namespace {
 
@@ -19,20 +19,23 @@ void run_case(benchmark::State& state, const std::string& name, ib::ContactLaw l
   const ib::OutputWindow window{scored.start_s, scored.end_s, 4096};
   long long impacts = 0;
   for (auto _ : state) {
-    const ib::ReferenceSolution r = ib::solve_reference(model, ib::initial_state(s, model), s.duration_s, window, settings);
+    const ib::ReferenceSolution r =
+        ib::solve_reference(model, ib::initial_state(s, model), s.duration_s, window, settings);
     impacts = r.impacts;
     benchmark::DoNotOptimize(r.trajectory.time_s.data());
   }
-  state.counters["sim_s_per_wall_s"] = benchmark::Counter(s.duration_s * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["sim_s_per_wall_s"] =
+      benchmark::Counter(s.duration_s * state.iterations(), benchmark::Counter::kIsRate);
   state.counters["impacts"] = static_cast<double>(impacts);
 }
 
 void register_all() {
   for (const char* name : {"resonance", "pre_resonance", "post_resonance", "free_vibration"})
     for (ib::ContactLaw law : {ib::ContactLaw::hertz, ib::ContactLaw::viscoelastic, ib::ContactLaw::newton})
-      benchmark::RegisterBenchmark((std::string(name) + "/" + ib::to_string(law)).c_str(),
-                                   [name, law](benchmark::State& st) { run_case(st, name, law); })
-          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark((std::string(name) + "/" + ib::to_string(law)).c_str(), [name,
+                                                                                            law](benchmark::State& st) {
+        run_case(st, name, law);
+      })->Unit(benchmark::kMillisecond);
 }
 
 // Registered before main runs, as Google Benchmark's own BENCHMARK() macros do.

@@ -19,8 +19,9 @@ std::string resume_command(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     resume = resume || arg == "--resume";
-    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                             "0123456789-_=.,/:+@%") == std::string::npos;
+    const bool plain = !arg.empty() && arg.find_first_not_of(
+                                           "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                           "0123456789-_=.,/:+@%") == std::string::npos;
     std::string quoted = "'";
     for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
     command += " " + (plain ? arg : quoted + "'");
@@ -37,8 +38,8 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
     items.push_back(item);
   }
   if (items.empty() || text.back() == ',')
-    throw std::invalid_argument(option + " '" + text + "': " + (items.empty() ? "empty" : "an empty item") + "; allowed: " +
-                                allowed + ", comma-separated");
+    throw std::invalid_argument(option + " '" + text + "': " + (items.empty() ? "empty" : "an empty item") +
+                                "; allowed: " + allowed + ", comma-separated");
   return items;
 }
 
@@ -64,7 +65,8 @@ std::map<std::string, std::string> parse_options(const std::vector<std::string>&
 ib::ContactLaw parse_law(const std::string& name) {
   const auto law = ib::contact_law_from_string(name);
   if (!law)
-    throw std::invalid_argument("law '" + name + "': unknown; allowed: hertz, viscoelastic, newton (spring-dashpot: "
+    throw std::invalid_argument("law '" + name +
+                                "': unknown; allowed: hertz, viscoelastic, newton (spring-dashpot: "
                                 "another name for viscoelastic)");
   return *law;
 }
@@ -97,14 +99,19 @@ ib::Measurement MeasurementOptions::build() const {
   m.merge_window_s = merge_window_s;
   m.timed_repeats = timed_repeats;
   m.series_rate_hz = series_rate_hz;
-  if (series == "window") m.series = ib::SeriesOutput::window;
-  else if (series == "all") m.series = ib::SeriesOutput::all;
-  else if (series == "none") m.series = ib::SeriesOutput::none;
-  else throw std::invalid_argument("--series " + series + ": allowed: window, all, none");
+  if (series == "window")
+    m.series = ib::SeriesOutput::window;
+  else if (series == "all")
+    m.series = ib::SeriesOutput::all;
+  else if (series == "none")
+    m.series = ib::SeriesOutput::none;
+  else
+    throw std::invalid_argument("--series " + series + ": allowed: window, all, none");
   return m;
 }
 
-void matrix_settings_from(const MatrixOptions& o, const MeasurementOptions& measurement_options, ib::MatrixSettings& s) {
+void matrix_settings_from(const MatrixOptions& o, const MeasurementOptions& measurement_options,
+                          ib::MatrixSettings& s) {
   s.simulators = ib::simulator_catalog();
   std::string engine_names;
   for (const auto& n : ib::simulator_names()) engine_names += (engine_names.empty() ? "" : ", ") + n;
@@ -113,7 +120,8 @@ void matrix_settings_from(const MatrixOptions& o, const MeasurementOptions& meas
   s.laws.clear();
   for (const auto& l : split_list(o.laws, "--laws", "hertz, viscoelastic, newton")) s.laws.push_back(parse_law(l));
   if (!o.time_steps.empty()) s.time_steps_s = parse_values(Shared::dt, o.time_steps);
-  for (const auto& path : o.paths.empty() ? std::vector<std::string>{} : split_list(o.paths, "--paths", ib::contact_path_names())) {
+  for (const auto& path :
+       o.paths.empty() ? std::vector<std::string>{} : split_list(o.paths, "--paths", ib::contact_path_names())) {
     if (!ib::contact_path_from_string(path))
       throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
     s.contact_paths.push_back(path);

@@ -3,8 +3,8 @@
 // is allowed; main turns that into exit 2).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <unistd.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <map>
@@ -52,13 +52,15 @@ struct MeasurementOptions {
   // with_timing: the command runs simulators (run, suite), so --repeat and --series apply; score measures files only
   void add_to(CLI::App* app, bool with_timing) {
     app_ = app;
-    add_shared_option(app, Shared::window, window_s, "scoring window: the last S seconds of the run [s]; default: the scenario's",
+    add_shared_option(app, Shared::window, window_s,
+                      "scoring window: the last S seconds of the run [s]; default: the scenario's",
                       /*show_default=*/false);
     add_shared_option(app, Shared::sensor_rate, sensor_rate_hz, "accelerometer sample rate for the sensor peak [Hz]");
     add_shared_option(app, Shared::merge_window, merge_window_s, "onsets closer than this are one impact [s]");
     if (with_timing)
-      add_shared_option(app, Shared::repeat, timed_repeats,
-                        "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's own)");
+      add_shared_option(
+          app, Shared::repeat, timed_repeats,
+          "timed runs after the logged one, nothing written; their median is the run time (0: the logged run's own)");
     if (with_timing)
       app->add_option("--series", series,
                       "what a run's folder keeps of its series (series.csv.gz): window (the scoring window), all "
@@ -73,7 +75,8 @@ struct MeasurementOptions {
   ib::Measurement build() const;  // throws std::invalid_argument naming the option, the value and what is allowed
 
  private:
-  const CLI::App* app_ = nullptr;  // the command's: whether --window was given at all (any value it has is then checked)
+  const CLI::App* app_ =
+      nullptr;  // the command's: whether --window was given at all (any value it has is then checked)
 };
 
 // The options `suite` and `sweep` share (SuiteOptions, SweepOptions: commands.h), as typed: which

@@ -13,8 +13,9 @@ namespace cli {
 
 // The model an engine builds for a run, in the engine's own format, for a person to open in the
 // engine's tools (MuJoCo: MJCF for its viewer; the reference: its modal model as JSON).
-int command_export(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
-                   double time_step_s, double rate_hz, const std::vector<std::string>& option_pairs) {
+int command_export(const std::string& path, const std::string& engine, const std::string& law_name,
+                   const std::string& out, double time_step_s, double rate_hz,
+                   const std::vector<std::string>& option_pairs) {
   const ib::Scenario scenario = ib::load_scenario(path);
   ib::RunSettings settings;
   settings.law = parse_law(law_name);
@@ -26,7 +27,8 @@ int command_export(const std::string& path, const std::string& engine, const std
   if (text.empty()) {
     std::string exportable;
     for (const auto& name : ib::simulator_names())
-      if (!ib::make_simulator(name)->export_model(scenario, settings).empty()) exportable += (exportable.empty() ? "" : ", ") + name;
+      if (!ib::make_simulator(name)->export_model(scenario, settings).empty())
+        exportable += (exportable.empty() ? "" : ", ") + name;
     throw std::invalid_argument("--engine " + engine + ": no exportable model; allowed: " + exportable);
   }
   if (out.empty() || out == "-") {

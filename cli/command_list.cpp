@@ -24,7 +24,8 @@ int command_list(const std::string& folder) {
   std::printf("\nlaws: hertz viscoelastic newton\n");
   for (const auto& n : ib::simulator_names()) {
     std::printf("options of %s:\n", n.c_str());
-    for (const auto& [key, help] : ib::make_simulator(n)->option_help()) std::printf("  %-18s %s\n", key.c_str(), help.c_str());
+    for (const auto& [key, help] : ib::make_simulator(n)->option_help())
+      std::printf("  %-18s %s\n", key.c_str(), help.c_str());
   }
   return kExitOk;
 }

@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "harness/records/engines_file.h"
-#include "harness/study/merge.h"
 #include "harness/records/run_files.h"
+#include "harness/study/merge.h"
 #include "simulators/catalog.h"
 
 namespace cli {
@@ -17,11 +17,13 @@ int command_merge(const std::string& out, const std::vector<std::string>& shards
   // The engines that made the results (engines.json): a shard's, which every shard of one suite writes
   // alike; this binary's only when no shard has one (shards of an older build).
   namespace fs = std::filesystem;
-  const auto made_by = std::find_if(shards.begin(), shards.end(), [](const std::string& s) { return fs::exists(s + "/engines.json"); });
+  const auto made_by =
+      std::find_if(shards.begin(), shards.end(), [](const std::string& s) { return fs::exists(s + "/engines.json"); });
   const auto copy_from_shard = [&out](const std::string& shard, const std::string& name) {
     std::error_code error;
     fs::copy_file(shard + "/" + name, out + "/" + name, fs::copy_options::overwrite_existing, error);
-    if (error) throw ib::OutputError(ib::output_error_text(out + "/" + name, "copy " + shard + "/" + name, error.value()));
+    if (error)
+      throw ib::OutputError(ib::output_error_text(out + "/" + name, "copy " + shard + "/" + name, error.value()));
   };
   if (made_by == shards.end())
     ib::write_engines_file(out, ib::simulator_catalog());
@@ -29,19 +31,22 @@ int command_merge(const std::string& out, const std::vector<std::string>& shards
     copy_from_shard(*made_by, "engines.json");
   // Where they were made (provenance.json): the first shard's that has one, never this binary's (the merge
   // made no result). Shards of one suite come from one build; their machines may differ.
-  const auto described = std::find_if(shards.begin(), shards.end(), [](const std::string& s) { return fs::exists(s + "/provenance.json"); });
+  const auto described = std::find_if(shards.begin(), shards.end(),
+                                      [](const std::string& s) { return fs::exists(s + "/provenance.json"); });
   if (described != shards.end()) copy_from_shard(*described, "provenance.json");
   if (std::filesystem::exists(out + "/sweep.json"))
     std::printf("merge: %d sweep rows in %s/sweep.csv from %zu folders\n", outcome.runs, out.c_str(), shards.size());
   else
-    std::printf("merge: %d runs in %s/runs.csv from %zu folders (%d recorded in several, such as the references, kept once)\n",
-              outcome.runs, out.c_str(), shards.size(), outcome.runs_in_several);
+    std::printf(
+        "merge: %d runs in %s/runs.csv from %zu folders (%d recorded in several, such as the references, kept once)\n",
+        outcome.runs, out.c_str(), shards.size(), outcome.runs_in_several);
   if (outcome.step_rows > 0) std::printf("merge: %d step searches in %s/steps.csv\n", outcome.step_rows, out.c_str());
   std::fflush(stdout);
   for (const std::string& line : ib::merge_messages(outcome)) std::fprintf(stderr, "impactbench: %s\n", line.c_str());
   if (!no_report) command_report(out, "");
   if (outcome.complete()) return kExitOk;
-  std::fprintf(stderr, "impactbench: merged what exists, but shards are incomplete or absent (see above; exit code %d)\n",
+  std::fprintf(stderr,
+               "impactbench: merged what exists, but shards are incomplete or absent (see above; exit code %d)\n",
                kExitIncompleteMerge);
   return kExitIncompleteMerge;
 }

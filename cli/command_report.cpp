@@ -19,7 +19,8 @@ int command_report(const std::string& suite_folder, const std::string& out) {
   // (A folder without runs.csv is left to make_report.py, which says so.)
   const std::string folder = out.empty() ? suite_folder + "/report" : out;
   if (!std::filesystem::is_directory(suite_folder))
-    throw std::invalid_argument(suite_folder + ": " + (std::filesystem::exists(suite_folder) ? "not a folder" : "no such folder") +
+    throw std::invalid_argument(suite_folder + ": " +
+                                (std::filesystem::exists(suite_folder) ? "not a folder" : "no such folder") +
                                 "; expected a suite's or a sweep's output folder");
   // One record per job, run folders present: a damaged folder is said here, with what repairs it.
   if (std::filesystem::exists(suite_folder + "/runs.jsonl") || std::filesystem::exists(suite_folder + "/runs.csv")) {
@@ -28,8 +29,9 @@ int command_report(const std::string& suite_folder, const std::string& out) {
       std::string text;
       for (std::size_t i = 0; i < problems.size() && i < 5; ++i) text += (i ? "; " : "") + problems[i];
       if (problems.size() > 5) text += "; and " + std::to_string(problems.size() - 5) + " more";
-      throw std::invalid_argument(suite_folder + ": its results are damaged (" + text +
-                                  "); continue the suite with --resume, which repairs its records and runs again what they lack");
+      throw std::invalid_argument(
+          suite_folder + ": its results are damaged (" + text +
+          "); continue the suite with --resume, which repairs its records and runs again what they lack");
     }
   }
   if (std::filesystem::exists(suite_folder + "/runs.csv")) {
@@ -39,8 +41,8 @@ int command_report(const std::string& suite_folder, const std::string& out) {
     if (access(folder.c_str(), W_OK) != 0)
       throw ib::OutputError(ib::output_error_text(folder, "write into the report folder", errno));
   }
-  std::string command = std::string(IMPACTBENCH_PYTHON) + " " + IMPACTBENCH_SOURCE_DIR + "/reports/make_report.py '" +
-                        suite_folder + "'";
+  std::string command =
+      std::string(IMPACTBENCH_PYTHON) + " " + IMPACTBENCH_SOURCE_DIR + "/reports/make_report.py '" + suite_folder + "'";
   if (!out.empty()) command += " --out '" + out + "'";
   const int status = std::system(command.c_str());
   if (status != 0) throw std::runtime_error("the report could not be made (" + command + " failed)");

@@ -33,11 +33,14 @@ Json read_summary(const std::string& run_folder) {
                                 "; expected a run's folder (SUITE/runs/<job id>, or a run's --out)");
   std::ifstream in(path);
   if (!in)
-    throw std::invalid_argument(run_folder + ": not a run's folder: it has no summary.json (a suite keeps one per run in "
+    throw std::invalid_argument(run_folder +
+                                ": not a run's folder: it has no summary.json (a suite keeps one per run in "
                                 "SUITE/runs/<job id>/)");
   const Json summary = Json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (!summary.is_object() || !summary.contains("engine") || !summary.contains("law") || !summary.contains("scenario_file"))
-    throw std::invalid_argument(path + ": not a run's record (expected a JSON object with engine, law and scenario_file); "
+  if (!summary.is_object() || !summary.contains("engine") || !summary.contains("law") ||
+      !summary.contains("scenario_file"))
+    throw std::invalid_argument(path +
+                                ": not a run's record (expected a JSON object with engine, law and scenario_file); "
                                 "the folder is damaged");
   return summary;
 }
@@ -84,8 +87,8 @@ std::vector<std::string> option_pairs_of(const Json& summary) {
 // The `impactbench run` arguments that rerun the recorded run from OUT/scenario.toml, into OUT/rerun.
 std::vector<std::string> rerun_arguments(const Json& summary, const ib::Scenario& scenario,
                                          const std::vector<std::string>& option_pairs) {
-  std::vector<std::string> arguments = {"run", "scenario.toml", "--engine", text_of(summary, "engine"), "--law",
-                                        text_of(summary, "law")};
+  std::vector<std::string> arguments = {"run",   "scenario.toml",        "--engine", text_of(summary, "engine"),
+                                        "--law", text_of(summary, "law")};
   const double step_s = number_of(summary, "time_step_s");
   if (step_s > 0) arguments.insert(arguments.end(), {"--dt", ib::exact_number_text(step_s)});
   for (const std::string& option : option_pairs) arguments.insert(arguments.end(), {"--option", option});
@@ -118,15 +121,18 @@ int command_repro(const std::string& run_folder, const std::string& out, const s
   fs::create_directories(out, error);
   if (error) throw ib::OutputError(ib::output_error_text(out, "create the folder", error.value()));
   fs::copy_file(scenario_file, out + "/scenario.toml", fs::copy_options::overwrite_existing, error);
-  if (error) throw ib::OutputError(ib::output_error_text(out + "/scenario.toml", "copy " + scenario_file, error.value()));
+  if (error)
+    throw ib::OutputError(ib::output_error_text(out + "/scenario.toml", "copy " + scenario_file, error.value()));
 
   const std::vector<std::string> option_pairs = option_pairs_of(summary);
   const std::vector<std::string> arguments = rerun_arguments(summary, scenario, option_pairs);
   std::string command = quoted(this_executable());
   for (const std::string& a : arguments) command += " " + quoted(a);
-  write_file(out + "/repro.sh", "#!/bin/sh\n# Reruns " + text_of(summary, "job_id") + " alone (impactbench repro; repro.json "
-                                    "says what it was). Run it in this folder: the run goes to ./rerun.\ncd \"$(dirname \"$0\")\"\n" +
-                                    command + "\n");
+  write_file(out + "/repro.sh",
+             "#!/bin/sh\n# Reruns " + text_of(summary, "job_id") +
+                 " alone (impactbench repro; repro.json "
+                 "says what it was). Run it in this folder: the run goes to ./rerun.\ncd \"$(dirname \"$0\")\"\n" +
+                 command + "\n");
   fs::permissions(out + "/repro.sh", fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
                   fs::perm_options::add, error);
 
@@ -149,8 +155,9 @@ int command_repro(const std::string& run_folder, const std::string& out, const s
                        {"model_file", model_file}};
   write_file(out + "/repro.json", record.dump(2) + "\n");
   std::printf("repro: %s (%s%s) in %s\n  rerun it with: sh %s/repro.sh\n", text_of(summary, "job_id").c_str(),
-              text_of(summary, "verdict").c_str(), text_of(summary, "reason").empty() ? "" : (": " + text_of(summary, "reason")).c_str(),
-              out.c_str(), out.c_str());
+              text_of(summary, "verdict").c_str(),
+              text_of(summary, "reason").empty() ? "" : (": " + text_of(summary, "reason")).c_str(), out.c_str(),
+              out.c_str());
   return kExitOk;
 }
 

@@ -15,13 +15,13 @@
 #include <optional>
 #include <thread>
 
+#include "harness/jobs/process_pool.h"
+#include "harness/jobs/run_job.h"
 #include "harness/records/number_text.h"
 #include "harness/records/provenance_file.h"
-#include "harness/scoring/plausibility.h"
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
-#include "harness/jobs/run_job.h"
-#include "harness/jobs/process_pool.h"
+#include "harness/scoring/plausibility.h"
 #include "model/scenario_toml.h"
 #include "simulators/catalog.h"
 
@@ -38,7 +38,8 @@ std::string shown(double value, const char* format, const char* why_not) {
 }
 
 void print_record(const ib::RunRecord& r) {
-  std::printf("%s: %s%s%s\n", r.job_id.c_str(), ib::to_string(r.verdict), r.reason.empty() ? "" : ": ", r.reason.c_str());
+  std::printf("%s: %s%s%s\n", r.job_id.c_str(), ib::to_string(r.verdict), r.reason.empty() ? "" : ": ",
+              r.reason.c_str());
   if (r.metrics) {
     const ib::Metrics& m = *r.metrics;
     std::printf("  impacts %d (%d onsets), impacts per cycle %s, mean contact duration %s\n", m.impacts, m.raw_onsets,
@@ -57,10 +58,9 @@ void print_record(const ib::RunRecord& r) {
                 shown(e.impacts_per_cycle_difference, "%+.3g", "no motor").c_str());
   }
   std::printf("  time step %s, %lld steps, CPU time %.3f s, wall time %.3f s (load average %s)\n",
-              shown(r.time_step_s > 0 ? r.time_step_s : NAN, "%g s", "adaptive").c_str(), r.cost.steps, r.cost.cpu_time_s, r.cost.wall_time_s,
-              shown(r.load_average, "%.2f", "unknown").c_str());
+              shown(r.time_step_s > 0 ? r.time_step_s : NAN, "%g s", "adaptive").c_str(), r.cost.steps,
+              r.cost.cpu_time_s, r.cost.wall_time_s, shown(r.load_average, "%.2f", "unknown").c_str());
 }
-
 
 int run_and_print(const ib::Scenario& scenario, ib::JobSpec job, const ib::Measurement& measurement,
                   const std::string& engine, const std::string& out, bool window_moved) {
@@ -75,11 +75,12 @@ int run_and_print(const ib::Scenario& scenario, ib::JobSpec job, const ib::Measu
     // a reference that did not end stable is no yardstick: the run's accuracy is then "not available"
     const auto run_reference = [&](std::optional<ib::ReferenceData>& data, const char* which) {
       data.emplace();
-      const ib::RunRecord r = ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*data, ib::make_simulator);
+      const ib::RunRecord r =
+          ib::run_job(scenario, reference, measurement, nullptr, nullptr, "", &*data, ib::make_simulator);
       if (r.verdict == ib::Verdict::unstable || r.verdict == ib::Verdict::failed) {
         data.reset();
-        job.missing_reference += std::string(job.missing_reference.empty() ? "" : "; ") + "the " + which + " reference run was " +
-                                 ib::to_string(r.verdict) + " (" + r.reason + ")";
+        job.missing_reference += std::string(job.missing_reference.empty() ? "" : "; ") + "the " + which +
+                                 " reference run was " + ib::to_string(r.verdict) + " (" + r.reason + ")";
       }
     };
     run_reference(beam, "beam");
@@ -91,13 +92,13 @@ int run_and_print(const ib::Scenario& scenario, ib::JobSpec job, const ib::Measu
       run_reference(chain, "chain");
     }
   }
-  const ib::RunRecord record = ib::run_job(scenario, job, measurement, beam ? &*beam : nullptr, chain ? &*chain : nullptr, out, nullptr, ib::make_simulator);
+  const ib::RunRecord record = ib::run_job(scenario, job, measurement, beam ? &*beam : nullptr,
+                                           chain ? &*chain : nullptr, out, nullptr, ib::make_simulator);
   ib::write_provenance_file(out, ib::simulator_catalog());
   print_record(record);
   std::printf("  files in %s\n", out.c_str());
   return record.verdict == ib::Verdict::unstable || record.verdict == ib::Verdict::failed ? kExitRunNotOk : kExitOk;
 }
-
 
 // Runs `work` in a child process and waits at most time_limit_s for it: the exit code it returned, or
 // nullopt when it was stopped at the limit (so that `run` ends like a suite's job, never hangs).
@@ -117,7 +118,8 @@ std::optional<int> within_time_limit(double time_limit_s, const std::function<in
     _exit(code);
   });
   std::optional<ib::ProcessEnd> end;
-  while (!(end = pool.wait_end())) {}
+  while (!(end = pool.wait_end())) {
+  }
   if (end->timed_out) return std::nullopt;
   if (WIFEXITED(end->status)) return WEXITSTATUS(end->status);
   throw std::runtime_error("the run's process died of signal " + std::to_string(WTERMSIG(end->status)) + " (" +
@@ -134,9 +136,12 @@ int command_run(const std::string& path, const std::string& engine, const std::s
   const bool cut = ib::cut_run(scenario, max_duration_s);  // --duration, as a suite's
   // the run the cross checks name: the cut one's length is --duration's, not the file's
   const std::string run_length =
-      "(" + (cut ? "--duration " + value_text(max_duration_s) : path + ": duration_s = " + value_text(scenario.duration_s)) + " s)";
+      "(" +
+      (cut ? "--duration " + value_text(max_duration_s) : path + ": duration_s = " + value_text(scenario.duration_s)) +
+      " s)";
   if (series_start_s >= scenario.duration_s)  // given (not given: -1, the scoring window's start)
-    throw std::invalid_argument("--series-start " + value_text(series_start_s) + ": allowed: before the run's end " + run_length);
+    throw std::invalid_argument("--series-start " + value_text(series_start_s) + ": allowed: before the run's end " +
+                                run_length);
   require_engine(engine);
   if (out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
   ib::JobSpec job;
@@ -149,8 +154,9 @@ int command_run(const std::string& path, const std::string& engine, const std::s
   job.settings.options = parse_options(option_pairs);
   // an ensemble's start (repro writes it): frame 1's tip displaced beyond the scenario's initial displacement
   job.start.initial_displacement_offset_m = start_offset_m;
-  if (time_step_s != 0 || engine == "reference") ib::check_run_size(scenario, job.settings);  // --dt 1e300: not 0 steps, ok
-  else {  // the engine's default step is its own: the rest of the size
+  if (time_step_s != 0 || engine == "reference")
+    ib::check_run_size(scenario, job.settings);  // --dt 1e300: not 0 steps, ok
+  else {                                         // the engine's default step is its own: the rest of the size
     ib::RunSettings sized = job.settings;
     sized.time_step_s = 0;
     ib::check_run_size(scenario, sized);
@@ -160,8 +166,8 @@ int command_run(const std::string& path, const std::string& engine, const std::s
   if (measurement.window_s)
     require_at_most(Shared::window, *measurement.window_s, scenario.duration_s, "the run " + run_length);
   const bool window_moved = cut || measurement.window_s;
-  const std::optional<int> code =
-      within_time_limit(time_limit_s, [&]() { return run_and_print(scenario, job, measurement, engine, out, window_moved); });
+  const std::optional<int> code = within_time_limit(
+      time_limit_s, [&]() { return run_and_print(scenario, job, measurement, engine, out, window_moved); });
   if (code) return *code;
   // recorded as a suite records a job past its limit
   ib::RunRecord record;

@@ -5,8 +5,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "harness/scoring/metrics.h"
 #include "harness/jobs/run_job.h"
+#include "harness/scoring/metrics.h"
 #include "model/scenario_toml.h"
 
 namespace cli {
@@ -34,10 +34,12 @@ int command_score(const std::string& folder, const std::string& scenario_path, c
     if (!reference_folder.empty()) out["reference_folder"] = reference_folder;
     out["window_start_s"] = metric_settings.window.start_s;
     out["window_end_s"] = metric_settings.window.end_s;
-    for (const auto& [name, value] : figures) out[name] = std::isfinite(value) ? nlohmann::ordered_json(value) : nullptr;
+    for (const auto& [name, value] : figures)
+      out[name] = std::isfinite(value) ? nlohmann::ordered_json(value) : nullptr;
     std::cout << out.dump(2) << '\n';
   } else {
-    std::printf("%s scored over [%.17g, %.17g] s\n", folder.c_str(), metric_settings.window.start_s, metric_settings.window.end_s);
+    std::printf("%s scored over [%.17g, %.17g] s\n", folder.c_str(), metric_settings.window.start_s,
+                metric_settings.window.end_s);
     for (const auto& [name, value] : figures) std::printf("  %-45s %.17g\n", name.c_str(), value);
   }
   return kExitOk;

@@ -39,17 +39,22 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
   };
   for (std::size_t i = 0; i < suites.size(); ++i) {
     const ib::SuiteSettings& s = suites[i];
-    const std::string starts = s.ensemble.reference_starts == 1 ? ""
-                               : "; starts " + std::to_string(s.ensemble.engine_starts) + " (references " +
-                                     std::to_string(s.ensemble.reference_starts) + ")";
+    const std::string starts = s.ensemble.reference_starts == 1
+                                   ? ""
+                                   : "; starts " + std::to_string(s.ensemble.engine_starts) + " (references " +
+                                         std::to_string(s.ensemble.reference_starts) + ")";
     std::vector<std::string> links;
     for (int k : s.reference_chain_links) links.push_back(std::to_string(k));
     const std::string chains = links.empty() ? "" : "; the reference on chains of " + list_text(links) + " links";
     std::printf("%s \"%s\": %s; engines %s; laws %s; paths %s; dt_s %s%s%s\n", s.step_search ? "search" : "suite",
                 suite_names[i].c_str(), list_text(s.inputs).c_str(), list_text(s.engines).c_str(), laws(s.laws).c_str(),
-                s.recommended ? "recommended" : s.contact_paths.empty() ? "default" : list_text(s.contact_paths).c_str(),
-                s.step_search ? "searched" : s.recommended ? "recommended" : steps(s.time_steps_s).c_str(), starts.c_str(),
-                chains.c_str());
+                s.recommended             ? "recommended"
+                : s.contact_paths.empty() ? "default"
+                                          : list_text(s.contact_paths).c_str(),
+                s.step_search   ? "searched"
+                : s.recommended ? "recommended"
+                                : steps(s.time_steps_s).c_str(),
+                starts.c_str(), chains.c_str());
   }
   for (std::size_t i = 0; i < sweeps.size(); ++i) {
     const ib::SweepSettings& s = sweeps[i];
@@ -64,7 +69,8 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
 
 int command_study(const StudyOptions& o) {
   if (o.out.empty() && !o.plan) throw std::invalid_argument("--out '': allowed: a folder path");
-  if (o.jobs < 1 || o.jobs > 1024) throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: 1 to 1024");
+  if (o.jobs < 1 || o.jobs > 1024)
+    throw std::invalid_argument("--jobs " + std::to_string(o.jobs) + ": allowed: 1 to 1024");
   const Study study = read_study(o.file, ib::simulator_names());
   const std::string out = o.out.empty() ? "OUT" : o.out;  // --plan alone names no folder
   std::vector<std::string> skipped;
@@ -125,9 +131,12 @@ int command_study(const StudyOptions& o) {
   if (suite_source) sources.push_back(suite_source.get());
   for (const auto& sweep : sweep_sources) sources.push_back(sweep.get());
   ib::run_units(sources, o.jobs);
-  if (suite_source) worst(suite_exit_code(suites.front(), ib::with_engines_file(out, suites.front().simulators, suite_source->finish())));
+  if (suite_source)
+    worst(
+        suite_exit_code(suites.front(), ib::with_engines_file(out, suites.front().simulators, suite_source->finish())));
   for (std::size_t i = 0; i < sweeps.size(); ++i)
-    worst(sweep_exit_code(sweeps[i], ib::with_engines_file(sweeps[i].out, sweeps[i].simulators, sweep_sources[i]->finish())));
+    worst(sweep_exit_code(sweeps[i],
+                          ib::with_engines_file(sweeps[i].out, sweeps[i].simulators, sweep_sources[i]->finish())));
   if (status == kExitBadInput || status >= kExitOutputError) return status;
   if (!o.no_report && o.shard.empty()) {
     const int report = command_report(o.out, "");

@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "harness/scoring/plausibility.h"
 #include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
+#include "harness/scoring/plausibility.h"
 #include "harness/suite/suite.h"
 
 namespace cli {
@@ -28,19 +28,18 @@ void record_command(const std::string& out, const ib::VerdictSettings& v, const 
   char started[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(started, sizeof started, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  const nlohmann::json line = {
-      {"command", typed},
-      {"started_utc", started},
-      {"verdict_tolerances",
-       {{"sensor_peak_relative_error", v.accuracy.sensor_peak_relative},
-        {"contact_duration_relative_error", v.accuracy.contact_duration_relative},
-        {"impacts_per_cycle_difference", v.accuracy.impacts_per_cycle_difference},
-        {"log_decrement_relative_error", v.accuracy.log_decrement_relative}}},
-      {"stability_bounds",
-       {{"displacement_fraction_of_length", v.stability.displacement_bound_fraction_of_length},
-        {"penetration_gaps", v.stability.penetration_bound_gaps},
-        {"penetration_floor_m", v.stability.penetration_bound_floor_m},
-        {"energy_growth_relative", v.stability.energy_growth_tolerance}}}};
+  const nlohmann::json line = {{"command", typed},
+                               {"started_utc", started},
+                               {"verdict_tolerances",
+                                {{"sensor_peak_relative_error", v.accuracy.sensor_peak_relative},
+                                 {"contact_duration_relative_error", v.accuracy.contact_duration_relative},
+                                 {"impacts_per_cycle_difference", v.accuracy.impacts_per_cycle_difference},
+                                 {"log_decrement_relative_error", v.accuracy.log_decrement_relative}}},
+                               {"stability_bounds",
+                                {{"displacement_fraction_of_length", v.stability.displacement_bound_fraction_of_length},
+                                 {"penetration_gaps", v.stability.penetration_bound_gaps},
+                                 {"penetration_floor_m", v.stability.penetration_bound_floor_m},
+                                 {"energy_growth_relative", v.stability.energy_growth_tolerance}}}};
   std::error_code error;
   std::filesystem::create_directories(out, error);  // when it cannot, the suite reports why (exit 3)
   if (!error) ib::append_text_file(out + "/commands.jsonl", line.dump() + "\n");
@@ -57,12 +56,16 @@ ib::StepSearchSettings parse_step_search(const SuiteOptions& o, ib::VerdictSetti
   s.points_per_octave = o.steps_per_octave;
   s.walk = o.step_walk;
   const auto range = split(o.step_range, ',');
-  if (range.size() != 2) throw std::invalid_argument("--step-range " + o.step_range + ": expected MIN,MAX in seconds, e.g. 1e-6,1e-3");
+  if (range.size() != 2)
+    throw std::invalid_argument("--step-range " + o.step_range + ": expected MIN,MAX in seconds, e.g. 1e-6,1e-3");
   s.min_step_s = parse_positive(range[0], "--step-range");
   s.max_step_s = parse_positive(range[1], "--step-range");
-  if (s.min_step_s > s.max_step_s) throw std::invalid_argument("--step-range " + o.step_range + ": allowed: MIN <= MAX");
-  ib::check_option("--step-range MIN", s.min_step_s, ib::Plausible::kMinTimeStep_s, ib::Plausible::kMaxTimeStep_s, "s", true);
-  ib::check_option("--step-range MAX", s.max_step_s, ib::Plausible::kMinTimeStep_s, ib::Plausible::kMaxTimeStep_s, "s", true);
+  if (s.min_step_s > s.max_step_s)
+    throw std::invalid_argument("--step-range " + o.step_range + ": allowed: MIN <= MAX");
+  ib::check_option("--step-range MIN", s.min_step_s, ib::Plausible::kMinTimeStep_s, ib::Plausible::kMaxTimeStep_s, "s",
+                   true);
+  ib::check_option("--step-range MAX", s.max_step_s, ib::Plausible::kMinTimeStep_s, ib::Plausible::kMaxTimeStep_s, "s",
+                   true);
   for (const auto& pair : split(o.tolerances, ',')) {
     const auto eq = pair.find('=');
     const std::string name = pair.substr(0, eq);
@@ -96,8 +99,9 @@ ib::SuiteSettings::Ensemble ensemble_from(const SuiteOptions& o) {
   e.displacement_step_m = o.ensemble_step_m;
   ib::check_option("--ensemble", e.engine_starts, 1, kMaxStarts, "", true);
   if (o.reference_ensemble_starts != 0 && (e.reference_starts < e.engine_starts || e.reference_starts > kMaxStarts))
-    throw std::invalid_argument("--reference-ensemble " + std::to_string(e.reference_starts) + ": allowed: 0 (--ensemble's), or " +
-                                std::to_string(e.engine_starts) + " (--ensemble) to " + std::to_string(kMaxStarts) +
+    throw std::invalid_argument("--reference-ensemble " + std::to_string(e.reference_starts) +
+                                ": allowed: 0 (--ensemble's), or " + std::to_string(e.engine_starts) +
+                                " (--ensemble) to " + std::to_string(kMaxStarts) +
                                 ": every engine start is compared with the reference's of the same start");
   if (!(e.displacement_step_m > 0) || !(e.displacement_step_m * (e.reference_starts - 1) <= kMaxSpread_m))
     throw std::invalid_argument("--ensemble-step " + ib::exact_number_text(e.displacement_step_m) +
@@ -105,7 +109,8 @@ ib::SuiteSettings::Ensemble ensemble_from(const SuiteOptions& o) {
                                 " starts spread over at most " + ib::exact_number_text(kMaxSpread_m) +
                                 " m (1 % of the rig's 1 mm gap: far below anything physical)");
   if (o.find_steps && e.reference_starts > 1)
-    throw std::invalid_argument("--ensemble and --reference-ensemble cannot be combined with --find-steps (a search's probes are single runs)");
+    throw std::invalid_argument(
+        "--ensemble and --reference-ensemble cannot be combined with --find-steps (a search's probes are single runs)");
   return e;
 }
 
@@ -113,7 +118,8 @@ ib::SuiteSettings::Ensemble ensemble_from(const SuiteOptions& o) {
 std::vector<int> reference_chains_from(const std::string& text) {
   std::vector<int> links;
   if (text.empty()) return links;
-  const char* allowed = "integers 1 <= K <= 64 (links per frame, as the engines' option links), increasing, comma-separated";
+  const char* allowed =
+      "integers 1 <= K <= 64 (links per frame, as the engines' option links), increasing, comma-separated";
   for (const std::string& item : split_list(text, "--reference-chains", allowed)) {
     std::size_t used = 0;
     int k = 0;
@@ -123,7 +129,8 @@ std::vector<int> reference_chains_from(const std::string& text) {
       used = 0;
     }
     if (used != item.size() || k < 1 || k > 64 || (!links.empty() && k <= links.back()))
-      throw std::invalid_argument("--reference-chains '" + text + "': " + item + " is not allowed; allowed: " + allowed);
+      throw std::invalid_argument("--reference-chains '" + text + "': " + item +
+                                  " is not allowed; allowed: " + allowed);
     links.push_back(k);
   }
   return links;
@@ -141,21 +148,25 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
   s.ensemble = ensemble_from(o);
   s.reference_chain_links = reference_chains_from(o.reference_chains);
   if (!s.reference_chain_links.empty() && o.find_steps)
-    throw std::invalid_argument("--reference-chains cannot be combined with --find-steps (a search plans its engines' probes only)");
+    throw std::invalid_argument(
+        "--reference-chains cannot be combined with --find-steps (a search plans its engines' probes only)");
   if (o.recommended) {
     // the configuration sets the contact path and the step of every law: a path or step beside it is a mistake
     if (!o.paths.empty() || !s.time_steps_s.empty() || o.find_steps)
-      throw std::invalid_argument("--recommended cannot be combined with --paths, --dt or --find-steps (each engine's "
-                                  "recommended configuration sets its contact path and time step per law)");
+      throw std::invalid_argument(
+          "--recommended cannot be combined with --paths, --dt or --find-steps (each engine's "
+          "recommended configuration sets its contact path and time step per law)");
     s.recommended = true;
   }
   if (o.find_steps) {
-    if (!s.time_steps_s.empty()) throw std::invalid_argument("--dt cannot be combined with --find-steps (the search chooses the steps)");
+    if (!s.time_steps_s.empty())
+      throw std::invalid_argument("--dt cannot be combined with --find-steps (the search chooses the steps)");
     s.step_search = parse_step_search(o, s.measurement.verdicts);
     s.keep_probe_series = o.keep_series;
   } else if (o.step_range != SuiteOptions{}.step_range || !o.tolerances.empty() ||
              o.steps_per_octave != SuiteOptions{}.steps_per_octave || o.keep_series || o.step_walk) {
-    throw std::invalid_argument("--step-range, --steps-per-octave, --step-walk, --tolerance and --keep-series need --find-steps");
+    throw std::invalid_argument(
+        "--step-range, --steps-per-octave, --step-walk, --tolerance and --keep-series need --find-steps");
   }
   return s;
 }
@@ -175,19 +186,24 @@ int suite_exit_code(const ib::SuiteSettings& s, const ib::SuiteOutcome& outcome)
     return kExitInterrupted + outcome.interrupted_by;
   }
   if (outcome.jobs_stopped > 0) {  // a worker got a signal from outside before the suite did (or alone)
-    std::fprintf(stderr, "\nimpactbench: %d jobs are not recorded: stopped by signal %d from outside, or compared with a reference that was; run them with: %s\n",
+    std::fprintf(stderr,
+                 "\nimpactbench: %d jobs are not recorded: stopped by signal %d from outside, or compared with a "
+                 "reference that was; run them with: %s\n",
                  outcome.jobs_stopped, outcome.stopped_by, s.resume_command.c_str());
     return kExitInterrupted + outcome.stopped_by;
   }
-  std::printf("suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed; "
-              "of all %d results there, %d unstable or failed\n",
-              outcome.jobs_run, s.out.c_str(), outcome.jobs_skipped, outcome.not_ok, outcome.recorded, outcome.not_ok_recorded);
+  std::printf(
+      "suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed; "
+      "of all %d results there, %d unstable or failed\n",
+      outcome.jobs_run, s.out.c_str(), outcome.jobs_skipped, outcome.not_ok, outcome.recorded, outcome.not_ok_recorded);
   if (!s.reference_cache.empty())
-    std::printf("suite: %d reference runs copied from %s, not solved\n", outcome.references_from_cache, s.reference_cache.c_str());
+    std::printf("suite: %d reference runs copied from %s, not solved\n", outcome.references_from_cache,
+                s.reference_cache.c_str());
   if (s.step_search)
     std::printf("suite: %d step searches recorded in %s/steps.csv\n", outcome.step_searches, s.out.c_str());
   if (s.shard)
-    std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", ib::to_string(*s.shard).c_str());
+    std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n",
+                ib::to_string(*s.shard).c_str());
   return outcome.not_ok_recorded > 0 ? kExitRunNotOk : kExitOk;  // every result, also those of an earlier invocation
 }
 

@@ -11,38 +11,49 @@
 namespace cli {
 
 void add_sweep_command(CLI::App& app, SweepOptions& o, MeasurementOptions& measurement, CLI::App*& command) {
-  command = app.add_subcommand("sweep", "a frequency sweep: every ratio of the motor speed to f_1 from rest, or continued "
-                                        "from the previous ratio's final state up and down (sweep.csv, poincare.csv)");
+  command = app.add_subcommand("sweep",
+                               "a frequency sweep: every ratio of the motor speed to f_1 from rest, or continued "
+                               "from the previous ratio's final state up and down (sweep.csv, poincare.csv)");
   command->add_option("scenario", o.scenario, "a scenario file with a motor (.toml)")->required();
   command->add_option("--ratios", o.ratios, "FROM:TO:STEP, the motor speed over frame 1's f_1")->capture_default_str();
-  command->add_option("--start", o.start, "rest (each ratio from rest), up, down (continued from the previous ratio) or both (up and down), comma-separated")
+  command
+      ->add_option("--start", o.start,
+                   "rest (each ratio from rest), up, down (continued from the previous ratio) or both (up and down), "
+                   "comma-separated")
       ->capture_default_str();
   command->add_option("--engines", o.engines, "comma-separated simulators")->capture_default_str();
   command->add_option("--laws", o.laws, "comma-separated laws")->capture_default_str();
   command->add_option("--paths", o.paths, "comma-separated contact paths of the engines; default: each engine's");
-  add_shared_list_option(command, Shared::dt, o.time_steps, "comma-separated time steps of fixed-step engines [s]; default: each engine's");
+  add_shared_list_option(command, Shared::dt, o.time_steps,
+                         "comma-separated time steps of fixed-step engines [s]; default: each engine's");
   command->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.n=5)");
   add_shared_option(command, Shared::duration, o.duration_s, "each continued ratio's run [s], whole motor periods");
   add_shared_option(command, Shared::rest_duration, o.rest_duration_s,
-                    "a start from rest's run (also a continuation's first ratio) [s]; default: the scenario's duration", false);
+                    "a start from rest's run (also a continuation's first ratio) [s]; default: the scenario's duration",
+                    false);
   add_shared_option(command, Shared::window, o.window_s, "the last S seconds of each run are scored [s]");
   add_shared_option(command, Shared::rate, o.rate_hz, "output series sample rate [Hz]");
   add_shared_option(command, Shared::jobs, o.jobs, "worker processes (one chain each)");
-  add_shared_option(command, Shared::time_limit, o.time_limit_s, "per ratio; a chain past it is stopped and recorded [s]");
-  command->add_option("--reference-ensemble", o.reference_ensemble_starts,
-                      "N: the reference from N starts from rest at each --ensemble-ratios ratio (start K: frame 1's tip displaced "
-                      "K x --ensemble-step); the report gives the fraction reaching each regime and the multistable ratios")
+  add_shared_option(command, Shared::time_limit, o.time_limit_s,
+                    "per ratio; a chain past it is stopped and recorded [s]");
+  command
+      ->add_option(
+          "--reference-ensemble", o.reference_ensemble_starts,
+          "N: the reference from N starts from rest at each --ensemble-ratios ratio (start K: frame 1's tip displaced "
+          "K x --ensemble-step); the report gives the fraction reaching each regime and the multistable ratios")
       ->capture_default_str();
   command->add_option("--ensemble-step", o.ensemble_step_m, "frame 1's initial tip displacement between two starts [m]")
       ->capture_default_str();
-  command->add_option("--ensemble-ratios", o.ensemble_ratios,
-                      "where the reference's ensemble runs: FROM:TO:STEP or single ratios, comma-separated, each one of --ratios; "
-                      "default: every ratio");
+  command->add_option(
+      "--ensemble-ratios", o.ensemble_ratios,
+      "where the reference's ensemble runs: FROM:TO:STEP or single ratios, comma-separated, each one of --ratios; "
+      "default: every ratio");
   command->add_option("--shard", o.shard, "K/N: run every N-th chain only (configuration and start), for a job array");
   command->add_flag("--resume", o.resume, "continue the sweep in --out: the rows recorded are kept, the rest run");
   command->add_option("--out", o.out, "output folder")->required();
   add_shared_option(command, Shared::sensor_rate, measurement.sensor_rate_hz, "accelerometer sample rate [Hz]");
-  command->add_option("--series", measurement.series, "what each ratio's folder keeps of its series: none, window or all")
+  command
+      ->add_option("--series", measurement.series, "what each ratio's folder keeps of its series: none, window or all")
       ->capture_default_str();
 }
 
@@ -59,11 +70,13 @@ ib::SweepSettings::StartEnsemble ensemble_from(const SweepOptions& o, const ib::
   e.displacement_step_m = o.ensemble_step_m;
   ib::check_option("--reference-ensemble", e.reference_starts, 1, kMaxStarts, "", true);
   if (!(e.displacement_step_m > 0) || !(e.displacement_step_m * (e.reference_starts - 1) <= kMaxSpread_m))
-    throw std::invalid_argument("--ensemble-step " + ib::exact_number_text(e.displacement_step_m) + ": allowed: above 0 m, with the " +
-                                std::to_string(e.reference_starts) + " starts spread over at most " +
-                                ib::exact_number_text(kMaxSpread_m) + " m (1 % of the rig's 1 mm gap: far below anything physical)");
+    throw std::invalid_argument("--ensemble-step " + ib::exact_number_text(e.displacement_step_m) +
+                                ": allowed: above 0 m, with the " + std::to_string(e.reference_starts) +
+                                " starts spread over at most " + ib::exact_number_text(kMaxSpread_m) +
+                                " m (1 % of the rig's 1 mm gap: far below anything physical)");
   if (!o.ensemble_ratios.empty()) {
-    if (e.reference_starts == 1) throw std::invalid_argument("--ensemble-ratios " + o.ensemble_ratios + ": needs --reference-ensemble N > 1");
+    if (e.reference_starts == 1)
+      throw std::invalid_argument("--ensemble-ratios " + o.ensemble_ratios + ": needs --reference-ensemble N > 1");
     e.ratios = ib::parse_ensemble_ratios(o.ensemble_ratios, s.ratios);
   }
   if (e.reference_starts > 1 && std::find(s.starts.begin(), s.starts.end(), ib::SweepStart::rest) == s.starts.end())
@@ -87,9 +100,11 @@ ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOp
     if (start == "down" || start == "both") add(ib::SweepStart::down);
     if (start == "rest") add(ib::SweepStart::rest);
     if (start != "up" && start != "down" && start != "both" && start != "rest")
-      throw std::invalid_argument("--start " + o.start + ": allowed: rest, up, down or both (up and down), comma-separated");
+      throw std::invalid_argument("--start " + o.start +
+                                  ": allowed: rest, up, down or both (up and down), comma-separated");
   }
-  if (s.starts.empty()) throw std::invalid_argument("--start '': allowed: rest, up, down or both (up and down), comma-separated");
+  if (s.starts.empty())
+    throw std::invalid_argument("--start '': allowed: rest, up, down or both (up and down), comma-separated");
   matrix_settings_from(o, measurement_options, s);
   // --duration, --rest-duration, --window: checked as read (option_rules.h)
   if (o.rest_duration_s >= 0) s.rest_duration_s = o.rest_duration_s;
@@ -111,13 +126,17 @@ int sweep_exit_code(const ib::SweepSettings& s, const ib::SweepOutcome& outcome)
     return kExitInterrupted + outcome.interrupted_by;
   }
   if (outcome.chains_stopped > 0) {  // a chain's process got a signal from outside before the sweep did (or alone)
-    std::fprintf(stderr, "\nimpactbench: %d chains were stopped by signal %d from outside before their end; continue with: %s\n",
-                 outcome.chains_stopped, outcome.stopped_by, s.resume_command.c_str());
+    std::fprintf(
+        stderr, "\nimpactbench: %d chains were stopped by signal %d from outside before their end; continue with: %s\n",
+        outcome.chains_stopped, outcome.stopped_by, s.resume_command.c_str());
     return kExitInterrupted + outcome.stopped_by;
   }
   std::printf("sweep: %d ratios recorded in %s/sweep.csv (%d run now, %d already recorded), %d not ok\n",
-              outcome.rows_run + outcome.rows_skipped, s.out.c_str(), outcome.rows_run, outcome.rows_skipped, outcome.not_ok);
-  if (s.shard) std::printf("sweep: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n", ib::to_string(*s.shard).c_str());
+              outcome.rows_run + outcome.rows_skipped, s.out.c_str(), outcome.rows_run, outcome.rows_skipped,
+              outcome.not_ok);
+  if (s.shard)
+    std::printf("sweep: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n",
+                ib::to_string(*s.shard).c_str());
   return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
 }
 

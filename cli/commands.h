@@ -25,7 +25,7 @@ struct SuiteOptions : MatrixOptions {
   int steps_per_octave = 4;
   bool step_walk = false;  // --step-walk: the search walks down the grid (a front's ladder) instead of bisecting
   std::string step_range = "1e-6,1e-3", tolerances;
-  std::string reference_cache;  // a folder sharing reference runs between output folders
+  std::string reference_cache;        // a folder sharing reference runs between output folders
   int ensemble_starts = 1;            // --ensemble: starts of every configuration
   int reference_ensemble_starts = 0;  // --reference-ensemble: the references' starts; 0: --ensemble's
   double ensemble_step_m = 1e-7;      // --ensemble-step: frame 1's tip displacement between starts [m]
@@ -44,8 +44,7 @@ struct SweepOptions : MatrixOptions {
 
 int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
                 double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
-                const MeasurementOptions& measurement_options,
-                double time_limit_s, double max_duration_s,
+                const MeasurementOptions& measurement_options, double time_limit_s, double max_duration_s,
                 double start_offset_m);  // max_duration_s: 0, the scenario's whole run
 
 int command_modes(const std::string& path, bool json, const std::vector<std::string>& option_pairs);
@@ -62,8 +61,9 @@ void record_command(const std::string& out, const ib::VerdictSettings& verdicts,
 
 // The model an engine builds for a run, in the engine's own format, for a person to open in the
 // engine's tools (MuJoCo: MJCF for its viewer; the reference: its modal model as JSON).
-int command_export(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
-                   double time_step_s, double rate_hz, const std::vector<std::string>& option_pairs);
+int command_export(const std::string& path, const std::string& engine, const std::string& law_name,
+                   const std::string& out, double time_step_s, double rate_hz,
+                   const std::vector<std::string>& option_pairs);
 
 // A run made elsewhere (series.csv and events.csv in the harness's format, run_files.h), measured with the
 // harness's own metric code exactly as every simulator's run is; with a reference folder, its errors
@@ -93,7 +93,7 @@ int sweep_exit_code(const ib::SweepSettings& s, const ib::SweepOutcome& outcome)
 // `study FILE --out DIR`: every part of a study file (study_file.h) into one folder, then its report.
 struct StudyOptions {
   std::string file, out, shard;
-  std::string skip;  // kinds of parts left out, comma-separated: suite, search, sweep
+  std::string skip;             // kinds of parts left out, comma-separated: suite, search, sweep
   std::string reference_cache;  // a folder sharing reference runs between output folders
   int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   bool resume = false, no_report = false;

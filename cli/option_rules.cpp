@@ -22,7 +22,8 @@ using ib::Plausible;
 const OptionRule kOptionRules[] = {
     // Contacts last 0.3 to 1 ms (docs/step-search.md): a 1e-2 s step is ten contacts long and a fourteenth of
     // the rig's first period; below 1e-9 s a run of 10 s takes the harness's limit of 1e10 steps.
-    {"--dt", Plausible::kMinTimeStep_s, Plausible::kMaxTimeStep_s, true, false, "s", "the time step of fixed-step engines"},
+    {"--dt", Plausible::kMinTimeStep_s, Plausible::kMaxTimeStep_s, true, false, "s",
+     "the time step of fixed-step engines"},
     // The series is what every metric reads (harness/scoring/metrics.h). At 256 Hz (sweep's floor so far) its Nyquist
     // frequency, 128 Hz, is above the published rig's first two bending modes (6.95 and 73.2 Hz with the tip
     // mass, `impactbench modes`); below 146 Hz the second mode aliases. Its use in a run is bounded from
@@ -45,9 +46,11 @@ const OptionRule kOptionRules[] = {
     {"--jobs", 1, 1024, true, true, "", "worker processes"},
     {"--repeat", 0, 100, true, true, "", "timed runs after the logged one"},
     // What an engine run's series.csv.gz keeps (0: every output sample); the metrics read the full series first.
-    {"--series-rate", 0, Plausible::kMaxRate_hz, true, false, "Hz", "the rate an engine run's series file keeps, 0 for --rate"},
+    {"--series-rate", 0, Plausible::kMaxRate_hz, true, false, "Hz",
+     "the rate an engine run's series file keeps, 0 for --rate"},
 };
-static_assert(sizeof kOptionRules / sizeof kOptionRules[0] == static_cast<int>(Shared::series_rate) + 1, "one rule per Shared, in its order");
+static_assert(sizeof kOptionRules / sizeof kOptionRules[0] == static_cast<int>(Shared::series_rate) + 1,
+              "one rule per Shared, in its order");
 
 std::string range_number(double value) {
   std::ostringstream out;
@@ -98,7 +101,8 @@ double parse_value(Shared option, const std::string& text) {
   const char* begin = text.c_str();
   char* end = nullptr;
   const double value = std::strtod(begin, &end);
-  if (text.empty() || end == begin || *end != '\0') refuse_value(option, text.empty() ? "''" : text);  // not a number: as typed
+  if (text.empty() || end == begin || *end != '\0')
+    refuse_value(option, text.empty() ? "''" : text);  // not a number: as typed
   if (!within_rule(rule(option), value)) refuse_value(option, value_text(value));
   return value;
 }
@@ -113,19 +117,22 @@ std::vector<double> parse_values(Shared option, const std::string& text) {
 CLI::Option* add_shared_option(CLI::App* command, Shared option, double& target, const std::string& description,
                                bool show_default) {
   CLI::Option* added = command->add_option_function<std::string>(
-      rule(option).name, [option, &target](const std::string& text) { target = parse_value(option, text); }, description);
+      rule(option).name, [option, &target](const std::string& text) { target = parse_value(option, text); },
+      description);
   return with_default_shown(added, target, show_default);
 }
 
 CLI::Option* add_shared_option(CLI::App* command, Shared option, int& target, const std::string& description,
                                bool show_default) {
   CLI::Option* added = command->add_option_function<std::string>(
-      rule(option).name, [option, &target](const std::string& text) { target = static_cast<int>(parse_value(option, text)); },
+      rule(option).name,
+      [option, &target](const std::string& text) { target = static_cast<int>(parse_value(option, text)); },
       description);
   return with_default_shown(added, target, show_default);
 }
 
-CLI::Option* add_shared_list_option(CLI::App* command, Shared option, std::string& target, const std::string& description) {
+CLI::Option* add_shared_list_option(CLI::App* command, Shared option, std::string& target,
+                                    const std::string& description) {
   return command->add_option_function<std::string>(
       rule(option).name,
       [option, &target](const std::string& text) {
@@ -137,12 +144,14 @@ CLI::Option* add_shared_list_option(CLI::App* command, Shared option, std::strin
 
 void require_at_most(Shared option, double value, double limit, const std::string& limit_text) {
   if (!(value <= limit))
-    throw std::invalid_argument(std::string(rule(option).name) + " " + value_text(value) + ": allowed: at most " + limit_text);
+    throw std::invalid_argument(std::string(rule(option).name) + " " + value_text(value) + ": allowed: at most " +
+                                limit_text);
 }
 
 void require_series_resolves_sensor(double rate_hz, double sensor_rate_hz) {
   if (rate_hz < sensor_rate_hz)
-    throw std::invalid_argument("--rate " + value_text(rate_hz) + ": allowed: at least --sensor-rate (" + value_text(sensor_rate_hz) +
+    throw std::invalid_argument("--rate " + value_text(rate_hz) + ": allowed: at least --sensor-rate (" +
+                                value_text(sensor_rate_hz) +
                                 " Hz; the sensor reads the series, and a coarser series underestimates its peaks)");
 }
 

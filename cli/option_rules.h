@@ -15,14 +15,27 @@
 
 namespace cli {
 
-enum class Shared { dt, rate, sensor_rate, time_limit, duration, rest_duration, window, series_start, merge_window, jobs, repeat, series_rate };
+enum class Shared {
+  dt,
+  rate,
+  sensor_rate,
+  time_limit,
+  duration,
+  rest_duration,
+  window,
+  series_start,
+  merge_window,
+  jobs,
+  repeat,
+  series_rate
+};
 
 struct OptionRule {
-  const char* name;   // as typed: "--dt"
-  double lo, hi;      // lo < x <= hi, or lo <= x <= hi with lo_included
+  const char* name;  // as typed: "--dt"
+  double lo, hi;     // lo < x <= hi, or lo <= x <= hi with lo_included
   bool lo_included;
-  bool whole;         // a count: a whole number
-  const char* unit;   // SI: "s", "Hz"; "" for a count
+  bool whole;        // a count: a whole number
+  const char* unit;  // SI: "s", "Hz"; "" for a count
   const char* meaning;
 };
 
@@ -48,7 +61,8 @@ CLI::Option* add_shared_option(CLI::App* command, Shared option, double& target,
 CLI::Option* add_shared_option(CLI::App* command, Shared option, int& target, const std::string& description,
                                bool show_default = true);
 // A comma-separated list of values: each is checked when given; target keeps the text.
-CLI::Option* add_shared_list_option(CLI::App* command, Shared option, std::string& target, const std::string& description);
+CLI::Option* add_shared_list_option(CLI::App* command, Shared option, std::string& target,
+                                    const std::string& description);
 
 // value <= limit, else "NAME VALUE: allowed: at most LIMIT_TEXT" (e.g. a window at most the run).
 void require_at_most(Shared option, double value, double limit, const std::string& limit_text);

@@ -23,9 +23,12 @@ using ib::toml_schema::type_name;
 
 const char* kind_name(StudyPart::Kind kind) {
   switch (kind) {
-    case StudyPart::Kind::suite: return "suite";
-    case StudyPart::Kind::search: return "search";
-    case StudyPart::Kind::sweep: return "sweep";
+    case StudyPart::Kind::suite:
+      return "suite";
+    case StudyPart::Kind::search:
+      return "search";
+    case StudyPart::Kind::sweep:
+      return "sweep";
   }
   return "";
 }
@@ -44,7 +47,8 @@ struct KeySpec {
 // `scenario` (sweep): a part left to its defaults is the command's defaults.
 const std::vector<KeySpec> kCommonKeys = {
     {"name", Type::text, "", "the part's name, in messages (a sweep's: its folder below OUT/sweeps/)"},
-    {"engines", Type::texts_or_all, "--engines", "\"all\" (every simulator of the build) or a list of simulators", "engine"},
+    {"engines", Type::texts_or_all, "--engines", "\"all\" (every simulator of the build) or a list of simulators",
+     "engine"},
     {"skip_engines", Type::texts, "--engines", "simulators left out of `engines`"},
     {"laws", Type::texts_or_all, "--laws", "\"all\" or a list of contact laws: hertz, viscoelastic, newton", "law"},
     {"paths", Type::texts_or_all, "--paths", "\"all\" or a list of contact paths: matched, injected, native"},
@@ -56,36 +60,45 @@ const std::vector<KeySpec> kCommonKeys = {
     {"series_rate_hz", Type::number, "--series-rate", "the rate an engine run's series file keeps [Hz]; 0: rate_hz"},
     {"time_limit_s", Type::number, "--time-limit", "per job (a sweep: per ratio) [s]"},
     {"window_s", Type::number, "--window", "the last S seconds of each run are scored [s]"},
-    {"duration_s", Type::number, "--duration", "suite: runs cut to this length [s]; sweep: each continued ratio's run [s]"},
+    {"duration_s", Type::number, "--duration",
+     "suite: runs cut to this length [s]; sweep: each continued ratio's run [s]"},
 };
 const std::vector<KeySpec> kSuiteKeys = {
     {"scenarios", Type::texts, "scenarios", "scenario files or folders"},
     {"ensemble_starts", Type::integer, "--ensemble", "every configuration from N starts (1: single runs)"},
-    {"reference_ensemble_starts", Type::integer, "--reference-ensemble", "the references' starts (at least ensemble_starts)"},
+    {"reference_ensemble_starts", Type::integer, "--reference-ensemble",
+     "the references' starts (at least ensemble_starts)"},
     {"ensemble_step_m", Type::number, "--ensemble-step", "frame 1's initial tip displacement between two starts [m]"},
-    {"recommended", Type::boolean, "--recommended", "each engine in its authors' recommended configuration per law (not with paths or dt_s)"},
-    {"reference_chains", Type::numbers, "--reference-chains", "links K per frame: the reference alone on each K-link chain, every start"},
+    {"recommended", Type::boolean, "--recommended",
+     "each engine in its authors' recommended configuration per law (not with paths or dt_s)"},
+    {"reference_chains", Type::numbers, "--reference-chains",
+     "links K per frame: the reference alone on each K-link chain, every start"},
 };
 const std::vector<KeySpec> kSearchKeys = {
     {"scenarios", Type::texts, "scenarios", "scenario files or folders"},
     {"steps_per_octave", Type::integer, "--steps-per-octave", "grid steps per halving of the step"},
     {"step_range_s", Type::numbers, "--step-range", "[MIN, MAX] step searched [s]"},
     {"keep_series", Type::boolean, "--keep-series", "keep every probe's series"},
-    {"walk", Type::boolean, "--step-walk", "walk down the grid until the error stops falling (a front's ladder), not bisect"},
+    {"walk", Type::boolean, "--step-walk",
+     "walk down the grid until the error stops falling (a front's ladder), not bisect"},
 };
 const std::vector<KeySpec> kSweepKeys = {
     {"scenario", Type::text, "scenario", "a scenario file with a motor"},
     {"ratios", Type::text, "--ratios", "FROM:TO:STEP, the motor speed over f_1"},
     {"starts", Type::texts, "--start", "rest, up, down or both"},
     {"rest_duration_s", Type::number, "--rest-duration", "a start from rest's run [s]"},
-    {"reference_ensemble_starts", Type::integer, "--reference-ensemble", "the reference's starts from rest at each ensemble ratio (1: one)"},
+    {"reference_ensemble_starts", Type::integer, "--reference-ensemble",
+     "the reference's starts from rest at each ensemble ratio (1: one)"},
     {"ensemble_step_m", Type::number, "--ensemble-step", "frame 1's initial tip displacement between two starts [m]"},
-    {"ensemble_ratios", Type::texts, "--ensemble-ratios", "FROM:TO:STEP ranges or single ratios where the reference's ensemble runs"},
+    {"ensemble_ratios", Type::texts, "--ensemble-ratios",
+     "FROM:TO:STEP ranges or single ratios where the reference's ensemble runs"},
 };
 
 std::vector<KeySpec> keys_of(StudyPart::Kind kind) {
   std::vector<KeySpec> keys = kCommonKeys;
-  const auto& own = kind == StudyPart::Kind::suite ? kSuiteKeys : kind == StudyPart::Kind::search ? kSearchKeys : kSweepKeys;
+  const auto& own = kind == StudyPart::Kind::suite    ? kSuiteKeys
+                    : kind == StudyPart::Kind::search ? kSearchKeys
+                                                      : kSweepKeys;
   keys.insert(keys.end(), own.begin(), own.end());
   return keys;
 }
@@ -136,9 +149,12 @@ class PartReader {
         if (const auto* array = node->as_array()) {
           std::vector<std::string> items;
           for (const toml::node& item : *array) {
-            if (spec.type == Type::numbers && item.is_number()) items.push_back(number_text(item.value<double>().value()));
-            else if (spec.type != Type::numbers && item.is_string()) items.push_back(item.as_string()->get());
-            else wrong(spec, *node, spec.type == Type::numbers ? "an array of numbers" : "an array of strings");
+            if (spec.type == Type::numbers && item.is_number())
+              items.push_back(number_text(item.value<double>().value()));
+            else if (spec.type != Type::numbers && item.is_string())
+              items.push_back(item.as_string()->get());
+            else
+              wrong(spec, *node, spec.type == Type::numbers ? "an array of numbers" : "an array of strings");
           }
           part.key_items[spec.key] = items;
           return joined(items);
@@ -146,8 +162,13 @@ class PartReader {
         if (spec.type == Type::numbers && node->is_number()) return number_text(node->value<double>().value());
         break;
     }
-    static const char* expected[] = {"a string", "a number", "an integer", "true or false", "an array of strings",
-                                     "an array of numbers", "\"all\" or an array of strings"};
+    static const char* expected[] = {"a string",
+                                     "a number",
+                                     "an integer",
+                                     "true or false",
+                                     "an array of strings",
+                                     "an array of numbers",
+                                     "\"all\" or an array of strings"};
     wrong(spec, *node, expected[static_cast<int>(spec.type)]);
   }
 
@@ -215,9 +236,12 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
   };
   part.name = given.count("name") ? given["name"] : std::string(kind_name(kind)) + " " + std::to_string(index + 1);
   // Each number is checked as its command-line option is, as soon as it is read (cli/option_rules.h).
-  const std::pair<const char*, Shared> numbers[] = {{"rate_hz", Shared::rate},           {"sensor_rate_hz", Shared::sensor_rate},
-                                                    {"time_limit_s", Shared::time_limit}, {"window_s", Shared::window},
-                                                    {"duration_s", Shared::duration},     {"rest_duration_s", Shared::rest_duration},
+  const std::pair<const char*, Shared> numbers[] = {{"rate_hz", Shared::rate},
+                                                    {"sensor_rate_hz", Shared::sensor_rate},
+                                                    {"time_limit_s", Shared::time_limit},
+                                                    {"window_s", Shared::window},
+                                                    {"duration_s", Shared::duration},
+                                                    {"rest_duration_s", Shared::rest_duration},
                                                     {"series_rate_hz", Shared::series_rate}};
   for (const auto& [key, option] : numbers) {
     if (!given.count(key)) continue;
@@ -228,7 +252,8 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
     }
   }
   std::string engine_list = given.count("engines") ? expand_all("engines", given["engines"], engines) : "";
-  if (given.count("skip_engines")) engine_list = without(engine_list.empty() ? joined(engines) : engine_list, given["skip_engines"]);
+  if (given.count("skip_engines"))
+    engine_list = without(engine_list.empty() ? joined(engines) : engine_list, given["skip_engines"]);
   MeasurementOptions& m = part.measurement;
   if (given.count("sensor_rate_hz")) m.sensor_rate_hz = std::stod(given["sensor_rate_hz"]);
   if (given.count("series")) m.series = given["series"];
@@ -247,7 +272,8 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
     require("scenario", "a scenario file with a motor");
     if (part.name.empty() || part.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
       checker.fail(part.key_lines["name"], dotted + ".name",
-                   dotted + ".name = \"" + part.name + "\": not allowed; allowed: 1 or more of a-z, 0-9, _ and - (the sweep's folder)");
+                   dotted + ".name = \"" + part.name +
+                       "\": not allowed; allowed: 1 or more of a-z, 0-9, _ and - (the sweep's folder)");
     SweepOptions& s = part.sweep;
     m.series = given.count("series") ? given["series"] : "none";  // a sweep's tables are its results
     s.scenario = scenario_path(file, given["scenario"]);
@@ -256,7 +282,8 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
     if (given.count("duration_s")) s.duration_s = std::stod(given["duration_s"]);
     if (given.count("rest_duration_s")) s.rest_duration_s = std::stod(given["rest_duration_s"]);
     if (given.count("window_s")) s.window_s = std::stod(given["window_s"]);
-    if (given.count("reference_ensemble_starts")) s.reference_ensemble_starts = std::stoi(given["reference_ensemble_starts"]);
+    if (given.count("reference_ensemble_starts"))
+      s.reference_ensemble_starts = std::stoi(given["reference_ensemble_starts"]);
     if (given.count("ensemble_step_m")) s.ensemble_step_m = std::stod(given["ensemble_step_m"]);
     if (given.count("ensemble_ratios")) s.ensemble_ratios = given["ensemble_ratios"];
     return part;
@@ -272,7 +299,8 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
     m.window_given = true;
   }
   if (given.count("ensemble_starts")) s.ensemble_starts = std::stoi(given["ensemble_starts"]);
-  if (given.count("reference_ensemble_starts")) s.reference_ensemble_starts = std::stoi(given["reference_ensemble_starts"]);
+  if (given.count("reference_ensemble_starts"))
+    s.reference_ensemble_starts = std::stoi(given["reference_ensemble_starts"]);
   if (given.count("ensemble_step_m")) s.ensemble_step_m = std::stod(given["ensemble_step_m"]);
   if (given.count("recommended")) s.recommended = given["recommended"] == "true";
   if (given.count("reference_chains")) s.reference_chains = given["reference_chains"];
@@ -315,7 +343,8 @@ Settings checked(const StudyPart& part, Make make) {
     throw;  // a scenario file's own message names that file
   } catch (const std::invalid_argument& error) {
     const KeySpec* key = key_of_message(part, error.what());
-    const std::string dotted = std::string(kind_name(part.kind)) + " \"" + part.name + "\"" + (key ? std::string(".") + key->key : "");
+    const std::string dotted =
+        std::string(kind_name(part.kind)) + " \"" + part.name + "\"" + (key ? std::string(".") + key->key : "");
     throw ib::ScenarioError(part.file, key ? part.key_lines.at(key->key) : part.line, key ? key->key : "",
                             dotted + ": " + error.what());
   }
@@ -334,7 +363,8 @@ Study read_study(const std::string& path, const std::vector<std::string>& engine
   study.file = path;
   if (const toml::node* node = document.get("study")) {
     if (!node->is_table())
-      checker.fail(line_of(*node), "study", "study: wrong type (" + std::string(type_name(*node)) + "); expected a table [study]");
+      checker.fail(line_of(*node), "study",
+                   "study: wrong type (" + std::string(type_name(*node)) + "); expected a table [study]");
     const ib::toml_schema::Section section{node->as_table(), "study", line_of(*node)};
     checker.reject_unknown(section, {"description"}, "allowed keys in [study]: description");
     if (const toml::node* d = node->as_table()->get("description")) {
@@ -350,9 +380,11 @@ Study read_study(const std::string& path, const std::vector<std::string>& engine
     const toml::array* tables = node->as_array();
     if (!tables || !tables->is_array_of_tables())
       checker.fail(line_of(*node), kind_name(kind),
-                   std::string(kind_name(kind)) + ": wrong type (" + type_name(*node) + "); expected tables [[" + kind_name(kind) + "]]");
+                   std::string(kind_name(kind)) + ": wrong type (" + type_name(*node) + "); expected tables [[" +
+                       kind_name(kind) + "]]");
     int index = 0;
-    for (const toml::node& table : *tables) study.parts.push_back(read_part(checker, *table.as_table(), kind, index++, path, engines));
+    for (const toml::node& table : *tables)
+      study.parts.push_back(read_part(checker, *table.as_table(), kind, index++, path, engines));
   }
   if (study.parts.empty())
     throw ib::ScenarioError(path, 1, "", "a study needs at least one [[suite]], [[search]] or [[sweep]]");

@@ -16,11 +16,11 @@ namespace cli {
 struct StudyPart {
   enum class Kind { suite, search, sweep };
   Kind kind = Kind::suite;
-  std::string name;          // a sweep's: its folder below OUT/sweeps/; a suite's or search's: for messages
-  std::string file;          // the study file
-  int line = 0;              // its table's header ([[suite]], [[search]], [[sweep]])
-  SuiteOptions suite;        // suite and search
-  SweepOptions sweep;        // sweep
+  std::string name;    // a sweep's: its folder below OUT/sweeps/; a suite's or search's: for messages
+  std::string file;    // the study file
+  int line = 0;        // its table's header ([[suite]], [[search]], [[sweep]])
+  SuiteOptions suite;  // suite and search
+  SweepOptions sweep;  // sweep
   MeasurementOptions measurement;
   std::map<std::string, int> key_lines;  // each key given, by its line: messages about a value name it
   std::map<std::string, std::vector<std::string>> key_items;  // an array key's items, as given (a comma in one stays)

@@ -16,12 +16,12 @@
 #include <string>
 #include <string_view>
 
-#include "harness/scoring/metrics.h"
-#include "physics/modal_model.h"
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
+#include "harness/scoring/metrics.h"
 #include "model/scenario_toml.h"
 #include "model/trajectory.h"
+#include "physics/modal_model.h"
 
 namespace ib::fuzz {
 

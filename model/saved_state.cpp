@@ -11,8 +11,8 @@ namespace ib {
 
 void check_saved_state(const SavedState& state, const std::string& simulator, const std::string& layout) {
   if (state.simulator != simulator || state.layout != layout)
-    throw std::invalid_argument("a saved state of '" + state.simulator + "' (" + state.layout + ") cannot start a run of '" +
-                                simulator + "', which needs " + layout);
+    throw std::invalid_argument("a saved state of '" + state.simulator + "' (" + state.layout +
+                                ") cannot start a run of '" + simulator + "', which needs " + layout);
 }
 
 std::string saved_state_text(const SavedState& state) {
@@ -29,7 +29,8 @@ SavedState parse_saved_state(const std::string& text, const std::string& where) 
   std::istringstream in(text);
   SavedState state;
   if (!std::getline(in, state.simulator) || !std::getline(in, state.layout) || state.simulator.empty())
-    throw std::invalid_argument(where + ": a saved state starts with the simulator's name and its layout, one line each");
+    throw std::invalid_argument(where +
+                                ": a saved state starts with the simulator's name and its layout, one line each");
   std::string line;
   for (int number = 3; std::getline(in, line); ++number) {
     if (line.empty()) continue;

@@ -10,9 +10,9 @@
 namespace ib {
 
 struct SavedState {
-  std::string simulator;        // the simulator that wrote it, e.g. "reference", "mujoco"
-  std::string layout;           // what the values are, in the simulator's words (checked on reading)
-  std::vector<double> values;   // SI units (m, rad, m/s, rad/s; modal: sqrt(kg) m and sqrt(kg) m/s)
+  std::string simulator;       // the simulator that wrote it, e.g. "reference", "mujoco"
+  std::string layout;          // what the values are, in the simulator's words (checked on reading)
+  std::vector<double> values;  // SI units (m, rad, m/s, rad/s; modal: sqrt(kg) m and sqrt(kg) m/s)
 };
 
 // Throws std::invalid_argument unless state was written by `simulator` with `layout`, naming both.

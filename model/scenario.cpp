@@ -13,9 +13,7 @@ double FrameSpec::bending_stiffness_n_m2() const {
 }
 
 // rho A = columns rho b h
-double FrameSpec::mass_per_length_kg_m() const {
-  return columns * density_kg_m3 * column_width_m * column_thickness_m;
-}
+double FrameSpec::mass_per_length_kg_m() const { return columns * density_kg_m3 * column_width_m * column_thickness_m; }
 
 // c_h = 3 k_h (1 - e^2) / (4 v_rel) (Lankarani-Nikravesh, rig.md 3.1), unless given explicitly.
 double HertzSpec::damping_coefficient() const {
@@ -25,9 +23,12 @@ double HertzSpec::damping_coefficient() const {
 
 const char* to_string(ContactLaw law) {
   switch (law) {
-    case ContactLaw::hertz: return "hertz";
-    case ContactLaw::viscoelastic: return "viscoelastic";
-    case ContactLaw::newton: return "newton";
+    case ContactLaw::hertz:
+      return "hertz";
+    case ContactLaw::viscoelastic:
+      return "viscoelastic";
+    case ContactLaw::newton:
+      return "newton";
   }
   return "unknown";
 }
@@ -43,9 +44,12 @@ std::optional<ContactLaw> contact_law_from_string(const std::string& name) {
 
 bool ContactSpec::has(ContactLaw law) const {
   switch (law) {
-    case ContactLaw::hertz: return hertz.has_value();
-    case ContactLaw::viscoelastic: return viscoelastic.has_value();
-    case ContactLaw::newton: return newton.has_value();
+    case ContactLaw::hertz:
+      return hertz.has_value();
+    case ContactLaw::viscoelastic:
+      return viscoelastic.has_value();
+    case ContactLaw::newton:
+      return newton.has_value();
   }
   return false;
 }
@@ -69,7 +73,7 @@ Scenario default_rig() {
   s.description = "Motor at 1.00 f_1 of frame 1: the published resonance case.";
   s.source_path = "";
 
-  FrameSpec frame;                 // two A-36 steel columns, E = 200 GPa, 1.75 x 76.2 mm, L = 0.300 m
+  FrameSpec frame;  // two A-36 steel columns, E = 200 GPa, 1.75 x 76.2 mm, L = 0.300 m
   frame.columns = 2;
   frame.youngs_modulus_pa = 200e9;
   frame.density_kg_m3 = 7850.0;

@@ -11,24 +11,24 @@ namespace ib {
 
 // One frame: its columns act together as one clamped-free Euler-Bernoulli beam with a tip mass.
 struct FrameSpec {
-  int columns = 2;                       // columns per frame [-]
-  double youngs_modulus_pa = 200e9;      // E [Pa]
-  double density_kg_m3 = 7850;           // rho [kg/m^3]
-  double column_thickness_m = 1.75e-3;   // h [m], bending direction
-  double column_width_m = 76.2e-3;       // b [m]
-  double length_m = 0.300;               // L [m]
-  double tip_mass_kg = 0.41380;          // M_t [kg]: top plate (+ motor and unbalance on frame 1)
-  double damping_ratio = 0.003;          // zeta [-], every mode
+  int columns = 2;                      // columns per frame [-]
+  double youngs_modulus_pa = 200e9;     // E [Pa]
+  double density_kg_m3 = 7850;          // rho [kg/m^3]
+  double column_thickness_m = 1.75e-3;  // h [m], bending direction
+  double column_width_m = 76.2e-3;      // b [m]
+  double length_m = 0.300;              // L [m]
+  double tip_mass_kg = 0.41380;         // M_t [kg]: top plate (+ motor and unbalance on frame 1)
+  double damping_ratio = 0.003;         // zeta [-], every mode
 
-  double bending_stiffness_n_m2() const;     // EI = columns E b h^3 / 12 [N m^2]
-  double mass_per_length_kg_m() const;       // rho A = columns rho b h [kg/m]
+  double bending_stiffness_n_m2() const;  // EI = columns E b h^3 / 12 [N m^2]
+  double mass_per_length_kg_m() const;    // rho A = columns rho b h [kg/m]
   double beam_mass_kg() const { return mass_per_length_kg_m() * length_m; }
 };
 
 // The unbalanced motor on frame 1's tip: F_m(t) = m_u e_u Omega^2 cos(Omega t).
 struct MotorSpec {
-  double unbalance_mass_kg = 6.59e-3;    // m_u [kg]
-  double unbalance_radius_m = 15e-3;     // e_u [m]
+  double unbalance_mass_kg = 6.59e-3;  // m_u [kg]
+  double unbalance_radius_m = 15e-3;   // e_u [m]
   // The speed is given either as a ratio of frame 1's first natural frequency (continuous beam with
   // its tip mass) or directly in Hz; exactly one is set. motor_frequency_hz() resolves it.
   std::optional<double> speed_ratio_to_f1;  // [-]
@@ -37,11 +37,11 @@ struct MotorSpec {
 
 // Hertz with hysteresis damping: F = k delta^n (1 + c/k delta'), zero where negative (rig.md 3.1).
 struct HertzSpec {
-  double stiffness = 2.31e10;            // k_h [N/m^n]
-  double exponent = 1.5;                 // n [-]
-  double restitution = 0.8;              // e [-], calibrates c_h
-  double approach_velocity_m_s = 0.1644; // v_rel [m/s], calibrates c_h
-  std::optional<double> damping;         // explicit c_h [N s/m^(n+1)]; default from the formula
+  double stiffness = 2.31e10;             // k_h [N/m^n]
+  double exponent = 1.5;                  // n [-]
+  double restitution = 0.8;               // e [-], calibrates c_h
+  double approach_velocity_m_s = 0.1644;  // v_rel [m/s], calibrates c_h
+  std::optional<double> damping;          // explicit c_h [N s/m^(n+1)]; default from the formula
 
   // c_h = 3 k_h (1 - e^2) / (4 v_rel) unless given explicitly [N s/m^(n+1)]
   double damping_coefficient() const;
@@ -49,14 +49,14 @@ struct HertzSpec {
 
 // Kelvin-Voigt spring-dashpot: F = k delta + c delta' (rig.md 3.2).
 struct ViscoelasticSpec {
-  double stiffness_n_per_m = 6.99e6;     // k_v [N/m]
-  double damping_n_s_per_m = 170.07;     // c_v [N s/m]
-  bool clip_tension = false;             // clip F at zero (the published law is not clipped)
+  double stiffness_n_per_m = 6.99e6;  // k_v [N/m]
+  double damping_n_s_per_m = 170.07;  // c_v [N s/m]
+  bool clip_tension = false;          // clip F at zero (the published law is not clipped)
 };
 
 // Newton's coefficient of restitution, instantaneous impact (rig.md 3.3).
 struct NewtonSpec {
-  double restitution = 0.8;              // e [-]
+  double restitution = 0.8;  // e [-]
 };
 
 enum class ContactLaw { hertz, viscoelastic, newton };
@@ -78,18 +78,18 @@ struct InitialSpec {
 };
 
 struct Scenario {
-  std::string name;                      // short identifier, e.g. "resonance"
-  std::string description;               // what the scenario is and what it probes
-  std::string source_path;               // file it was read from ("" when built in code)
+  std::string name;         // short identifier, e.g. "resonance"
+  std::string description;  // what the scenario is and what it probes
+  std::string source_path;  // file it was read from ("" when built in code)
 
-  std::array<FrameSpec, 2> frames;       // frames[0] is frame 1 (carries the motor), frames[1] frame 2
-  double gap_m = 1e-3;                   // d [m]: surface gap between the tips at rest
-  std::optional<MotorSpec> motor;        // absent: no motor force (free vibration)
+  std::array<FrameSpec, 2> frames;  // frames[0] is frame 1 (carries the motor), frames[1] frame 2
+  double gap_m = 1e-3;              // d [m]: surface gap between the tips at rest
+  std::optional<MotorSpec> motor;   // absent: no motor force (free vibration)
   InitialSpec initial;
   ContactSpec contact;
 
-  double duration_s = 100;               // simulated time [s]
-  double scoring_window_s = 14;          // metrics use the last scoring_window_s of the run [s] (scoring_window())
+  double duration_s = 100;       // simulated time [s]
+  double scoring_window_s = 14;  // metrics use the last scoring_window_s of the run [s] (scoring_window())
 };
 
 // The default rig of rig.md section 1 with the resonance excitation; used by tests and as a template.

@@ -17,8 +17,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -54,22 +54,27 @@ using namespace toml_schema;  // what a value may be, Key, Table and the Checker
 // 2. THE SCHEMA: one table of keys per TOML table (model/toml_schema.h says what a row holds).
 
 const std::vector<Key<Scenario>> kScenarioKeys = {
-    {"name",             &Scenario::name,             required, identifier(), "short identifier of the scenario"},
-    {"description",      &Scenario::description,      required, anything(),   "what the scenario is and what it probes"},
-    {"duration_s",       &Scenario::duration_s,       required, above_up_to(0, 3600), "simulated time [s], up to an hour of rig time"},
-    {"scoring_window_s", &Scenario::scoring_window_s, required, above_up_to(0, 3600), "scoring window at the end of the run, where metrics are taken [s]"},
+    {"name", &Scenario::name, required, identifier(), "short identifier of the scenario"},
+    {"description", &Scenario::description, required, anything(), "what the scenario is and what it probes"},
+    {"duration_s", &Scenario::duration_s, required, above_up_to(0, 3600),
+     "simulated time [s], up to an hour of rig time"},
+    {"scoring_window_s", &Scenario::scoring_window_s, required, above_up_to(0, 3600),
+     "scoring window at the end of the run, where metrics are taken [s]"},
 };
 
 // [frame1] and [frame2]: the columns of a frame act as one clamped-free Euler-Bernoulli beam.
 const std::vector<Key<FrameSpec>> kFrameKeys = {
-    {"columns",            &FrameSpec::columns,            required, at_least(1),        "number of columns acting as one beam [-]"},
-    {"youngs_modulus_pa",  &FrameSpec::youngs_modulus_pa,  required, closed(1e5, 1.5e12),  "Young's modulus E [Pa]: soft rubber to diamond"},
-    {"density_kg_m3",      &FrameSpec::density_kg_m3,      required, closed(10, 25e3),     "column density rho [kg/m^3]: foam to osmium"},
-    {"column_thickness_m", &FrameSpec::column_thickness_m, required, closed(1e-5, 1),      "column thickness h, in the bending direction [m] (and L/h >= 10: a slender beam)"},
-    {"column_width_m",     &FrameSpec::column_width_m,     required, closed(1e-5, 10),     "column width b [m]"},
-    {"length_m",           &FrameSpec::length_m,           required, closed(1e-3, 100),    "column length L [m]"},
-    {"tip_mass_kg",        &FrameSpec::tip_mass_kg,        required, closed(0, 1e4),       "tip mass [kg]"},
-    {"damping_ratio",      &FrameSpec::damping_ratio,      required, half_open(0, 1),    "damping ratio zeta of every mode [-]"},
+    {"columns", &FrameSpec::columns, required, at_least(1), "number of columns acting as one beam [-]"},
+    {"youngs_modulus_pa", &FrameSpec::youngs_modulus_pa, required, closed(1e5, 1.5e12),
+     "Young's modulus E [Pa]: soft rubber to diamond"},
+    {"density_kg_m3", &FrameSpec::density_kg_m3, required, closed(10, 25e3),
+     "column density rho [kg/m^3]: foam to osmium"},
+    {"column_thickness_m", &FrameSpec::column_thickness_m, required, closed(1e-5, 1),
+     "column thickness h, in the bending direction [m] (and L/h >= 10: a slender beam)"},
+    {"column_width_m", &FrameSpec::column_width_m, required, closed(1e-5, 10), "column width b [m]"},
+    {"length_m", &FrameSpec::length_m, required, closed(1e-3, 100), "column length L [m]"},
+    {"tip_mass_kg", &FrameSpec::tip_mass_kg, required, closed(0, 1e4), "tip mass [kg]"},
+    {"damping_ratio", &FrameSpec::damping_ratio, required, half_open(0, 1), "damping ratio zeta of every mode [-]"},
 };
 
 // [rig]
@@ -80,10 +85,11 @@ const std::vector<Key<Scenario>> kRigKeys = {
 // [motor]: the unbalanced motor on frame 1's tip. Exactly one of the two speeds is given
 // (check_motor_speed below).
 const std::vector<Key<MotorSpec>> kMotorKeys = {
-    {"unbalance_mass_kg",  &MotorSpec::unbalance_mass_kg,  required, closed(0, 100), "unbalance mass m_u [kg]"},
-    {"unbalance_radius_m", &MotorSpec::unbalance_radius_m, required, closed(0, 1),   "unbalance radius e_u [m]"},
-    {"speed_ratio_to_f1",  &MotorSpec::speed_ratio_to_f1,  optional, above_up_to(0, 100), "motor speed / frame 1's first natural frequency [-]"},
-    {"frequency_hz",       &MotorSpec::frequency_hz,       optional, above_up_to(0, 1e4), "motor speed [Hz]"},
+    {"unbalance_mass_kg", &MotorSpec::unbalance_mass_kg, required, closed(0, 100), "unbalance mass m_u [kg]"},
+    {"unbalance_radius_m", &MotorSpec::unbalance_radius_m, required, closed(0, 1), "unbalance radius e_u [m]"},
+    {"speed_ratio_to_f1", &MotorSpec::speed_ratio_to_f1, optional, above_up_to(0, 100),
+     "motor speed / frame 1's first natural frequency [-]"},
+    {"frequency_hz", &MotorSpec::frequency_hz, optional, above_up_to(0, 1e4), "motor speed [Hz]"},
 };
 
 // [initial]: frame 1 released from rest in its static tip-load shape. The displacement is also
@@ -96,18 +102,23 @@ const std::vector<Key<InitialSpec>> kInitialKeys = {
 // [contact.hertz]: F = k delta^n (1 + c/k delta'). c_h is either given (damping) or calibrated from
 // restitution and approach_velocity_m_s, never both (check_hertz_damping below).
 const std::vector<Key<HertzSpec>> kHertzKeys = {
-    {"stiffness",             &HertzSpec::stiffness,             required, above_up_to(0, 1e15), "Hertz stiffness k_h [N/m^n]"},
-    {"exponent",              &HertzSpec::exponent,              required, closed(1, 3), "Hertz exponent n [-]"},
-    {"damping",               &HertzSpec::damping,               optional, closed(0, 1e15), "explicit Hertz damping c_h [N s/m^(n+1)]"},
-    {"restitution",           &HertzSpec::restitution,           optional, closed(0, 1), "coefficient of restitution e, calibrates c_h [-]"},
-    {"approach_velocity_m_s", &HertzSpec::approach_velocity_m_s, optional, above_up_to(0, 100), "mean approach velocity v_rel, calibrates c_h [m/s]"},
+    {"stiffness", &HertzSpec::stiffness, required, above_up_to(0, 1e15), "Hertz stiffness k_h [N/m^n]"},
+    {"exponent", &HertzSpec::exponent, required, closed(1, 3), "Hertz exponent n [-]"},
+    {"damping", &HertzSpec::damping, optional, closed(0, 1e15), "explicit Hertz damping c_h [N s/m^(n+1)]"},
+    {"restitution", &HertzSpec::restitution, optional, closed(0, 1),
+     "coefficient of restitution e, calibrates c_h [-]"},
+    {"approach_velocity_m_s", &HertzSpec::approach_velocity_m_s, optional, above_up_to(0, 100),
+     "mean approach velocity v_rel, calibrates c_h [m/s]"},
 };
 
 // [contact.viscoelastic]: F = k delta + c delta'.
 const std::vector<Key<ViscoelasticSpec>> kViscoelasticKeys = {
-    {"stiffness_n_per_m", &ViscoelasticSpec::stiffness_n_per_m, required, above_up_to(0, 1e13), "spring stiffness k_v [N/m]"},
-    {"damping_n_s_per_m", &ViscoelasticSpec::damping_n_s_per_m, required, closed(0, 1e9), "dashpot damping c_v [N s/m]"},
-    {"clip_tension",      &ViscoelasticSpec::clip_tension,      optional, anything(),  "clip the force at zero rather than let it turn tensile; default false"},
+    {"stiffness_n_per_m", &ViscoelasticSpec::stiffness_n_per_m, required, above_up_to(0, 1e13),
+     "spring stiffness k_v [N/m]"},
+    {"damping_n_s_per_m", &ViscoelasticSpec::damping_n_s_per_m, required, closed(0, 1e9),
+     "dashpot damping c_v [N s/m]"},
+    {"clip_tension", &ViscoelasticSpec::clip_tension, optional, anything(),
+     "clip the force at zero rather than let it turn tensile; default false"},
 };
 
 // [contact.newton]: instantaneous impact.
@@ -117,19 +128,19 @@ const std::vector<Key<NewtonSpec>> kNewtonKeys = {
 
 const std::vector<Table> kTopLevelTables = {
     {"scenario", required, "name, description, duration and scoring window"},
-    {"frame1",   required, "frame 1, which carries the motor"},
-    {"frame2",   required, "frame 2"},
-    {"rig",      required, "the gap between the frames"},
-    {"motor",    optional, "the unbalanced motor on frame 1; absent: no motor"},
-    {"initial",  optional, "the initial state; absent: everything at rest"},
-    {"contact",  required, "at least one contact law: [contact.hertz], [contact.viscoelastic], [contact.newton]"},
+    {"frame1", required, "frame 1, which carries the motor"},
+    {"frame2", required, "frame 2"},
+    {"rig", required, "the gap between the frames"},
+    {"motor", optional, "the unbalanced motor on frame 1; absent: no motor"},
+    {"initial", optional, "the initial state; absent: everything at rest"},
+    {"contact", required, "at least one contact law: [contact.hertz], [contact.viscoelastic], [contact.newton]"},
 };
 
 // Sub-tables of [contact]; at least one is given (check in parse_scenario).
 const std::vector<Table> kContactTables = {
-    {"hertz",        optional, "Hertz contact with hysteresis damping"},
+    {"hertz", optional, "Hertz contact with hysteresis damping"},
     {"viscoelastic", optional, "Kelvin-Voigt spring-dashpot contact"},
-    {"newton",       optional, "instantaneous impact with a coefficient of restitution"},
+    {"newton", optional, "instantaneous impact with a coefficient of restitution"},
 };
 
 // ------------------------------------------------------------------------------------------------
@@ -141,17 +152,16 @@ void check_scoring_window(const Checker& checker, const Section& section, const 
   const Rule rule = rule_named(section, kScenarioKeys, "scoring_window_s");
   const toml::node& node = *section.find("scoring_window_s");
   checker.fail(line_of(node), rule.dotted,
-               checker.show(rule.dotted, node) + ": out of range; allowed: 0 < x <= " +
-                   section.dotted("duration_s") + " = " + number_text(s.duration_s) + " (" +
-                   rule.meaning + ")");
+               checker.show(rule.dotted, node) + ": out of range; allowed: 0 < x <= " + section.dotted("duration_s") +
+                   " = " + number_text(s.duration_s) + " (" + rule.meaning + ")");
 }
 
 // The motor speed is given exactly once: as a ratio of f_1 or in Hz.
 void check_motor_speed(const Checker& checker, const Section& section) {
   const Rule ratio = rule_named(section, kMotorKeys, "speed_ratio_to_f1");
   const Rule hz = rule_named(section, kMotorKeys, "frequency_hz");
-  const std::string allowed = "allowed: exactly one of " + ratio.dotted + " " + ratio.allowed_text() +
-                              " or " + hz.dotted + " " + hz.allowed_text();
+  const std::string allowed = "allowed: exactly one of " + ratio.dotted + " " + ratio.allowed_text() + " or " +
+                              hz.dotted + " " + hz.allowed_text();
   const toml::node* ratio_node = section.find("speed_ratio_to_f1");
   const toml::node* hz_node = section.find("frequency_hz");
   if (!ratio_node && !hz_node) {
@@ -165,9 +175,8 @@ void check_motor_speed(const Checker& checker, const Section& section) {
     const toml::node& last_node = hz_last ? *hz_node : *ratio_node;
     const toml::node& first_node = hz_last ? *ratio_node : *hz_node;
     checker.fail(line_of(last_node), last.dotted,
-                 checker.show(last.dotted, last_node) + ": conflicts with " +
-                     checker.show(first.dotted, first_node) + " (line " +
-                     std::to_string(line_of(first_node)) + "); " + allowed);
+                 checker.show(last.dotted, last_node) + ": conflicts with " + checker.show(first.dotted, first_node) +
+                     " (line " + std::to_string(line_of(first_node)) + "); " + allowed);
   }
 }
 
@@ -195,7 +204,8 @@ void check_frame_shape(const Checker& checker, const Section& section, const Fra
                      section.dotted("length_m") + " / 10 = " + number_text(f.length_m / 10) +
                      " (a slender column, as Euler-Bernoulli theory assumes)");
   constexpr double kPi = 3.14159265358979323846;
-  const double area = f.column_width_m * f.column_thickness_m, inertia = f.column_width_m * std::pow(f.column_thickness_m, 3) / 12;
+  const double area = f.column_width_m * f.column_thickness_m,
+               inertia = f.column_width_m * std::pow(f.column_thickness_m, 3) / 12;
   const double stiffness = f.columns * 3 * f.youngs_modulus_pa * inertia / std::pow(f.length_m, 3);
   const double mass = f.tip_mass_kg + 33.0 / 140.0 * f.columns * f.density_kg_m3 * area * f.length_m;
   const double f1_hz = std::sqrt(stiffness / mass) / (2 * kPi);
@@ -204,9 +214,8 @@ void check_frame_shape(const Checker& checker, const Section& section, const Fra
                section.name + ": its first natural frequency would be about " + number_text(f1_hz) + " Hz (from " +
                    section.dotted("youngs_modulus_pa") + " = " + number_text(f.youngs_modulus_pa) + ", " +
                    section.dotted("column_thickness_m") + " = " + number_text(f.column_thickness_m) + ", " +
-                   section.dotted("length_m") + " = " + number_text(f.length_m) + ", " +
-                   section.dotted("tip_mass_kg") + " = " + number_text(f.tip_mass_kg) +
-                   "); allowed: 0.05 to 5000 Hz (the published rig: 6.95 Hz)");
+                   section.dotted("length_m") + " = " + number_text(f.length_m) + ", " + section.dotted("tip_mass_kg") +
+                   " = " + number_text(f.tip_mass_kg) + "); allowed: 0.05 to 5000 Hz (the published rig: 6.95 Hz)");
 }
 
 // c_h is either given (damping) or calibrated (restitution and approach_velocity_m_s), not both.
@@ -220,10 +229,9 @@ void check_hertz_damping(const Checker& checker, const Section& section) {
       const std::string dotted = section.dotted("damping");
       checker.fail(line_of(*damping), dotted,
                    checker.show(dotted, *damping) + ": ambiguous together with " +
-                       checker.show(section.dotted(name), *other) + " (line " +
-                       std::to_string(line_of(*other)) + "); allowed: either " + dotted +
-                       " alone (explicit c_h) or " + section.dotted("restitution") + " with " +
-                       section.dotted("approach_velocity_m_s") + " (c_h = 3 k_h (1 - e^2) / (4 v_rel))");
+                       checker.show(section.dotted(name), *other) + " (line " + std::to_string(line_of(*other)) +
+                       "); allowed: either " + dotted + " alone (explicit c_h) or " + section.dotted("restitution") +
+                       " with " + section.dotted("approach_velocity_m_s") + " (c_h = 3 k_h (1 - e^2) / (4 v_rel))");
     }
     return;
   }
@@ -297,17 +305,18 @@ Scenario load_scenario(const std::string& path) {
   // published ones are 2 kB).
   constexpr std::uintmax_t kMaxScenarioBytes = 1 << 20;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
-    throw ScenarioError(path, 0, "", "cannot read scenario file: not a regular file (a FIFO, a device?); allowed: a .toml file");
+    throw ScenarioError(path, 0, "",
+                        "cannot read scenario file: not a regular file (a FIFO, a device?); allowed: a .toml file");
   if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) > kMaxScenarioBytes)
-    throw ScenarioError(path, 0, "", "cannot read scenario file: " + std::to_string(std::filesystem::file_size(path, ec)) +
-                                         " bytes; allowed: at most 1 MB");
+    throw ScenarioError(path, 0, "",
+                        "cannot read scenario file: " + std::to_string(std::filesystem::file_size(path, ec)) +
+                            " bytes; allowed: at most 1 MB");
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     const int error = errno;
     throw ScenarioError(path, 0, "",
-                        "cannot read scenario file: " +
-                            std::string(error != 0 ? std::strerror(error) : "cannot open"));
+                        "cannot read scenario file: " + std::string(error != 0 ? std::strerror(error) : "cannot open"));
   }
   std::ostringstream text;
   text << in.rdbuf();

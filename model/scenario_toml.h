@@ -23,9 +23,9 @@ class ScenarioError : public std::runtime_error {
   ScenarioError(std::string path, int line, std::string key, std::string message, int column = 0);
 
   const std::string& path() const { return path_; }
-  int line() const { return line_; }                 // 1-based; 0 when no line applies
-  int column() const { return column_; }             // 1-based for syntax errors; 0 otherwise
-  const std::string& key() const { return key_; }    // dotted key, e.g. "frame1.tip_mass_kg"; "" if none
+  int line() const { return line_; }                       // 1-based; 0 when no line applies
+  int column() const { return column_; }                   // 1-based for syntax errors; 0 otherwise
+  const std::string& key() const { return key_; }          // dotted key, e.g. "frame1.tip_mass_kg"; "" if none
   const std::string& message() const { return message_; }  // what() without the "<path>:<line>: "
 
  private:

@@ -4,8 +4,8 @@
 
 #include <functional>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,16 +24,16 @@ struct StabilityBounds {
   // The bound's floor: a zero or tiny gap (1e-7 m) must not make a micrometre contact "unstable". A
   // centimetre of overlap: no contact of this rig (tens of micrometres) comes near it. [m]
   double penetration_bound_floor_m = 1e-2;
-  double energy_growth_tolerance = 1e-3;               // relative rise of energy allowed without a motor [-]
+  double energy_growth_tolerance = 1e-3;  // relative rise of energy allowed without a motor [-]
 };
 
 // How a run is carried out. Physics lives in the Scenario; this is numerics and bookkeeping.
 struct RunSettings {
   ContactLaw law = ContactLaw::hertz;
-  double output_rate_hz = 4096;       // samples per second of the written series [Hz]
-  double series_start_s = -1;         // first sample time [s]; < 0: the scenario's scoring window's start
-  double time_step_s = 0;             // fixed-step engines [s]; the adaptive reference ignores it
-  StabilityBounds stability;          // a fixed-step engine stops when a tip leaves these bounds
+  double output_rate_hz = 4096;  // samples per second of the written series [Hz]
+  double series_start_s = -1;    // first sample time [s]; < 0: the scenario's scoring window's start
+  double time_step_s = 0;        // fixed-step engines [s]; the adaptive reference ignores it
+  StabilityBounds stability;     // a fixed-step engine stops when a tip leaves these bounds
   // Simulator-specific options as name=value text, each validated by the simulator that reads it
   // (e.g. the reference's "modes", "rtol"; an engine's "integrator"). Unknown names are an error.
   std::map<std::string, std::string> options;
@@ -54,8 +54,8 @@ double series_start_s(const RunSettings& settings, const Scenario& scenario);
 class Simulator {
  public:
   virtual ~Simulator() = default;
-  virtual std::string name() const = 0;          // e.g. "reference", "mujoco"
-  virtual std::string version() const = 0;       // library version, for reports
+  virtual std::string name() const = 0;     // e.g. "reference", "mujoco"
+  virtual std::string version() const = 0;  // library version, for reports
   // The options this simulator accepts, with a one-line description each (for --help and errors).
   virtual std::vector<std::pair<std::string, std::string>> option_help() const = 0;
   // Runs one scenario. Throws std::invalid_argument for settings it cannot take (bad option, law

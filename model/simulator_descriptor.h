@@ -25,15 +25,15 @@ struct DiagnosticsKey {
 // The engine's authors' recommended configuration for one contact law (descriptor.json "recommended"): the
 // options to set and the time step; each setting's source is in the descriptor's text (recommended_json).
 struct RecommendedConfiguration {
-  std::string law;                            // "hertz", "viscoelastic", "newton"
+  std::string law;                             // "hertz", "viscoelastic", "newton"
   std::map<std::string, std::string> options;  // e.g. {"contact", "matched"}, {"length_unit", "cm"}
-  double time_step_s = 0;                     // 0: the engine's default step
+  double time_step_s = 0;                      // 0: the engine's default step
 };
 
 struct SimulatorDescriptor {
-  std::string name;          // the catalog name, e.g. "mujoco"
-  std::string display_name;  // e.g. "MuJoCo"
-  std::string summary;       // one line: what the engine is and how the rig is built in it
+  std::string name;                   // the catalog name, e.g. "mujoco"
+  std::string display_name;           // e.g. "MuJoCo"
+  std::string summary;                // one line: what the engine is and how the rig is built in it
   std::vector<std::string> packages;  // the Debian package(s) it is built from
   // contact path (matched, injected, native) -> "#rrggbb": the same in every figure of the report
   std::vector<std::pair<std::string, std::string>> colours;

@@ -9,9 +9,12 @@ namespace ib {
 
 const char* to_string(ContactPath path) {
   switch (path) {
-    case ContactPath::matched: return "matched";
-    case ContactPath::injected: return "injected";
-    case ContactPath::native: return "native";
+    case ContactPath::matched:
+      return "matched";
+    case ContactPath::injected:
+      return "injected";
+    case ContactPath::native:
+      return "native";
   }
   return "?";
 }

@@ -27,7 +27,8 @@ class OptionReader {
   // allowed: every option name with a one-line description (the engine's option_help()).
   OptionReader(std::string engine, const std::map<std::string, std::string>& options,
                const std::vector<std::pair<std::string, std::string>>& allowed);
-  std::string choice(const std::string& name, const std::string& fallback, const std::vector<std::string>& values) const;
+  std::string choice(const std::string& name, const std::string& fallback,
+                     const std::vector<std::string>& values) const;
   int integer(const std::string& name, int fallback, int low, int high) const;
   double number(const std::string& name, double fallback, double low, double high) const;
   ContactPath contact_path() const;  // option "contact", default matched

@@ -4,23 +4,33 @@ namespace ib::toml_schema {
 
 const char* type_name(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::table: return "table";
-    case toml::node_type::array: return "array";
-    case toml::node_type::string: return "string";
-    case toml::node_type::integer: return "integer";
-    case toml::node_type::floating_point: return "float";
-    case toml::node_type::boolean: return "boolean";
-    case toml::node_type::date: return "date";
-    case toml::node_type::time: return "time";
-    case toml::node_type::date_time: return "date-time";
-    default: return "nothing";
+    case toml::node_type::table:
+      return "table";
+    case toml::node_type::array:
+      return "array";
+    case toml::node_type::string:
+      return "string";
+    case toml::node_type::integer:
+      return "integer";
+    case toml::node_type::floating_point:
+      return "float";
+    case toml::node_type::boolean:
+      return "boolean";
+    case toml::node_type::date:
+      return "date";
+    case toml::node_type::time:
+      return "time";
+    case toml::node_type::date_time:
+      return "date-time";
+    default:
+      return "nothing";
   }
 }
 
 [[noreturn]] void wrong_type(const Checker& checker, const Rule& rule, const toml::node& node) {
-  checker.fail(line_of(node), rule.dotted,
-               checker.show(rule.dotted, node) + ": wrong type (" + type_name(node) + "); expected " +
-                   rule.expected_text());
+  checker.fail(
+      line_of(node), rule.dotted,
+      checker.show(rule.dotted, node) + ": wrong type (" + type_name(node) + "); expected " + rule.expected_text());
 }
 
 Allowed identifier() {
@@ -53,9 +63,8 @@ bool in_range(double x, const Allowed& a) {
 bool is_identifier(const std::string& s) {
   // a name becomes a folder name (runs/<name>/...) and a file name's part: 64 characters fit every file system
   if (s.empty() || s.size() > kIdentifierMaxLength) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
-  });
+  return std::all_of(s.begin(), s.end(),
+                     [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; });
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -77,8 +86,7 @@ void check_number(const Checker& checker, const Rule& rule, const toml::node& no
 
 void store(const Checker& checker, const Rule& rule, const toml::node& node, double& field) {
   if (!node.is_number()) wrong_type(checker, rule, node);
-  const double x = node.is_integer() ? static_cast<double>(node.as_integer()->get())
-                                     : node.as_floating_point()->get();
+  const double x = node.is_integer() ? static_cast<double>(node.as_integer()->get()) : node.as_floating_point()->get();
   check_number(checker, rule, node, x);
   field = x;
 }
@@ -95,8 +103,7 @@ void store(const Checker& checker, const Rule& rule, const toml::node& node, int
   check_number(checker, rule, node, static_cast<double>(n));
   if (n < std::numeric_limits<int>::min() || n > std::numeric_limits<int>::max()) {
     checker.fail(line_of(node), rule.dotted,
-                 checker.show(rule.dotted, node) + ": too large for an integer; allowed: " +
-                     rule.allowed_text());
+                 checker.show(rule.dotted, node) + ": too large for an integer; allowed: " + rule.allowed_text());
   }
   field = static_cast<int>(n);
 }

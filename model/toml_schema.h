@@ -39,11 +39,11 @@ struct Allowed {
   bool identifier = false;  // strings: 1 to kIdentifierMaxLength characters, only a-z, 0-9 and _
 };
 
-inline Allowed at_least(double lo) { return {lo, true, kInfinity, false, false}; }          // x >= lo
-inline Allowed above(double lo) { return {lo, false, kInfinity, false, false}; }            // x > lo
-inline Allowed closed(double lo, double hi) { return {lo, true, hi, true, false}; }         // lo <= x <= hi
-inline Allowed half_open(double lo, double hi) { return {lo, true, hi, false, false}; }     // lo <= x < hi
-inline Allowed above_up_to(double lo, double hi) { return {lo, false, hi, true, false}; }   // lo < x <= hi
+inline Allowed at_least(double lo) { return {lo, true, kInfinity, false, false}; }         // x >= lo
+inline Allowed above(double lo) { return {lo, false, kInfinity, false, false}; }           // x > lo
+inline Allowed closed(double lo, double hi) { return {lo, true, hi, true, false}; }        // lo <= x <= hi
+inline Allowed half_open(double lo, double hi) { return {lo, true, hi, false, false}; }    // lo <= x < hi
+inline Allowed above_up_to(double lo, double hi) { return {lo, false, hi, true, false}; }  // lo < x <= hi
 inline Allowed anything() { return {}; }  // any finite number, any string, true or false
 constexpr std::size_t kIdentifierMaxLength = 64;
 Allowed identifier();
@@ -64,8 +64,8 @@ enum class Kind { number, integer, boolean, string };
 
 template <class T>
 constexpr Kind kind_for() {
-  static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::optional<double>> ||
-                    std::is_same_v<T, int> || std::is_same_v<T, bool> || std::is_same_v<T, std::string>,
+  static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::optional<double>> || std::is_same_v<T, int> ||
+                    std::is_same_v<T, bool> || std::is_same_v<T, std::string>,
                 "a scenario field is a double, an optional double, an int, a bool or a string");
   if constexpr (std::is_same_v<T, int>) return Kind::integer;
   if constexpr (std::is_same_v<T, bool>) return Kind::boolean;
@@ -87,7 +87,11 @@ template <class Spec>
 struct Key {
   template <class T>
   Key(const char* name, T Spec::*field, Need need, Allowed allowed, const char* meaning)
-      : name(name), kind(kind_for<T>()), need(need), allowed(allowed), meaning(meaning),
+      : name(name),
+        kind(kind_for<T>()),
+        need(need),
+        allowed(allowed),
+        meaning(meaning),
         fill([field](const Checker& checker, const Rule& rule, const toml::node& node, Spec& out) {
           store(checker, rule, node, out.*field);
         }) {}
@@ -132,9 +136,16 @@ struct Rule {
     std::string what;
     switch (kind) {
       case Kind::number:
-      case Kind::integer: what = range_text(allowed); if (what.empty()) what = "any finite number"; break;
-      case Kind::boolean: what = "true or false"; break;
-      case Kind::string: what = allowed.identifier ? "1 to 64 characters of a-z, 0-9 and _" : "any string"; break;
+      case Kind::integer:
+        what = range_text(allowed);
+        if (what.empty()) what = "any finite number";
+        break;
+      case Kind::boolean:
+        what = "true or false";
+        break;
+      case Kind::string:
+        what = allowed.identifier ? "1 to 64 characters of a-z, 0-9 and _" : "any string";
+        break;
     }
     return what + " (" + meaning + ")";
   }
@@ -145,10 +156,14 @@ struct Rule {
     const bool two_sided = std::isfinite(allowed.lo) && std::isfinite(allowed.hi);
     const std::string suffix = range.empty() ? "" : (two_sided ? " with " : " ") + range;
     switch (kind) {
-      case Kind::number: return "a number" + suffix;
-      case Kind::integer: return "an integer" + suffix;
-      case Kind::boolean: return "a boolean (true or false)";
-      case Kind::string: return allowed.identifier ? "a string of 1 to 64 characters of a-z, 0-9 and _" : "a string";
+      case Kind::number:
+        return "a number" + suffix;
+      case Kind::integer:
+        return "an integer" + suffix;
+      case Kind::boolean:
+        return "a boolean (true or false)";
+      case Kind::string:
+        return allowed.identifier ? "a string of 1 to 64 characters of a-z, 0-9 and _" : "a string";
     }
     return "";
   }
@@ -201,8 +216,7 @@ class Checker {
   }
 
   // Rejects every key of the section that is not in `names`; `allowed` lists what is allowed.
-  void reject_unknown(const Section& section, const std::vector<std::string>& names,
-                      const std::string& allowed) const {
+  void reject_unknown(const Section& section, const std::vector<std::string>& names, const std::string& allowed) const {
     const toml::key* first = nullptr;
     const toml::node* first_node = nullptr;
     for (auto&& [key, node] : *section.table) {
@@ -214,26 +228,23 @@ class Checker {
     }
     if (!first) return;
     const std::string dotted = section.dotted(std::string(first->str()));
-    fail(line_of(*first), dotted,
-         dotted + ": unknown " + (first_node->is_table() ? "table" : "key") + "; " + allowed);
+    fail(line_of(*first), dotted, dotted + ": unknown " + (first_node->is_table() ? "table" : "key") + "; " + allowed);
   }
 
   // The sub-table `name` of `parent`, described in `tables`; nullopt if optional and absent.
   std::optional<Section> section(const Section& parent, const std::vector<Table>& tables,
                                  const std::string& name) const {
-    const Table& table = *std::find_if(tables.begin(), tables.end(),
-                                       [&](const Table& t) { return name == t.name; });
+    const Table& table = *std::find_if(tables.begin(), tables.end(), [&](const Table& t) { return name == t.name; });
     const std::string dotted = parent.dotted(name);
     const toml::node* node = parent.find(name);
     if (!node) {
       if (table.need == Need::optional) return std::nullopt;
-      fail(parent.line, dotted,
-           dotted + ": missing required table [" + dotted + "] (" + table.meaning + ")");
+      fail(parent.line, dotted, dotted + ": missing required table [" + dotted + "] (" + table.meaning + ")");
     }
     if (!node->is_table()) {
       fail(line_of(*node), dotted,
-           show(dotted, *node) + ": wrong type (" + type_name(*node) + "); expected a table [" +
-               dotted + "] (" + table.meaning + ")");
+           show(dotted, *node) + ": wrong type (" + type_name(*node) + "); expected a table [" + dotted + "] (" +
+               table.meaning + ")");
     }
     return Section{node->as_table(), dotted, line_of(*node)};
   }
@@ -241,15 +252,13 @@ class Checker {
   // Fills `out` from the section, key by key as the schema says.
   template <class Spec>
   void read(const Section& section, const std::vector<Key<Spec>>& keys, Spec& out) const {
-    reject_unknown(section, names_of(keys),
-                   "allowed keys in [" + section.name + "]: " + join(names_of(keys)));
+    reject_unknown(section, names_of(keys), "allowed keys in [" + section.name + "]: " + join(names_of(keys)));
     for (const Key<Spec>& key : keys) {
       const Rule rule = rule_of(section, key);
       const toml::node* node = section.find(key.name);
       if (!node) {
         if (key.need == Need::required) {
-          fail(section.line, rule.dotted,
-               rule.dotted + ": missing required key; allowed: " + rule.allowed_text());
+          fail(section.line, rule.dotted, rule.dotted + ": missing required key; allowed: " + rule.allowed_text());
         }
         continue;
       }
@@ -283,9 +292,8 @@ class Checker {
     if (node.is_table() || node.is_array_of_tables()) return "";
     const std::string raw = source_text(node.source());
     const bool plausible =
-        !raw.empty() &&
-        (node.is_string() ? raw.size() >= 2 && (raw[0] == '"' || raw[0] == '\'') && raw.back() == raw[0]
-                          : raw.find_first_of(" \t#") == std::string::npos || node.is_array());
+        !raw.empty() && (node.is_string() ? raw.size() >= 2 && (raw[0] == '"' || raw[0] == '\'') && raw.back() == raw[0]
+                                          : raw.find_first_of(" \t#") == std::string::npos || node.is_array());
     if (plausible) return raw;
     if (node.is_string()) return "\"" + node.as_string()->get() + "\"";
     std::ostringstream out;

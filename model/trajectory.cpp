@@ -20,9 +20,12 @@ void Trajectory::reserve(std::size_t n) {
 
 const char* to_string(RunStatus status) {
   switch (status) {
-    case RunStatus::ok: return "ok";
-    case RunStatus::unstable: return "unstable";
-    case RunStatus::failed: return "failed";
+    case RunStatus::ok:
+      return "ok";
+    case RunStatus::unstable:
+      return "unstable";
+    case RunStatus::failed:
+      return "failed";
   }
   return "unknown";
 }

@@ -18,12 +18,12 @@ namespace ib {
 struct ContactEvent {
   double onset_time_s = 0;
   double end_time_s = 0;
-  double approach_velocity_m_s = 0;   // delta' at onset (> 0: closing)
-  double rebound_velocity_m_s = 0;    // -delta' at separation (> 0: opening)
-  double restitution = 0;             // rebound / approach [-]
-  double peak_force_n = 0;            // max contact force [N]
-  double impulse_n_s = 0;             // integral of the contact force [N s]
-  double max_indentation_m = 0;       // max delta [m]
+  double approach_velocity_m_s = 0;  // delta' at onset (> 0: closing)
+  double rebound_velocity_m_s = 0;   // -delta' at separation (> 0: opening)
+  double restitution = 0;            // rebound / approach [-]
+  double peak_force_n = 0;           // max contact force [N]
+  double impulse_n_s = 0;            // integral of the contact force [N s]
+  double max_indentation_m = 0;      // max delta [m]
 };
 
 // Uniform samples at output_rate_hz from start_time_s; column k of frame f is series[f][k].
@@ -33,7 +33,7 @@ struct Trajectory {
   double output_rate_hz = 0;
   double start_time_s = 0;
   std::vector<double> time_s;
-  std::array<std::vector<double>, 2> displacement_m;      // tip displacement, positive toward frame 2
+  std::array<std::vector<double>, 2> displacement_m;  // tip displacement, positive toward frame 2
   std::array<std::vector<double>, 2> velocity_m_s;
   std::array<std::vector<double>, 2> acceleration_m_s2;
   std::vector<double> contact_force_n;
@@ -46,7 +46,7 @@ struct Trajectory {
   // of the energy change, since the series itself may start long after the run did.
   double initial_mechanical_energy_j = std::numeric_limits<double>::quiet_NaN();
 
-  std::vector<ContactEvent> events;   // every contact episode of the whole run, in time order
+  std::vector<ContactEvent> events;  // every contact episode of the whole run, in time order
 
   std::size_t size() const { return time_s.size(); }
   void reserve(std::size_t n);
@@ -59,7 +59,7 @@ const char* to_string(RunStatus status);
 struct RunCost {
   double wall_time_s = 0;
   double cpu_time_s = 0;
-  long long steps = 0;                // time steps (engines) or accepted integrator steps (reference)
+  long long steps = 0;  // time steps (engines) or accepted integrator steps (reference)
 };
 
 struct RunResult {
@@ -68,7 +68,7 @@ struct RunResult {
   // reference: 1 MHz samples) from 1 ms before its onset to 1 ms after its end. Series only; may be empty.
   Trajectory impact_zoom;
   RunStatus status = RunStatus::ok;
-  std::string reason;                 // why the run is not ok, in words a person can check
+  std::string reason;  // why the run is not ok, in words a person can check
   RunCost cost;
   // The fixed step the run advanced by, the one its record carries (runs.csv time_step_s) [s]; 0 for an
   // adaptive run (the reference) or one that never reached the loop (a model that did not build).

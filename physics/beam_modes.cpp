@@ -34,9 +34,9 @@ std::vector<double> cantilever_tip_mass_roots(double mass_ratio, int count) {
       roots.push_back(b);
     } else if ((fa < 0) != (fb < 0) && fa != 0) {
       std::uintmax_t iterations = 100;
-      const auto bracket = boost::math::tools::toms748_solve(
-          [mass_ratio](double x) { return scaled_characteristic(x, mass_ratio); }, a, b, fa, fb,
-          boost::math::tools::eps_tolerance<double>(53), iterations);
+      const auto bracket =
+          boost::math::tools::toms748_solve([mass_ratio](double x) { return scaled_characteristic(x, mass_ratio); }, a,
+                                            b, fa, fb, boost::math::tools::eps_tolerance<double>(53), iterations);
       roots.push_back(0.5 * (bracket.first + bracket.second));
     }
     a = b;
@@ -61,10 +61,12 @@ CantileverModes::CantileverModes(const FrameSpec& frame, int count, BeamShapes s
     m.omega_rad_s = l * l * std::sqrt(ei / (rho_a * L * L * L * L));
     const double em = std::exp(-l);
     if (shapes == BeamShapes::corrected) {
-      // s = (cosh l + cos l) / (sinh l + sin l), so (1 - s) e^l / 2 = (sin l - cos l - e^-l) / (1 - e^-2l + 2 sin l e^-l)
+      // s = (cosh l + cos l) / (sinh l + sin l), so (1 - s) e^l / 2 = (sin l - cos l - e^-l) / (1 - e^-2l + 2 sin l
+      // e^-l)
       m.a = (std::sin(l) - std::cos(l) - em) / (1 - em * em + 2 * std::sin(l) * em);
     } else {
-      // s = (sinh l - sin l) / (cosh l + cos l), so (1 - s) e^l / 2 = (e^-l + cos l + sin l) / (1 + e^-2l + 2 cos l e^-l)
+      // s = (sinh l - sin l) / (cosh l + cos l), so (1 - s) e^l / 2 = (e^-l + cos l + sin l) / (1 + e^-2l + 2 cos l
+      // e^-l)
       m.a = (em + std::cos(l) + std::sin(l)) / (1 + em * em + 2 * std::cos(l) * em);
     }
     m.s = 1 - 2 * m.a * em;
@@ -75,8 +77,8 @@ CantileverModes::CantileverModes(const FrameSpec& frame, int count, BeamShapes s
     Mode& m = modes_[n];
     if (shapes == BeamShapes::corrected) {
       const double tip = shape_derivative(static_cast<int>(n), L, 0);  // with C = 1
-      const double norm2 = rho_a * integral_of_product(static_cast<int>(n), static_cast<int>(n)) +
-                           frame.tip_mass_kg * tip * tip;
+      const double norm2 =
+          rho_a * integral_of_product(static_cast<int>(n), static_cast<int>(n)) + frame.tip_mass_kg * tip * tip;
       m.amplitude = 1 / std::sqrt(norm2);
     } else {
       m.amplitude = 1 / std::sqrt(rho_a * L);
@@ -89,8 +91,8 @@ double CantileverModes::shape_derivative(int n, double x_m, int order) const {
   const double xi = m.beta_per_m * x_m;
   const double sign = (order % 2 == 0) ? 1.0 : -1.0;
   const double phase = xi + order * kPi / 2;
-  const double value = m.a * std::exp(xi - m.lambda) + sign * m.b * std::exp(-xi) - std::cos(phase) +
-                       m.s * std::sin(phase);
+  const double value =
+      m.a * std::exp(xi - m.lambda) + sign * m.b * std::exp(-xi) - std::cos(phase) + m.s * std::sin(phase);
   return m.amplitude * std::pow(m.beta_per_m, order) * value;
 }
 
@@ -129,8 +131,8 @@ ModalBasis CantileverModes::basis() const {
     basis.omega_rad_s[n] = modes_[n].omega_rad_s;
     basis.tip[n] = tip_value(n);
   }
-  basis.origin = std::string(shapes_ == BeamShapes::corrected ? "beam" : "beam (paper eq. 2.5)") +
-                 " N=" + std::to_string(count);
+  basis.origin =
+      std::string(shapes_ == BeamShapes::corrected ? "beam" : "beam (paper eq. 2.5)") + " N=" + std::to_string(count);
   return basis;
 }
 

@@ -10,8 +10,8 @@
 
 #include <vector>
 
-#include "physics/modal_basis.h"
 #include "model/scenario.h"
+#include "physics/modal_basis.h"
 
 namespace ib {
 
@@ -31,12 +31,12 @@ class CantileverModes {
   CantileverModes(const FrameSpec& frame, int count, BeamShapes shapes = BeamShapes::corrected);
 
   int size() const { return static_cast<int>(modes_.size()); }
-  double lambda(int n) const { return modes_[n].lambda; }           // beta_n L [-]
+  double lambda(int n) const { return modes_[n].lambda; }            // beta_n L [-]
   double omega_rad_s(int n) const { return modes_[n].omega_rad_s; }  // [rad/s]
-  double shape(int n, double x_m) const;        // phi_n(x) [1/sqrt(kg)]
-  double shape_slope(int n, double x_m) const;  // phi_n'(x) [1/(sqrt(kg) m)]
-  double shape_curvature(int n, double x_m) const;  // phi_n''(x) [1/(sqrt(kg) m^2)]
-  double shape_third_derivative(int n, double x_m) const;  // phi_n'''(x) [1/(sqrt(kg) m^3)]
+  double shape(int n, double x_m) const;                             // phi_n(x) [1/sqrt(kg)]
+  double shape_slope(int n, double x_m) const;                       // phi_n'(x) [1/(sqrt(kg) m)]
+  double shape_curvature(int n, double x_m) const;                   // phi_n''(x) [1/(sqrt(kg) m^2)]
+  double shape_third_derivative(int n, double x_m) const;            // phi_n'''(x) [1/(sqrt(kg) m^3)]
   double tip_value(int n) const { return shape(n, frame_.length_m); }
   // integral_0^L rho A phi_m phi_n dx + M_t phi_m(L) phi_n(L): the inner product the modes are
   // orthonormal in (corrected shapes only) [-]. Gauss-Legendre on panels fine enough for mode count.

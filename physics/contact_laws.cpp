@@ -9,7 +9,9 @@ namespace ib {
 namespace {
 
 template <class... F>
-struct overloaded : F... { using F::operator()...; };
+struct overloaded : F... {
+  using F::operator()...;
+};
 template <class... F>
 overloaded(F...) -> overloaded<F...>;
 
@@ -17,9 +19,9 @@ overloaded(F...) -> overloaded<F...>;
 
 ContactModel make_contact_model(const Scenario& scenario, ContactLaw law) {
   if (!scenario.contact.has(law))
-    throw std::invalid_argument(
-        (scenario.source_path.empty() ? scenario.name : scenario.source_path) + ": the scenario has no [contact." +
-        to_string(law) + "] table, so the " + to_string(law) + " law cannot be run on it");
+    throw std::invalid_argument((scenario.source_path.empty() ? scenario.name : scenario.source_path) +
+                                ": the scenario has no [contact." + to_string(law) + "] table, so the " +
+                                to_string(law) + " law cannot be run on it");
   switch (law) {
     case ContactLaw::hertz: {
       const HertzSpec& s = *scenario.contact.hertz;
@@ -38,19 +40,18 @@ ContactModel make_contact_model(const Scenario& scenario, ContactLaw law) {
 bool is_instantaneous(const ContactModel& model) { return std::holds_alternative<NewtonLaw>(model); }
 
 double contact_force_continued(const ContactModel& model, double delta, double rate) {
-  return std::visit(
-      overloaded{
-          [&](const HertzLaw& h) {
-            // k sign(delta) |delta|^n max(0, 1 + c/k delta'): equal to the law for delta > 0.
-            const double spring = h.stiffness * std::copysign(std::pow(std::abs(delta), h.exponent), delta);
-            return spring * std::max(0.0, 1 + h.damping / h.stiffness * rate);
-          },
-          [&](const ViscoelasticLaw& v) {
-            const double f = v.stiffness_n_per_m * delta + v.damping_n_s_per_m * rate;
-            return v.clip_tension ? std::max(0.0, f) : f;
-          },
-          [&](const NewtonLaw&) { return 0.0; }},
-      model);
+  return std::visit(overloaded{[&](const HertzLaw& h) {
+                                 // k sign(delta) |delta|^n max(0, 1 + c/k delta'): equal to the law for delta > 0.
+                                 const double spring =
+                                     h.stiffness * std::copysign(std::pow(std::abs(delta), h.exponent), delta);
+                                 return spring * std::max(0.0, 1 + h.damping / h.stiffness * rate);
+                               },
+                               [&](const ViscoelasticLaw& v) {
+                                 const double f = v.stiffness_n_per_m * delta + v.damping_n_s_per_m * rate;
+                                 return v.clip_tension ? std::max(0.0, f) : f;
+                               },
+                               [&](const NewtonLaw&) { return 0.0; }},
+                    model);
 }
 
 double contact_force_unclipped(const ContactModel& model, double delta, double rate) {
@@ -65,21 +66,22 @@ double contact_force_unclipped(const ContactModel& model, double delta, double r
 }
 
 double contact_force_rate(const ContactModel& model, double delta, double rate, double acceleration) {
-  return std::visit(
-      overloaded{
-          [&](const HertzLaw& h) {
-            const double factor = 1 + h.damping / h.stiffness * rate;
-            if (factor <= 0) return 0.0;
-            const double power = std::copysign(std::pow(std::abs(delta), h.exponent), delta);
-            const double d_power = h.exponent * std::pow(std::abs(delta), h.exponent - 1);  // d|delta|^n sign / d delta
-            return h.stiffness * d_power * factor * rate + h.damping * power * acceleration;
-          },
-          [&](const ViscoelasticLaw& v) {
-            if (v.clip_tension && v.stiffness_n_per_m * delta + v.damping_n_s_per_m * rate <= 0) return 0.0;
-            return v.stiffness_n_per_m * rate + v.damping_n_s_per_m * acceleration;
-          },
-          [&](const NewtonLaw&) { return 0.0; }},
-      model);
+  return std::visit(overloaded{[&](const HertzLaw& h) {
+                                 const double factor = 1 + h.damping / h.stiffness * rate;
+                                 if (factor <= 0) return 0.0;
+                                 const double power = std::copysign(std::pow(std::abs(delta), h.exponent), delta);
+                                 const double d_power =
+                                     h.exponent *
+                                     std::pow(std::abs(delta), h.exponent - 1);  // d|delta|^n sign / d delta
+                                 return h.stiffness * d_power * factor * rate + h.damping * power * acceleration;
+                               },
+                               [&](const ViscoelasticLaw& v) {
+                                 if (v.clip_tension && v.stiffness_n_per_m * delta + v.damping_n_s_per_m * rate <= 0)
+                                   return 0.0;
+                                 return v.stiffness_n_per_m * rate + v.damping_n_s_per_m * acceleration;
+                               },
+                               [&](const NewtonLaw&) { return 0.0; }},
+                    model);
 }
 
 double contact_force(const ContactModel& model, double delta, double rate) {

@@ -79,9 +79,7 @@ void tune_joint_stiffnesses(LinkChain& chain, const FrameSpec& frame) {
 
 }  // namespace
 
-const char* to_string(ChainDamping damping) {
-  return damping == ChainDamping::modal ? "modal" : "hinge";
-}
+const char* to_string(ChainDamping damping) { return damping == ChainDamping::modal ? "modal" : "hinge"; }
 
 std::optional<ChainDamping> chain_damping_from_string(const std::string& name) {
   for (ChainDamping d : {ChainDamping::modal, ChainDamping::hinge})
@@ -90,7 +88,8 @@ std::optional<ChainDamping> chain_damping_from_string(const std::string& name) {
 }
 
 LinkChain build_link_chain(const FrameSpec& frame, int links, ChainDamping damping) {
-  if (links < 1 || links > 1000) throw std::invalid_argument("chain links must be 1..1000, got " + std::to_string(links));
+  if (links < 1 || links > 1000)
+    throw std::invalid_argument("chain links must be 1..1000, got " + std::to_string(links));
   LinkChain chain;
   chain.links = links;
   chain.beam_length_m = frame.length_m;

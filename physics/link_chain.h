@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "physics/modal_basis.h"
 #include "model/scenario.h"
+#include "physics/modal_basis.h"
 
 namespace ib {
 
@@ -36,35 +36,36 @@ std::optional<ChainDamping> chain_damping_from_string(const std::string& name);
 constexpr const char* kChainDampingOption = "chain_damping";
 constexpr const char* kChainDampingOptionHelp =
     "the chain's damping: modal (every mode gets the beam's zeta: joint damping matrix M Phi diag(2 zeta omega_n) "
-    "Phi^T M, default) or hinge (a damper (2 zeta / omega_1) k_theta in every hinge: mode n gets zeta omega_n / omega_1)";
+    "Phi^T M, default) or hinge (a damper (2 zeta / omega_1) k_theta in every hinge: mode n gets zeta omega_n / "
+    "omega_1)";
 constexpr const char* kChainDampingValues = "modal, hinge";
 
 struct ChainBody {
-  double start_m = 0;            // position along the beam of the joint it hangs from [m]
-  double length_m = 0;           // [m]
-  double mass_kg = 0;            // rho A length [kg]
-  double center_m = 0;           // centre of mass along the beam (without the tip mass) [m]
-  double inertia_kg_m2 = 0;      // about its centre, slender rod: m length^2 / 12 [kg m^2]
+  double start_m = 0;        // position along the beam of the joint it hangs from [m]
+  double length_m = 0;       // [m]
+  double mass_kg = 0;        // rho A length [kg]
+  double center_m = 0;       // centre of mass along the beam (without the tip mass) [m]
+  double inertia_kg_m2 = 0;  // about its centre, slender rod: m length^2 / 12 [kg m^2]
 };
 
 struct LinkChain {
-  int links = 0;                              // K
-  double beam_length_m = 0;                   // L [m]
-  double link_length_m = 0;                   // l = L / K [m]
-  std::vector<ChainBody> bodies;              // K bodies, body j from joint j
-  double tip_mass_kg = 0;                     // point mass at x = L on the last body [kg]
+  int links = 0;                  // K
+  double beam_length_m = 0;       // L [m]
+  double link_length_m = 0;       // l = L / K [m]
+  std::vector<ChainBody> bodies;  // K bodies, body j from joint j
+  double tip_mass_kg = 0;         // point mass at x = L on the last body [kg]
   // k_j = (EI / l) a (1 + b x_j / L) per joint [N m/rad]; a and b (stiffness_scale, stiffness_taper) give the
   // chain the beam's first two frequencies (one hinge: a alone, the first)
   std::vector<double> joint_stiffness_n_m_per_rad;
-  double stiffness_scale = 1;                 // a [-]
-  double stiffness_taper = 0;                 // b [-]
-  double uniform_first_omega_rad_s = 0;       // omega_1 of the same chain with every k_j = EI / l (a = 1, b = 0):
-                                              // how well K links discretise the beam, before any tuning [rad/s]
-  ChainDamping damping = ChainDamping::modal; // which of the two dampings below the chain has
+  double stiffness_scale = 1;                       // a [-]
+  double stiffness_taper = 0;                       // b [-]
+  double uniform_first_omega_rad_s = 0;             // omega_1 of the same chain with every k_j = EI / l (a = 1, b = 0):
+                                                    // how well K links discretise the beam, before any tuning [rad/s]
+  ChainDamping damping = ChainDamping::modal;       // which of the two dampings below the chain has
   std::vector<double> joint_damping_n_m_s_per_rad;  // hinge: c_j = (2 zeta / omega_1) k_j; modal: 0 [N m s/rad]
-  Eigen::MatrixXd modal_damping_n_m_s_per_rad;// modal: C = M Phi diag(2 zeta omega_n) Phi^T M (K x K); hinge: empty
-  double first_omega_rad_s = 0;               // omega_1 of the chain, used for c_theta [rad/s]
-  double damping_ratio = 0;                   // the beam's zeta: of every mode (modal), of mode 1 (hinge) [-]
+  Eigen::MatrixXd modal_damping_n_m_s_per_rad;  // modal: C = M Phi diag(2 zeta omega_n) Phi^T M (K x K); hinge: empty
+  double first_omega_rad_s = 0;                 // omega_1 of the chain, used for c_theta [rad/s]
+  double damping_ratio = 0;                     // the beam's zeta: of every mode (modal), of mode 1 (hinge) [-]
 };
 
 LinkChain build_link_chain(const FrameSpec& frame, int links, ChainDamping damping = ChainDamping::modal);
@@ -73,10 +74,10 @@ LinkChain build_link_chain(const FrameSpec& frame, int links, ChainDamping dampi
 // T = 1/2 theta'^T M theta', V = 1/2 theta^T K theta, dissipation 1/2 theta'^T C theta', and the tip
 // displacement u(L) = tip_lever^T theta.
 struct ChainMatrices {
-  Eigen::MatrixXd mass;        // [kg m^2]
-  Eigen::MatrixXd stiffness;   // [N m/rad]
-  Eigen::MatrixXd damping;     // [N m s/rad]
-  Eigen::VectorXd tip_lever;   // L - x_j [m]
+  Eigen::MatrixXd mass;       // [kg m^2]
+  Eigen::MatrixXd stiffness;  // [N m/rad]
+  Eigen::MatrixXd damping;    // [N m s/rad]
+  Eigen::VectorXd tip_lever;  // L - x_j [m]
 };
 // C = diag(c_theta) (hinge) or the modal damping matrix (modal).
 ChainMatrices linearise(const LinkChain& chain);

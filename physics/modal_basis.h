@@ -9,10 +9,10 @@
 namespace ib {
 
 struct ModalBasis {
-  Eigen::VectorXd omega_rad_s;   // natural circular frequencies omega_n [rad/s], ascending
-  Eigen::VectorXd zeta;          // modal damping ratios zeta_n [-]
-  Eigen::VectorXd tip;           // tip values phi_n(L) of the mass-normalised shapes [1/sqrt(kg)]
-  std::string origin;            // how it was built, e.g. "beam N=3", "chain K=16"
+  Eigen::VectorXd omega_rad_s;  // natural circular frequencies omega_n [rad/s], ascending
+  Eigen::VectorXd zeta;         // modal damping ratios zeta_n [-]
+  Eigen::VectorXd tip;          // tip values phi_n(L) of the mass-normalised shapes [1/sqrt(kg)]
+  std::string origin;           // how it was built, e.g. "beam N=3", "chain K=16"
 
   int size() const { return static_cast<int>(omega_rad_s.size()); }
   // 1 / sum phi_n(L)^2: the tip's effective mass for an impulse [kg].

@@ -16,9 +16,12 @@ constexpr double kTwoPi = 6.28318530717958647692;
 
 const char* to_string(ModeSet set) {
   switch (set) {
-    case ModeSet::beam: return "beam";
-    case ModeSet::beam_paper: return "beam_paper";
-    case ModeSet::chain: return "chain";
+    case ModeSet::beam:
+      return "beam";
+    case ModeSet::beam_paper:
+      return "beam_paper";
+    case ModeSet::chain:
+      return "chain";
   }
   return "?";
 }
@@ -62,10 +65,12 @@ double start_up_transient_s(const Scenario& scenario) {
 
 ModalBasis frame_modes(const FrameSpec& frame, const ModeSelection& selection) {
   switch (selection.set) {
-    case ModeSet::beam: return CantileverModes(frame, selection.modes_per_frame).basis();
+    case ModeSet::beam:
+      return CantileverModes(frame, selection.modes_per_frame).basis();
     case ModeSet::beam_paper:
       return CantileverModes(frame, selection.modes_per_frame, BeamShapes::paper_eq_2_5).basis();
-    case ModeSet::chain: return chain_modes(build_link_chain(frame, selection.chain_links, selection.chain_damping));
+    case ModeSet::chain:
+      return chain_modes(build_link_chain(frame, selection.chain_links, selection.chain_damping));
   }
   throw std::logic_error("unknown mode set");
 }

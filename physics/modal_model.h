@@ -13,10 +13,10 @@
 #include <optional>
 #include <string>
 
+#include "model/scenario.h"
 #include "physics/contact_laws.h"
 #include "physics/link_chain.h"
 #include "physics/modal_basis.h"
-#include "model/scenario.h"
 
 namespace ib {
 
@@ -30,15 +30,15 @@ const char* to_string(ModeSet set);
 
 struct ModeSelection {
   ModeSet set = ModeSet::beam;
-  int modes_per_frame = 10;   // N, for the beam mode sets
-  int chain_links = 16;       // K, for the chain (all K modes are used)
+  int modes_per_frame = 10;                          // N, for the beam mode sets
+  int chain_links = 16;                              // K, for the chain (all K modes are used)
   ChainDamping chain_damping = ChainDamping::modal;  // the chain's damping, as the engine's (rig.md section 4)
 };
 
 // F_m(t) = amplitude cos(omega t).
 struct MotorForce {
-  double amplitude_n = 0;     // m_u e_u Omega^2 [N]
-  double omega_rad_s = 0;     // Omega [rad/s]
+  double amplitude_n = 0;  // m_u e_u Omega^2 [N]
+  double omega_rad_s = 0;  // Omega [rad/s]
   double at(double t) const;
   double rate_at(double t) const;  // dF_m/dt [N/s]
 };
@@ -50,7 +50,7 @@ std::optional<MotorForce> motor_force(const Scenario& scenario);
 struct ModalModel {
   std::array<ModalBasis, 2> frames;
   double gap_m = 0;
-  std::optional<MotorForce> motor;   // absent: no motor force at all
+  std::optional<MotorForce> motor;  // absent: no motor force at all
   ContactModel contact;
 
   // The stacked form (derived from the above by finalise()).

@@ -18,7 +18,7 @@ void Solver::record_interval(const TipState& sa, const TipState& sb, Eval&& eval
   }
   if (sa.force_rate * sb.force_rate < 0) {
     const double c = find_root_after([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
-                               sb.force_rate, kExtremumBits);
+                                     sb.force_rate, kExtremumBits);
     points[count++] = eval(c);
   }
   for (int i = 1; i < count; ++i)  // insertion sort by time: at most three points
@@ -39,12 +39,12 @@ void Solver::track_event(ContactEvent& event, const TipState& sa, const TipState
   event.max_indentation_m = std::max({event.max_indentation_m, sa.indentation, sb.indentation});
   if (sa.force_rate > 0 && sb.force_rate < 0) {
     const double c = find_root_after([&](double t) { return eval(t).force_rate; }, sa.t, sb.t, sa.force_rate,
-                               sb.force_rate, kExtremumBits);
+                                     sb.force_rate, kExtremumBits);
     event.peak_force_n = std::max(event.peak_force_n, eval(c).force);
   }
   if (sa.indentation_rate > 0 && sb.indentation_rate < 0) {
-    const double c = find_root_after([&](double t) { return eval(t).indentation_rate; }, sa.t, sb.t, sa.indentation_rate,
-                               sb.indentation_rate, kExtremumBits);
+    const double c = find_root_after([&](double t) { return eval(t).indentation_rate; }, sa.t, sb.t,
+                                     sa.indentation_rate, sb.indentation_rate, kExtremumBits);
     event.max_indentation_m = std::max(event.max_indentation_m, eval(c).indentation);
   }
 }
@@ -62,14 +62,17 @@ bool Solver::integrate_contact(double& t, ModalState& x, Phase phase) {
     const Eigen::Map<const Eigen::ArrayXd> q(s.data(), m_), v(s.data() + m_, m_);
     Eigen::Map<Eigen::ArrayXd> dq(ds.data(), m_), dv(ds.data() + m_, m_);
     dq = v;
-    dv = model_.motor_lever.array() * motor - two_zeta_omega_ * v - omega2_ * q - model_.contact_lever.array() * k.force;
-    ds[2 * m_] = model_.motor ? motor * model_.motor_lever.dot(Eigen::Map<const Eigen::VectorXd>(s.data() + m_, m_)) : 0;
+    dv =
+        model_.motor_lever.array() * motor - two_zeta_omega_ * v - omega2_ * q - model_.contact_lever.array() * k.force;
+    ds[2 * m_] =
+        model_.motor ? motor * model_.motor_lever.dot(Eigen::Map<const Eigen::VectorXd>(s.data() + m_, m_)) : 0;
     ds[2 * m_ + 1] = structural_power(s.data() + m_);
     ds[2 * m_ + 2] = (k.force - elastic_contact_force(model_.contact, k.indentation)) * k.indentation_rate;
     ds[2 * m_ + 3] = k.force;
   };
   // The integrator's step never exceeds the scan grid, so extrema stay one per step.
-  auto dense = odeint::make_dense_output(settings_.absolute_tolerance, settings_.relative_tolerance, grid_step_, Dopri());
+  auto dense =
+      odeint::make_dense_output(settings_.absolute_tolerance, settings_.relative_tolerance, grid_step_, Dopri());
   dense.initialize(y, t, std::min(grid_step_, 1e-6));
   TipState sa = tip_state(y.data(), y.data() + m_, t, phase);
   ContactEvent event;
@@ -89,7 +92,8 @@ bool Solver::integrate_contact(double& t, ModalState& x, Phase phase) {
     try {
       dense.do_step(rhs);
     } catch (const std::exception& error) {
-      fail(RunStatus::failed, std::string("reference integrator failed at t = ") + std::to_string(t) + " s: " + error.what());
+      fail(RunStatus::failed,
+           std::string("reference integrator failed at t = ") + std::to_string(t) + " s: " + error.what());
       return false;
     }
     ++solution_.integrator_steps;
@@ -106,9 +110,9 @@ bool Solver::integrate_contact(double& t, ModalState& x, Phase phase) {
       // Locate the end on the dense output, after the last interior maximum of the ending quantity.
       double lo = ta, f_lo = ending(sa);
       if (f_lo <= 0) {
-        const double c = phase == Phase::compliant
-                             ? find_root([&](double s) { return eval(s).indentation_rate; }, ta, tb, sa.indentation_rate, sb.indentation_rate)
-                             : ta;
+        const double c = phase == Phase::compliant ? find_root([&](double s) { return eval(s).indentation_rate; }, ta,
+                                                               tb, sa.indentation_rate, sb.indentation_rate)
+                                                   : ta;
         lo = c;
         f_lo = ending(eval(c));
       }
@@ -150,7 +154,8 @@ bool Solver::integrate_contact(double& t, ModalState& x, Phase phase) {
       event.impulse_n_s += y_stop[2 * m_ + 3];
       event.rebound_velocity_m_s = force_end_ ? force_end_->second : -sb.indentation_rate;
       force_end_.reset();
-      event.restitution = event.approach_velocity_m_s > 0 ? event.rebound_velocity_m_s / event.approach_velocity_m_s : 0;
+      event.restitution =
+          event.approach_velocity_m_s > 0 ? event.rebound_velocity_m_s / event.approach_velocity_m_s : 0;
       if (phase == Phase::sticking) {
         ++solution_.sticking_phases;
         // the sticking phase continues the impact episode that started it. Held at delta' = 0 and

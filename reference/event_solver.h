@@ -28,7 +28,8 @@
 namespace ib::reference_internal {
 
 namespace odeint = boost::numeric::odeint;
-using OdeState = std::vector<double>;  // [q (M), v (M), motor work, structural dissipation, contact dissipation, impulse]
+using OdeState =
+    std::vector<double>;  // [q (M), v (M), motor work, structural dissipation, contact dissipation, impulse]
 using Dopri = odeint::runge_kutta_dopri5<OdeState>;
 
 constexpr double kTwoPi = 6.28318530717958647692;
@@ -149,8 +150,10 @@ class Solver {
     s.indentation = delta;
     s.indentation_rate = rate;
     s.energy = 0.5 * twice_energy + (phase == Phase::compliant ? elastic_contact_energy(model_.contact, delta) : 0);
-    if (phase == Phase::compliant) s.force = contact_force_continued(model_.contact, delta, rate);
-    else if (phase == Phase::sticking) s.force = lever_driven / lever_norm2_;
+    if (phase == Phase::compliant)
+      s.force = contact_force_continued(model_.contact, delta, rate);
+    else if (phase == Phase::sticking)
+      s.force = lever_driven / lever_norm2_;
     // delta'' = b . (driven - b F) and the jerk without the force rate, b . (p F_m' - c a - w^2 v)
     const double indentation_acc = lever_driven - lever_norm2_ * s.force;
     if (phase == Phase::compliant) {
@@ -201,8 +204,10 @@ class Solver {
       lever_driven += b[m] * (p[m] * motor - c[m] * v[m] - w2[m] * q[m]);
     }
     ContactState s{delta, rate, 0};
-    if (phase == Phase::compliant) s.force = contact_force_continued(model_.contact, delta, rate);
-    else if (phase == Phase::sticking) s.force = lever_driven / lever_norm2_;
+    if (phase == Phase::compliant)
+      s.force = contact_force_continued(model_.contact, delta, rate);
+    else if (phase == Phase::sticking)
+      s.force = lever_driven / lever_norm2_;
     return s;
   }
 
@@ -259,12 +264,12 @@ class Solver {
 
   // Takes one coarse step if no contact can start within it: the slow modes' indentation (resolved by
   // the coarse step, its interior maximum located) plus `fast`, the bound on the fast modes, stays negative.
-  bool coarse_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double fast,
-                                   double* work, double* dissipation);
+  bool coarse_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double fast, double* work,
+                                   double* dissipation);
   // Takes the longest of the long steps within which no contact can start: the slow modes' indentation at t
   // plus their speed bound times the step, plus `fast`, stays negative.
-  bool long_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double fast,
-                                 double* work, double* dissipation);
+  bool long_step_without_contact(double& t, ModalState& x, FreeFlight::MotorPhase& phase_a, double fast, double* work,
+                                 double* dissipation);
   // Whether a bounded step may end at t (inside the output window too: it samples along).
   bool bounded_step_may_end_at(double t) const { return t < end_time_; }
   // A bounded step's sub-grid for the peaks between samples: `count` equal intervals, none longer than the
@@ -380,7 +385,8 @@ class Solver {
 
   // Peak force and maximum indentation of a contact episode, exact between steps.
   template <class Eval>
-  void track_event(ContactEvent& event, const TipState& sa, const TipState& sb, Eval&& eval) const;  // contact_phase.cpp
+  void track_event(ContactEvent& event, const TipState& sa, const TipState& sb,
+                   Eval&& eval) const;  // contact_phase.cpp
 
   const ModalModel& model_;
   const ReferenceSettings& settings_;
@@ -394,21 +400,21 @@ class Solver {
   double end_time_ = 0;
   FreeFlight::Transition grid_transition_, coarse_transition_, sample_transition_;
   FreeFlight::EnergyForms grid_energy_, coarse_energy_;
-  double coarse_step_ = 0;                   // 0: no coarse steps
+  double coarse_step_ = 0;  // 0: no coarse steps
   struct LongStep {
     FreeFlight::Transition transition;
     FreeFlight::EnergyForms energy;
     SubGrid sub;
   };
   SubGrid coarse_sub_;
-  ModalState scan_a_;                        // a bounded step's sub-grid scan: the state where a peak lies ahead
+  ModalState scan_a_;  // a bounded step's sub-grid scan: the state where a peak lies ahead
   Eigen::ArrayXd scan_q_a_, scan_v_a_, scan_q_b_, scan_v_b_;  // and the free parts it steps
   Eigen::ArrayXd scan_jerk_q_, scan_jerk_v_;  // a tip's jerk per unit free displacement and velocity of each mode
   std::array<double, 2> steady_jerk_cos_{}, steady_jerk_sin_{};  // the steady state's tip jerk: cos, sin parts
   Eigen::VectorXd jerk_curvature_lever_;  // |tip_m| max(|lambda_m|, Omega)^5: each mode's share of the bound
   std::vector<TipState> extrema_;
-  std::vector<LongStep> long_steps_;         // 2, 4, 8, ... coarse steps
-  double last_sample_t_ = -kInf;             // the free-flight sample chain (sample_free)
+  std::vector<LongStep> long_steps_;  // 2, 4, 8, ... coarse steps
+  double last_sample_t_ = -kInf;      // the free-flight sample chain (sample_free)
   FreeFlight::MotorPhase last_sample_phase_;
   int chained_samples_ = 0;
   Eigen::VectorXd slow_lever_, fast_lever_;  // the contact lever split into slow and fast modes

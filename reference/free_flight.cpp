@@ -1,7 +1,7 @@
 #include "reference/free_flight.h"
 
-#include <cmath>
 #include <boost/math/quadrature/gauss.hpp>
+#include <cmath>
 #include <complex>
 #include <stdexcept>
 #include <string>
@@ -24,7 +24,8 @@ FreeFlight::FreeFlight(const ModalModel& model) : model_(model) {
       // q_p = Re(H F e^{i Omega t}) with H = p / (omega^2 - Omega^2 + 2 i zeta omega Omega)
       const std::complex<double> denominator(omega[m] * omega[m] - w * w, 2 * zeta[m] * omega[m] * w);
       if (std::abs(denominator) == 0)
-        throw std::invalid_argument("mode " + std::to_string(m) + " is undamped and driven exactly at resonance: "
+        throw std::invalid_argument("mode " + std::to_string(m) +
+                                    " is undamped and driven exactly at resonance: "
                                     "no steady state exists (give the frame some damping)");
       const std::complex<double> h = model.motor_lever[m] * model.motor->amplitude_n / denominator;
       forced_cos_[m] = h.real();
@@ -42,7 +43,10 @@ FreeFlight::Transition FreeFlight::transition(double tau) const {
 void FreeFlight::transition_into(double tau, Transition& t) const {
   const int n = model_.mode_count();
   t.tau_s = tau;
-  t.qq.resize(n); t.qv.resize(n); t.vq.resize(n); t.vv.resize(n);
+  t.qq.resize(n);
+  t.qv.resize(n);
+  t.vq.resize(n);
+  t.vv.resize(n);
   for (int m = 0; m < n; ++m) {
     // exp(A tau) = e^{sigma tau} [C I + S (A - sigma I)], A - sigma I = [[zeta w, 1], [-w^2, -zeta w]]
     const double sigma = decay_[m], w = model_.omega_rad_s[m], zw = -sigma;
@@ -122,7 +126,8 @@ void FreeFlight::advance(const Transition& tr, const MotorPhase& from, const Mot
     x.v[m] = -w * (a * s1 + b * c1) + tr.vq[m] * q_free + tr.vv[m] * v_free;
     if (!forms) continue;
     const EnergyForms& f = *forms;
-    const double hom_sq = f.vv_qq[m] * q_free * q_free + 2 * f.vv_qv[m] * q_free * v_free + f.vv_vv[m] * v_free * v_free;
+    const double hom_sq =
+        f.vv_qq[m] * q_free * q_free + 2 * f.vv_qv[m] * q_free * v_free + f.vv_vv[m] * v_free * v_free;
     if (w == 0) {  // no motor: the steady state and its cross terms are zero
       dissipation += two_zeta_omega_[m] * hom_sq;
       continue;

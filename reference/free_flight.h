@@ -58,8 +58,8 @@ class FreeFlight {
   //   sum 2 zeta omega integral v^2 and the motor work integral F_m(t) u1'(t).
   struct EnergyForms {
     double tau_s = 0;
-    Eigen::ArrayXd vv_qq, vv_qv, vv_vv;   // integral v_h^2 = vv_qq q~^2 + 2 vv_qv q~ v~ + vv_vv v~^2
-    Eigen::ArrayXd cos_q, cos_v, sin_q, sin_v;  // integral {cos, sin}(Omega s) v_h(s) ds = _q q~ + _v v~
+    Eigen::ArrayXd vv_qq, vv_qv, vv_vv;            // integral v_h^2 = vv_qq q~^2 + 2 vv_qv q~ v~ + vv_vv v~^2
+    Eigen::ArrayXd cos_q, cos_v, sin_q, sin_v;     // integral {cos, sin}(Omega s) v_h(s) ds = _q q~ + _v v~
     double cos_cos = 0, cos_sin = 0, sin_sin = 0;  // integrals of cos^2, cos sin, sin^2 (Omega s)
   };
   // least_panels: the quadrature's panels are at most 1/8 of the fastest period and at least this many (an
@@ -84,10 +84,10 @@ class FreeFlight {
 
   const ModalModel& model_;
   mutable Transition scratch_;
-  Eigen::ArrayXd decay_;         // -zeta omega [1/s]
-  Eigen::ArrayXd two_zeta_omega_;  // 2 zeta omega [1/s], the structural damping per unit velocity
-  Eigen::ArrayXd oscillation_;   // omega sqrt(|1 - zeta^2|) [rad/s]
-  Eigen::ArrayXi regime_;        // -1 under-, 0 critically, +1 over-damped
+  Eigen::ArrayXd decay_;                    // -zeta omega [1/s]
+  Eigen::ArrayXd two_zeta_omega_;           // 2 zeta omega [1/s], the structural damping per unit velocity
+  Eigen::ArrayXd oscillation_;              // omega sqrt(|1 - zeta^2|) [rad/s]
+  Eigen::ArrayXi regime_;                   // -1 under-, 0 critically, +1 over-damped
   Eigen::ArrayXd forced_cos_, forced_sin_;  // q_p = forced_cos cos(Omega t) - forced_sin sin(Omega t)
 };
 

@@ -130,8 +130,8 @@ bool Solver::free_flight(double& t, ModalState& x, bool after_contact) {
       // the start's kinematics carry over from the previous step when it was recorded too
       if (!(tips_a_valid && tips_a.t == t0)) tips_a = tip_state(x.q.data(), x.v.data(), t0, Phase::free);
       const TipState tips_b = tip_state(x_end.q.data(), x_end.v.data(), t_end, Phase::free);
-      record_free_interval(tips_a, tips_b, x, [&](double ts) { return sample_at(ts, x, t0); },
-                           settings_.peaks_between_samples);
+      record_free_interval(
+          tips_a, tips_b, x, [&](double ts) { return sample_at(ts, x, t0); }, settings_.peaks_between_samples);
       tips_a = tips_b;
       tips_a_valid = true;
     }
@@ -211,7 +211,8 @@ bool Solver::long_step_without_contact(double& t, ModalState& x, FreeFlight::Mot
   return true;
 }
 
-Solver::AccelerationSeries Solver::acceleration_series(const ModalState& x, double t, std::array<bool, 2> frames) const {
+Solver::AccelerationSeries Solver::acceleration_series(const ModalState& x, double t,
+                                                       std::array<bool, 2> frames) const {
   // the motor force's derivatives: F cos(Omega t + k pi / 2) Omega^k
   std::array<double, kTaylorDegree + 1> motor{};
   if (model_.motor) {
@@ -243,8 +244,7 @@ Solver::AccelerationSeries Solver::acceleration_series(const ModalState& x, doub
   return series;
 }
 
-void Solver::record_bounded_step(double t0, const ModalState& x0, const ModalState& xb, double tb,
-                                 const SubGrid& sub) {
+void Solver::record_bounded_step(double t0, const ModalState& x0, const ModalState& xb, double tb, const SubGrid& sub) {
   if (!recorder_.wants(tb)) return;
   extrema_.clear();
   if (settings_.peaks_between_samples) {

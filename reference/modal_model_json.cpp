@@ -64,8 +64,9 @@ std::string modal_model_json(const ModalModel& model, const ModalState& initial,
   j["contact_law"] = law_json(model.contact);
   j["initial"] = {{"q_m_sqrt_kg", values(initial.q)}, {"v_m_s_sqrt_kg", values(initial.v)}};
   j["recorded"] = {
-      {"meaning", "frame f's tip displacement [m], velocity [m/s], acceleration [m/s^2] = lever . q, q', q''; "
-                  "mechanical energy [J] = sum (q'^2 + omega^2 q^2) / 2 + the law's elastic contact energy in contact"},
+      {"meaning",
+       "frame f's tip displacement [m], velocity [m/s], acceleration [m/s^2] = lever . q, q', q''; "
+       "mechanical energy [J] = sum (q'^2 + omega^2 q^2) / 2 + the law's elastic contact energy in contact"},
       {"frame1_tip_lever_per_sqrt_kg", values(tip_lever(model, 0))},
       {"frame2_tip_lever_per_sqrt_kg", values(tip_lever(model, 1))}};
   j["duration_s"] = run.duration_s;

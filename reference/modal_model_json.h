@@ -22,9 +22,9 @@ namespace ib {
 struct ModelRunInfo {
   std::string scenario_name, scenario_file;
   double duration_s = 0;
-  double series_start_s = 0;          // first output sample [s]
-  double output_rate_hz = 4096;       // output samples per second [Hz]
-  ScoringWindow scoring_window;       // metrics over [start, end] (keys scoring_window_start_s, _end_s)
+  double series_start_s = 0;     // first output sample [s]
+  double output_rate_hz = 4096;  // output samples per second [Hz]
+  ScoringWindow scoring_window;  // metrics over [start, end] (keys scoring_window_start_s, _end_s)
 };
 
 // The model, its initial state, the run and the reference's own settings (its tolerances, for

@@ -17,14 +17,18 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
-    {"modes", "mode set: beam (continuous beam, default), beam_paper (the paper's eq. 2.5 shapes), chain (the engines' K-link chain)"},
+    {"modes",
+     "mode set: beam (continuous beam, default), beam_paper (the paper's eq. 2.5 shapes), chain (the engines' K-link "
+     "chain)"},
     {"n", "modes per frame for the beam mode sets, 1..200 (default 10)"},
     {"links", "links K per frame for the chain mode set, 1..1000 (default 16)"},
     {kChainDampingOption, std::string("for the chain mode set, as the engines': ") + kChainDampingOptionHelp},
     {"rtol", "relative tolerance of the contact integrator, > 0 (default 1e-9)"},
     {"atol", "absolute tolerance on modal coordinates, > 0 (default 1e-12)"},
     {"grid", "free-flight scan points per period of the fastest mode, >= 4 (default 8)"},
-    {"slow_modes", "modes per frame resolved by the coarse free-flight steps, taken where no contact can start, 0 = fine grid only (default 3)"},
+    {"slow_modes",
+     "modes per frame resolved by the coarse free-flight steps, taken where no contact can start, 0 = fine grid only "
+     "(default 3)"},
     {"accumulation_time", "Newton law: stick when impacts would accumulate within this time [s], >= 0 (default 1e-6)"},
     {"energy", "keep the energy ledger: on (default) or off"},
 };
@@ -82,7 +86,8 @@ constexpr double kZoomMargin_s = 1e-3;
 // none did. The solver is deterministic: the same phases, the free flight's steps aside (its own output
 // window decides where it scans finely), so the same motion to rounding. Empty when the window has no impact.
 Trajectory zoom_on_first_impact(const ModalModel& model, const Scenario& scenario, const ReferenceSolution& run,
-                                const OutputWindow& window, const ReferenceSettings& settings, const ModalState& start) {
+                                const OutputWindow& window, const ReferenceSettings& settings,
+                                const ModalState& start) {
   const ContactEvent* first = nullptr;
   for (const ContactEvent& e : run.trajectory.events)
     if (e.onset_time_s >= window.start_s && (!first || e.onset_time_s < first->onset_time_s)) first = &e;
@@ -103,7 +108,8 @@ Trajectory zoom_on_first_impact(const ModalModel& model, const Scenario& scenari
 // with the same scenario, law, options and --rate: for another solver to integrate the same equations.
 std::string reference_model_json(const Scenario& scenario, const RunSettings& settings) {
   if (settings.time_step_s != 0)
-    throw std::invalid_argument("--dt " + std::to_string(settings.time_step_s) + ": the reference is adaptive; allowed: no --dt");
+    throw std::invalid_argument("--dt " + std::to_string(settings.time_step_s) +
+                                ": the reference is adaptive; allowed: no --dt");
   if (!(settings.output_rate_hz > 0))
     throw std::invalid_argument("--rate " + std::to_string(settings.output_rate_hz) + ": allowed: > 0 Hz");
   const ReferenceSettings reference = reference_settings_from_options(settings.options);
@@ -150,7 +156,8 @@ class ReferenceSimulator final : public Simulator {
     if (solution.status == RunStatus::ok) {
       SavedState end{"reference", state_layout(model, settings.modes), {}};
       end.values.assign(solution.final_state.q.data(), solution.final_state.q.data() + model.mode_count());
-      end.values.insert(end.values.end(), solution.final_state.v.data(), solution.final_state.v.data() + model.mode_count());
+      end.values.insert(end.values.end(), solution.final_state.v.data(),
+                        solution.final_state.v.data() + model.mode_count());
       result.final_state = std::move(end);
     }
     result.trajectory = std::move(solution.trajectory);
@@ -186,10 +193,15 @@ ReferenceSettings reference_settings_from_options(const std::map<std::string, st
   ReferenceSettings s;
   for (const auto& [key, text] : options) {
     if (key == "modes") {
-      if (text == "beam") s.modes.set = ModeSet::beam;
-      else if (text == "beam_paper") s.modes.set = ModeSet::beam_paper;
-      else if (text == "chain") s.modes.set = ModeSet::chain;
-      else throw std::invalid_argument("reference option modes=" + text + ": unknown mode set; allowed: beam, beam_paper, chain");
+      if (text == "beam")
+        s.modes.set = ModeSet::beam;
+      else if (text == "beam_paper")
+        s.modes.set = ModeSet::beam_paper;
+      else if (text == "chain")
+        s.modes.set = ModeSet::chain;
+      else
+        throw std::invalid_argument("reference option modes=" + text +
+                                    ": unknown mode set; allowed: beam, beam_paper, chain");
     } else if (key == "n") {
       s.modes.modes_per_frame = parse_integer(key, text, 1, 200);
     } else if (key == "links") {

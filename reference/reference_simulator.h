@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "reference/reference_solver.h"
 #include "model/simulator.h"
+#include "reference/reference_solver.h"
 
 namespace ib {
 

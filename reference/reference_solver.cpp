@@ -110,8 +110,7 @@ namespace {
 void check_settings(const ReferenceSettings& settings) {
   if (!(settings.relative_tolerance > 0) || !(settings.absolute_tolerance > 0))
     throw std::invalid_argument("reference tolerances must be > 0");
-  if (settings.grid_points_per_period < 4)
-    throw std::invalid_argument("grid_points_per_period must be >= 4");
+  if (settings.grid_points_per_period < 4) throw std::invalid_argument("grid_points_per_period must be >= 4");
   if (!(settings.max_grid_step_s > 0)) throw std::invalid_argument("max_grid_step_s must be > 0");
 }
 }  // namespace

@@ -17,26 +17,26 @@
 #include <string>
 #include <vector>
 
-#include "physics/modal_model.h"
 #include "model/trajectory.h"
+#include "physics/modal_model.h"
 
 namespace ib {
 
 struct ReferenceSettings {
   ModeSelection modes;
-  double relative_tolerance = 1e-9;       // Dormand-Prince rtol [-]
-  double absolute_tolerance = 1e-12;      // Dormand-Prince atol, on modal coordinates [sqrt(kg) m, sqrt(kg) m/s]
-  int grid_points_per_period = 8;         // free-flight scan grid per period of the fastest mode [-]
-  double max_grid_step_s = 1e-3;          // and never coarser than this [s] (bounds the step for slow models)
+  double relative_tolerance = 1e-9;   // Dormand-Prince rtol [-]
+  double absolute_tolerance = 1e-12;  // Dormand-Prince atol, on modal coordinates [sqrt(kg) m, sqrt(kg) m/s]
+  int grid_points_per_period = 8;     // free-flight scan grid per period of the fastest mode [-]
+  double max_grid_step_s = 1e-3;      // and never coarser than this [s] (bounds the step for slow models)
   // Outside the output window, free flight first tries steps sized for the slowest modes
   // (this many per frame), taken only where a bound on the faster modes proves that no contact can
   // start within them, and multiples of them (up to 2^long_step_doublings) where the slow modes' closing
   // speed cannot cover the distance left within them; elsewhere it scans the fine grid. 0: always the fine grid.
   int slow_modes_per_frame = 3;
-  int long_step_doublings = 6;            // 0: coarse steps only
-  double accumulation_time_s = 1e-6;      // Newton: stick when impacts would accumulate within this [s]
+  int long_step_doublings = 6;                  // 0: coarse steps only
+  double accumulation_time_s = 1e-6;            // Newton: stick when impacts would accumulate within this [s]
   long long max_contact_episodes = 50'000'000;  // a run that needs more is stopped, never loops forever
-  bool track_energy = true;               // energy ledger (motor work, dissipations) alongside
+  bool track_energy = true;                     // energy ledger (motor work, dissipations) alongside
   // The exact peaks of |acceleration| and force between output samples in free flight (the series' peak
   // columns, the true peak metric). Off: free flight's peak columns hold the samples' own values (contacts keep
   // their exact peaks), and free flight steps over the output window as it does outside it, where no contact
@@ -78,13 +78,13 @@ struct ReferenceSolution {
   EnergyLedger energy;
   RunStatus status = RunStatus::ok;
   std::string reason;
-  long long integrator_steps = 0;    // accepted Dormand-Prince steps
-  long long grid_intervals = 0;      // free-flight fine-grid intervals scanned
-  long long coarse_intervals = 0;    // free-flight coarse (and longer) steps taken on the bounds
-  long long impacts = 0;             // contact episodes (Newton: impulses)
+  long long integrator_steps = 0;  // accepted Dormand-Prince steps
+  long long grid_intervals = 0;    // free-flight fine-grid intervals scanned
+  long long coarse_intervals = 0;  // free-flight coarse (and longer) steps taken on the bounds
+  long long impacts = 0;           // contact episodes (Newton: impulses)
   long long sticking_phases = 0;
   double grid_step_s = 0;
-  ModalState final_state;            // the state at duration_s (a run that ended early: where it stopped)
+  ModalState final_state;                  // the state at duration_s (a run that ended early: where it stopped)
   std::vector<FlightStart> flight_starts;  // in time order, as ReferenceSettings::keep_flight_starts_from_s asks
 };
 

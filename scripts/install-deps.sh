@@ -35,6 +35,7 @@ test_packages=(
   libgtest-dev libgmock-dev      # the tests (GoogleTest through ctest)
   slurmctld slurmd slurm-client munge  # tests/slurm/: a real one-node Slurm cluster runs the job-array scripts
   chromium                       # report_in_chromium: the report's page rendered as a reader sees it
+  clang-format                   # ctest format (scripts/check_format.sh): the sources as .clang-format has them
 )
 
 packages=("${benchmark_packages[@]}")

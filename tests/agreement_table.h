@@ -43,24 +43,25 @@ constexpr RunLength kRunLengths[] = {
 };
 
 struct Tolerances {
-  double impacts_per_cycle;   // largest |run - reference| [impacts per motor cycle]; kNotApplicable: no such metric
-  double sensor_peak;         // largest |run / reference - 1| of frame 1's sensor peak [-]
-  double contact_duration;    // largest |run / reference - 1| of the mean contact duration [-]; kNotApplicable: none
+  double impacts_per_cycle;  // largest |run - reference| [impacts per motor cycle]; kNotApplicable: no such metric
+  double sensor_peak;        // largest |run / reference - 1| of frame 1's sensor peak [-]
+  double contact_duration;   // largest |run / reference - 1| of the mean contact duration [-]; kNotApplicable: none
 };
 
 struct AgreementRow {
-  const char* engine;         // simulator name, as the registry knows it
-  const char* scenario;       // scenarios/paper/<scenario>.toml
+  const char* engine;    // simulator name, as the registry knows it
+  const char* scenario;  // scenarios/paper/<scenario>.toml
   ContactLaw law;
-  double time_step_s;         // the engine's fixed step [s]
-  const char* contact_path;   // option contact=
-  const char* options;        // further engine options, "name=value" or "" (a named configuration, see why)
-  Tolerances chain;           // against the reference on the engine's own K-link chain
-  Tolerances beam;            // against the continuous-beam reference (chain tolerance + the chain's model gap)
-  const char* why;            // why these tolerances at this step
+  double time_step_s;        // the engine's fixed step [s]
+  const char* contact_path;  // option contact=
+  const char* options;       // further engine options, "name=value" or "" (a named configuration, see why)
+  Tolerances chain;          // against the reference on the engine's own K-link chain
+  Tolerances beam;           // against the continuous-beam reference (chain tolerance + the chain's model gap)
+  const char* why;           // why these tolerances at this step
 };
 
-constexpr ContactLaw kHertz = ContactLaw::hertz, kSpringDashpot = ContactLaw::viscoelastic, kNewton = ContactLaw::newton;
+constexpr ContactLaw kHertz = ContactLaw::hertz, kSpringDashpot = ContactLaw::viscoelastic,
+                     kNewton = ContactLaw::newton;
 constexpr double na = kNotApplicable;
 
 // Tolerances from the physics, then checked against the measured errors (README "Agreement with the
@@ -81,7 +82,8 @@ constexpr double na = kNotApplicable;
 //   contact time by 1 to 1.5 %); spring-dashpot plus 5 %, because the beam reference runs the published law,
 //   whose tensile tail makes its contacts 4 % (c/k = 24 us) longer than any engine's compressive contact.
 constexpr const char* kHertzStep =
-    "Hertz is a force from the tip states (MuJoCo, ODE, Bullet and DART have no nonlinear contact), explicit: its 0.25 ms contact "
+    "Hertz is a force from the tip states (MuJoCo, ODE, Bullet and DART have no nonlinear contact), explicit: its 0.25 "
+    "ms contact "
     "stiffens to 18000 rad/s and gains energy at 1e-4 s (e > 1), so 1e-5 s (25 steps per contact)";
 constexpr const char* kOdeHertzStep =
     "Hertz as a force from the tip states; ODE's implicit hinge springs keep 2e-5 s (12 steps per contact) within "
@@ -117,7 +119,8 @@ constexpr const char* kFreeVibration =
 constexpr const char* kFreeVibrationSpringDashpot =
     "finding: frame 1's sensor peak in free vibration is a phase-sampled statistic of a few impacts. With the "
     "0.6 ms spring-dashpot contact (longer than the 0.49 ms sensor window) the peak comes from a later impact "
-    "(chain reference: the first impact alone reads 7.33 g, the whole run 8.11 g), and where it falls on the 2048 Hz grid decides it: a 0.4 % change of the sensor rate moves the reference's "
+    "(chain reference: the first impact alone reads 7.33 g, the whole run 8.11 g), and where it falls on the 2048 Hz "
+    "grid decides it: a 0.4 % change of the sensor rate moves the reference's "
     "own value by -30 % to +19 %. Engines whose later impacts drift by tens of us land anywhere in that range, "
     "and a smaller step does not help (ODE -6.6 % at 1e-5 s, -10.3 % at 2e-6 s; Bullet +4.0 % at 1e-5 s, -9.3 % "
     "at 5e-6 s). On the tuned chain (rig.md section 4) Bullet reads -17.7 % (chain) and -25.7 % (beam), DART -16.4 % "
@@ -163,58 +166,228 @@ constexpr const char* kSimbodyPostResonance =
 constexpr AgreementRow kAgreement[] = {
     // ---------------------------------------------------------------- MuJoCo 2.2.2, semi-implicit Euler
     {"mujoco", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
-    {"mujoco", "resonance", kSpringDashpot, 1e-4, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kMujocoSpringDashpot},
+    {"mujoco",
+     "resonance",
+     kSpringDashpot,
+     1e-4,
+     "matched",
+     "",
+     {0.03, 0.05, 0.05},
+     {0.03, 0.15, 0.10},
+     kMujocoSpringDashpot},
     {"mujoco", "resonance", kNewton, 1e-4, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kMujocoNewton},
     {"mujoco", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kHertzStep},
-    {"mujoco", "pre_resonance", kSpringDashpot, 1e-4, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kMujocoSpringDashpot},
-    {"mujoco", "pre_resonance", kNewton, 5e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kMujocoNewtonPreResonance},
+    {"mujoco",
+     "pre_resonance",
+     kSpringDashpot,
+     1e-4,
+     "matched",
+     "",
+     {0.03, 0.05, 0.05},
+     {0.03, 0.10, 0.10},
+     kMujocoSpringDashpot},
+    {"mujoco",
+     "pre_resonance",
+     kNewton,
+     5e-5,
+     "matched",
+     "",
+     {0.03, 0.05, na},
+     {0.03, 0.10, na},
+     kMujocoNewtonPreResonance},
     {"mujoco", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"mujoco", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"mujoco", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
+    {"mujoco",
+     "free_vibration",
+     kSpringDashpot,
+     1e-5,
+     "matched",
+     "",
+     {na, 0.25, 0.05},
+     {na, 0.30, 0.10},
+     kFreeVibrationSpringDashpot},
     {"mujoco", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
     // ---------------------------------------------------------------- ODE 0.16.2, dWorldStep, implicit hinge springs
     {"ode", "resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kOdeHertzStep},
-    {"ode", "resonance", kSpringDashpot, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kImplicitSpringDashpot},
+    {"ode",
+     "resonance",
+     kSpringDashpot,
+     1e-5,
+     "matched",
+     "",
+     {0.03, 0.05, 0.05},
+     {0.03, 0.15, 0.10},
+     kImplicitSpringDashpot},
     {"ode", "resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kOdeNewton},
-    {"ode", "pre_resonance", kHertz, 2e-5, "matched", "", {0.03, 0.10, 0.05}, {0.03, 0.12, 0.07}, kImplicitJointSpringsPreResonance},
-    {"ode", "pre_resonance", kSpringDashpot, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kImplicitSpringDashpot},
-    {"ode", "pre_resonance", kNewton, 2e-5, "matched", "", {0.03, 0.10, na}, {0.03, 0.12, na}, kImplicitJointSpringsPreResonance},
+    {"ode",
+     "pre_resonance",
+     kHertz,
+     2e-5,
+     "matched",
+     "",
+     {0.03, 0.10, 0.05},
+     {0.03, 0.12, 0.07},
+     kImplicitJointSpringsPreResonance},
+    {"ode",
+     "pre_resonance",
+     kSpringDashpot,
+     1e-5,
+     "matched",
+     "",
+     {0.03, 0.05, 0.05},
+     {0.03, 0.10, 0.10},
+     kImplicitSpringDashpot},
+    {"ode",
+     "pre_resonance",
+     kNewton,
+     2e-5,
+     "matched",
+     "",
+     {0.03, 0.10, na},
+     {0.03, 0.12, na},
+     kImplicitJointSpringsPreResonance},
     {"ode", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"ode", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"ode", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
+    {"ode",
+     "free_vibration",
+     kSpringDashpot,
+     1e-5,
+     "matched",
+     "",
+     {na, 0.25, 0.05},
+     {na, 0.30, 0.10},
+     kFreeVibrationSpringDashpot},
     {"ode", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
     // ---------------------------------------------------------------- Bullet 3.24 (double), btMultiBody
     {"bullet", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
-    {"bullet", "resonance", kSpringDashpot, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kImplicitSpringDashpot},
+    {"bullet",
+     "resonance",
+     kSpringDashpot,
+     1e-5,
+     "matched",
+     "",
+     {0.03, 0.05, 0.05},
+     {0.03, 0.15, 0.10},
+     kImplicitSpringDashpot},
     {"bullet", "resonance", kNewton, 5e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kBulletNewton},
     {"bullet", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kHertzStep},
-    {"bullet", "pre_resonance", kSpringDashpot, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kImplicitSpringDashpot},
+    {"bullet",
+     "pre_resonance",
+     kSpringDashpot,
+     1e-5,
+     "matched",
+     "",
+     {0.03, 0.05, 0.05},
+     {0.03, 0.10, 0.10},
+     kImplicitSpringDashpot},
     {"bullet", "pre_resonance", kNewton, 5e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kBulletNewton},
     {"bullet", "post_resonance", kHertz, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"bullet", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"bullet", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
+    {"bullet",
+     "free_vibration",
+     kSpringDashpot,
+     1e-5,
+     "matched",
+     "",
+     {na, 0.25, 0.05},
+     {na, 0.30, 0.10},
+     kFreeVibrationSpringDashpot},
     {"bullet", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
-    // ---------------------------------------------------------------- DART 6.12.1, semi-implicit Euler, implicit joint springs
+    // ---------------------------------------------------------------- DART 6.12.1, semi-implicit Euler, implicit joint
+    // springs
     {"dart", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
-    {"dart", "resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kDartSpringDashpot},
+    {"dart",
+     "resonance",
+     kSpringDashpot,
+     5e-5,
+     "matched",
+     "",
+     {0.03, 0.05, 0.05},
+     {0.03, 0.15, 0.10},
+     kDartSpringDashpot},
     {"dart", "resonance", kNewton, 2e-5, "matched", "length_unit=cm", {0.03, 0.05, na}, {0.03, 0.15, na}, kDartNewton},
-    {"dart", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.10, 0.05}, {0.03, 0.12, 0.07}, kImplicitJointSpringsPreResonance},
-    {"dart", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.10, 0.05}, {0.03, 0.12, 0.10}, kImplicitJointSpringsPreResonance},
-    {"dart", "pre_resonance", kNewton, 2e-5, "matched", "length_unit=cm", {0.03, 0.10, na}, {0.03, 0.12, na}, kImplicitJointSpringsPreResonance},
+    {"dart",
+     "pre_resonance",
+     kHertz,
+     1e-5,
+     "matched",
+     "",
+     {0.03, 0.10, 0.05},
+     {0.03, 0.12, 0.07},
+     kImplicitJointSpringsPreResonance},
+    {"dart",
+     "pre_resonance",
+     kSpringDashpot,
+     5e-5,
+     "matched",
+     "",
+     {0.03, 0.10, 0.05},
+     {0.03, 0.12, 0.10},
+     kImplicitJointSpringsPreResonance},
+    {"dart",
+     "pre_resonance",
+     kNewton,
+     2e-5,
+     "matched",
+     "length_unit=cm",
+     {0.03, 0.10, na},
+     {0.03, 0.12, na},
+     kImplicitJointSpringsPreResonance},
     {"dart", "post_resonance", kHertz, 1e-4, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kPostResonance},
     {"dart", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"dart", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
-    {"dart", "free_vibration", kNewton, 1e-5, "matched", "length_unit=cm", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
-    // ---------------------------------------------------------------- Simbody 3.7, semi-explicit Euler, explicit hinge springs
+    {"dart",
+     "free_vibration",
+     kSpringDashpot,
+     1e-5,
+     "matched",
+     "",
+     {na, 0.25, 0.05},
+     {na, 0.30, 0.10},
+     kFreeVibrationSpringDashpot},
+    {"dart",
+     "free_vibration",
+     kNewton,
+     1e-5,
+     "matched",
+     "length_unit=cm",
+     {na, 0.05, na},
+     {na, 0.10, na},
+     kFreeVibration},
+    // ---------------------------------------------------------------- Simbody 3.7, semi-explicit Euler, explicit hinge
+    // springs
     {"simbody", "resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kSimbodyHertz},
-    {"simbody", "resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.10}, kSimbodySpringDashpot},
+    {"simbody",
+     "resonance",
+     kSpringDashpot,
+     5e-5,
+     "matched",
+     "",
+     {0.03, 0.05, 0.05},
+     {0.03, 0.15, 0.10},
+     kSimbodySpringDashpot},
     {"simbody", "resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kSimbodyNewton},
     {"simbody", "pre_resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kSimbodyHertz},
-    {"simbody", "pre_resonance", kSpringDashpot, 5e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.10}, kSimbodySpringDashpot},
+    {"simbody",
+     "pre_resonance",
+     kSpringDashpot,
+     5e-5,
+     "matched",
+     "",
+     {0.03, 0.05, 0.05},
+     {0.03, 0.10, 0.10},
+     kSimbodySpringDashpot},
     {"simbody", "pre_resonance", kNewton, 2e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.10, na}, kSimbodyNewton},
     {"simbody", "post_resonance", kHertz, 5e-5, "matched", "", {0, 0.02, na}, {0, 0.04, na}, kSimbodyPostResonance},
     {"simbody", "free_vibration", kHertz, 1e-5, "matched", "", {na, 0.05, 0.05}, {na, 0.10, 0.07}, kFreeVibration},
-    {"simbody", "free_vibration", kSpringDashpot, 1e-5, "matched", "", {na, 0.25, 0.05}, {na, 0.30, 0.10}, kFreeVibrationSpringDashpot},
+    {"simbody",
+     "free_vibration",
+     kSpringDashpot,
+     1e-5,
+     "matched",
+     "",
+     {na, 0.25, 0.05},
+     {na, 0.30, 0.10},
+     kFreeVibrationSpringDashpot},
     {"simbody", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
 };
 

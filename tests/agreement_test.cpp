@@ -40,11 +40,11 @@
 
 #include "adapters/common/rig.h"
 #include "agreement_table.h"
-#include "reference_fixtures.h"
-#include "simulators/catalog.h"
-#include "reference/reference_simulator.h"
 #include "harness/jobs/run_job.h"
 #include "model/simulator.h"
+#include "reference/reference_simulator.h"
+#include "reference_fixtures.h"
+#include "simulators/catalog.h"
 
 namespace ib {
 namespace agreement_test {
@@ -63,7 +63,10 @@ std::string camel(const std::string& snake) {
   std::string out;
   bool upper = true;
   for (char c : snake) {
-    if (c == '_') { upper = true; continue; }
+    if (c == '_') {
+      upper = true;
+      continue;
+    }
     out += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
     upper = false;
   }
@@ -123,7 +126,7 @@ const ReferenceData& reference_run(const std::string& scenario_name, ContactLaw 
 }
 
 struct Comparison {
-  RunRecord engine;                // the engine's run, with errors against both references
+  RunRecord engine;  // the engine's run, with errors against both references
   Metrics chain_reference, beam_reference;
   int chain_links = 0;
 };
@@ -163,18 +166,24 @@ enum class Metric { impacts_per_cycle, sensor_peak, contact_duration };
 
 const char* metric_name(Metric m) {
   switch (m) {
-    case Metric::impacts_per_cycle: return "impacts_per_cycle";
-    case Metric::sensor_peak: return "frame1_sensor_peak";
-    case Metric::contact_duration: return "contact_duration_mean";
+    case Metric::impacts_per_cycle:
+      return "impacts_per_cycle";
+    case Metric::sensor_peak:
+      return "frame1_sensor_peak";
+    case Metric::contact_duration:
+      return "contact_duration_mean";
   }
   return "";
 }
 
 double tolerance(const Tolerances& t, Metric m) {
   switch (m) {
-    case Metric::impacts_per_cycle: return t.impacts_per_cycle;
-    case Metric::sensor_peak: return t.sensor_peak;
-    case Metric::contact_duration: return t.contact_duration;
+    case Metric::impacts_per_cycle:
+      return t.impacts_per_cycle;
+    case Metric::sensor_peak:
+      return t.sensor_peak;
+    case Metric::contact_duration:
+      return t.contact_duration;
   }
   return kNotApplicable;
 }
@@ -182,18 +191,24 @@ double tolerance(const Tolerances& t, Metric m) {
 // The harness's error of a metric (compare_metrics): a difference for impacts per cycle, relative otherwise.
 double error(const MetricErrors& e, Metric m) {
   switch (m) {
-    case Metric::impacts_per_cycle: return e.impacts_per_cycle_difference;
-    case Metric::sensor_peak: return e.sensor_peak_relative_error[0];
-    case Metric::contact_duration: return e.contact_duration_relative_error;
+    case Metric::impacts_per_cycle:
+      return e.impacts_per_cycle_difference;
+    case Metric::sensor_peak:
+      return e.sensor_peak_relative_error[0];
+    case Metric::contact_duration:
+      return e.contact_duration_relative_error;
   }
   return kNotApplicable;
 }
 
 double value(const Metrics& m, Metric metric) {
   switch (metric) {
-    case Metric::impacts_per_cycle: return m.impacts_per_cycle;
-    case Metric::sensor_peak: return m.frames[0].sensor_peak_acceleration_g;
-    case Metric::contact_duration: return m.contact_duration_mean_s;
+    case Metric::impacts_per_cycle:
+      return m.impacts_per_cycle;
+    case Metric::sensor_peak:
+      return m.frames[0].sensor_peak_acceleration_g;
+    case Metric::contact_duration:
+      return m.contact_duration_mean_s;
   }
   return kNotApplicable;
 }
@@ -233,7 +248,8 @@ class EngineAgreement : public ::testing::TestWithParam<AgreementRow> {
     const double chain_tolerance = tolerance(row.chain, m), beam_tolerance = tolerance(row.beam, m);
     ASSERT_FALSE(std::isnan(chain_tolerance) || std::isnan(beam_tolerance))
         << "kAgreement has no tolerance for " << metric_name(m) << ", which exists for this row";
-    const double chain_error = error(*run.errors_vs_chain_reference, m), beam_error = error(*run.errors_vs_reference, m);
+    const double chain_error = error(*run.errors_vs_chain_reference, m),
+                 beam_error = error(*run.errors_vs_reference, m);
     // one line per comparison, the source of the README's table
     std::printf(
         "agreement: engine=%s case=%s law=%s step_s=%g path=%s options=%s K=%d metric=%s engine_value=%.6g "

@@ -48,7 +48,9 @@ TEST(BeamModes, RootsAreNeitherMissedNorRepeatedForAnyMassRatio) {
       EXPECT_GT(roots[n], n * kPi) << "mu " << mu << " root " << n + 1;
       EXPECT_LT(roots[n], (n + 1) * kPi) << "mu " << mu << " root " << n + 1;
     }
-    auto f = [mu](double l) { return 1 / std::cosh(l) + std::cos(l) + mu * l * (std::cos(l) * std::tanh(l) - std::sin(l)); };
+    auto f = [mu](double l) {
+      return 1 / std::cosh(l) + std::cos(l) + mu * l * (std::cos(l) * std::tanh(l) - std::sin(l));
+    };
     int changes = 0;
     const double step = kPi / 512;
     for (double l = step; l <= roots.back() + step; l += step)

@@ -21,11 +21,11 @@
 namespace ib::bullet {
 namespace bullet_contact_mapping_test {
 
-constexpr double kRadius = 5e-3;                 // the rig's tip spheres [m]
-constexpr double kM1 = 0.65628, kM2 = 0.42569;   // the K = 8 chains' tip effective masses [kg]
+constexpr double kRadius = 5e-3;                // the rig's tip spheres [m]
+constexpr double kM1 = 0.65628, kM2 = 0.42569;  // the K = 8 chains' tip effective masses [kg]
 const double kReducedMass = kM1 * kM2 / (kM1 + kM2);
-constexpr double kK = 6.99e6, kC = 170.07;       // the paper's spring-dashpot
-constexpr double kApproach = 0.1644;             // the measured mean approach velocity [m/s]
+constexpr double kK = 6.99e6, kC = 170.07;  // the paper's spring-dashpot
+constexpr double kApproach = 0.1644;        // the measured mean approach velocity [m/s]
 
 // Two free spheres on the x axis, sphere 1 moving toward sphere 2 across a small gap.
 class TwoSpheres {
@@ -44,7 +44,9 @@ class TwoSpheres {
   btRigidBody& b() { return *b_; }
   btContactSolverInfo& solver_info() { return world_.getSolverInfo(); }
   void step(double h) { world_.stepSimulation(h, 0); }
-  double indentation() const { return a_->getCenterOfMassPosition().x() + 2 * kRadius - b_->getCenterOfMassPosition().x(); }
+  double indentation() const {
+    return a_->getCenterOfMassPosition().x() + 2 * kRadius - b_->getCenterOfMassPosition().x();
+  }
   double indentation_rate() const { return a_->getLinearVelocity().x() - b_->getLinearVelocity().x(); }
   // The contact points between the spheres after the last step.
   std::vector<const btManifoldPoint*> points() {
@@ -200,10 +202,11 @@ TEST(BulletContactMapping, TheSpringDashpotIsTheImplicitOneStepForStep) {
   // The implicit scheme loses energy: below the exact clipped law's restitution (closed form of the
   // continuous contact: the unclipped e = exp(-zeta pi / sqrt(1 - zeta^2)) is a lower bound of it)
   const double e_unclipped = spring_dashpot_restitution(kK, kC, kReducedMass);
-  std::printf("[ measured ] h = %g s: Bullet e = %.6f, implicit %.6f, explicit %.6f, continuous unclipped %.6f; %d contact "
-              "steps; largest deviation from the implicit scheme %.2g m, from the explicit %.2g m\n",
-              h, -bullet.back().rate / kApproach, implicit.restitution, explicit_.restitution, e_unclipped, contact_steps,
-              implicit.largest_deviation_m, explicit_.largest_deviation_m);
+  std::printf(
+      "[ measured ] h = %g s: Bullet e = %.6f, implicit %.6f, explicit %.6f, continuous unclipped %.6f; %d contact "
+      "steps; largest deviation from the implicit scheme %.2g m, from the explicit %.2g m\n",
+      h, -bullet.back().rate / kApproach, implicit.restitution, explicit_.restitution, e_unclipped, contact_steps,
+      implicit.largest_deviation_m, explicit_.largest_deviation_m);
   EXPECT_LT(implicit.restitution, e_unclipped);
 }
 
@@ -238,7 +241,8 @@ TEST(BulletContactMapping, BulletsDefaultsDoNotRealiseTheRestitution) {
     EXPECT_EQ(spheres.solver_info().m_restitutionVelocityThreshold, btScalar(0.2f));
     for (int n = 0; n < 10; ++n) spheres.step(h);
     const double realised = -spheres.indentation_rate() / kApproach;
-    std::printf("[ measured ] Bullet's default solver settings: e = %.4f for a target of %.1f at %.4f m/s\n", realised, e, kApproach);
+    std::printf("[ measured ] Bullet's default solver settings: e = %.4f for a target of %.1f at %.4f m/s\n", realised,
+                e, kApproach);
     EXPECT_GT(std::abs(realised - e), 0.1);
   }
   // Restitution threshold 0 but no split impulse: the push-out adds to the rebound.

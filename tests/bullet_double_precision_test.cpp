@@ -26,7 +26,8 @@ TEST(BulletDoublePrecision, BtScalarIsDouble) {
 // Configures adapters/bullet/CMakeLists.txt alone (stand-ins for the project's other targets) against
 // the given pkg-config module; returns CMake's exit code and output.
 std::pair<int, std::string> configure_adapter_against(const std::string& module) {
-  const fs::path root = fs::temp_directory_path() / ("impactbench_bullet_precision_" + std::to_string(::getpid()) + "_" + module);
+  const fs::path root =
+      fs::temp_directory_path() / ("impactbench_bullet_precision_" + std::to_string(::getpid()) + "_" + module);
   fs::remove_all(root);
   fs::create_directories(root);
   std::ofstream(root / "CMakeLists.txt") << "cmake_minimum_required(VERSION 3.18)\n"

@@ -14,8 +14,8 @@
 
 #include "adapters/bullet/bullet_simulator.h"
 #include "physics/link_chain.h"
-#include "reference_fixtures.h"
 #include "reference/reference_simulator.h"
+#include "reference_fixtures.h"
 
 namespace ib {
 namespace bullet_free_decay_test {
@@ -37,7 +37,8 @@ Decay measure_decay(const Trajectory& t, double settle_s) {
   std::vector<double> crossings, peak_t, peak_log;
   for (std::size_t k = 1; k + 1 < u.size(); ++k) {
     if (time[k] < settle_s) continue;
-    if (u[k - 1] < 0 && u[k] >= 0) crossings.push_back(time[k - 1] + (time[k] - time[k - 1]) * -u[k - 1] / (u[k] - u[k - 1]));
+    if (u[k - 1] < 0 && u[k] >= 0)
+      crossings.push_back(time[k - 1] + (time[k] - time[k - 1]) * -u[k - 1] / (u[k] - u[k - 1]));
     if (u[k] > u[k - 1] && u[k] >= u[k + 1] && u[k] > 0) {
       const double a = u[k - 1], b = u[k], c = u[k + 1], dt = time[k + 1] - time[k];
       const double offset = 0.5 * (a - c) / (a - 2 * b + c);
@@ -79,7 +80,8 @@ RunSettings settings(const std::map<std::string, std::string>& options) {
   r.law = ContactLaw::viscoelastic;  // never used: the tips stay 1 m apart
   r.output_rate_hz = 2000;           // 290 samples per cycle: peaks within 6e-5 before refinement
   r.series_start_s = 0;
-  r.time_step_s = 5e-5;  // the adapter's default: explicit hinge springs and damping are stable below 1.65e-4 s at K = 8
+  r.time_step_s =
+      5e-5;  // the adapter's default: explicit hinge springs and damping are stable below 1.65e-4 s at K = 8
   r.options = options;
   return r;
 }
@@ -98,8 +100,7 @@ TEST_P(BulletFreeDecay, FrequencyAndDecayAreThoseOfTheChain) {
   // the reference's run so that the estimator's own bias is known.
   const LinkChain chain = build_link_chain(s.frames[0], kLinks);
   const double f_chain = chain_modes(chain).omega_rad_s[0] / (2 * M_PI);
-  const RunResult reference =
-      make_reference_simulator()->run(s, settings(chain_reference_options(kLinks)));
+  const RunResult reference = make_reference_simulator()->run(s, settings(chain_reference_options(kLinks)));
   const double settle = 0.5;  // past the start; the tip-load shape puts 2e-4 of mode 1's amplitude in mode 2
   const Decay measured = measure_decay(bullet.trajectory, settle);
   const Decay expected = measure_decay(reference.trajectory, settle);

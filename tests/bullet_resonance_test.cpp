@@ -10,8 +10,8 @@
 #include "adapters/bullet/bullet_simulator.h"
 #include "harness/scoring/metrics.h"
 #include "physics/modal_model.h"
-#include "reference_fixtures.h"
 #include "reference/reference_simulator.h"
+#include "reference_fixtures.h"
 
 namespace ib {
 namespace bullet_resonance_test {
@@ -53,13 +53,15 @@ TEST(BulletResonance, ImpactsPerCycleAndSensorPeakAreTheReferences) {
 
   EXPECT_EQ(measured.impacts, expected.impacts);
   EXPECT_DOUBLE_EQ(measured.impacts_per_cycle, expected.impacts_per_cycle);
-  const double peak = measured.frames[0].sensor_peak_acceleration_g, expected_peak = expected.frames[0].sensor_peak_acceleration_g;
+  const double peak = measured.frames[0].sensor_peak_acceleration_g,
+               expected_peak = expected.frames[0].sensor_peak_acceleration_g;
   EXPECT_NEAR(peak / expected_peak, 1.0, 0.10);
-  std::printf("[ measured ] h = 2.5e-5 s: impacts per cycle %.4f (reference %.4f), frame 1 sensor peak %.4f g "
-              "(reference %.4f g, %+.2f %%), frame 2 %.4f g (reference %.4f g), %lld steps, %.1f us/step\n",
-              measured.impacts_per_cycle, expected.impacts_per_cycle, peak, expected_peak, 100 * (peak / expected_peak - 1),
-              measured.frames[1].sensor_peak_acceleration_g, expected.frames[1].sensor_peak_acceleration_g, bullet.cost.steps,
-              1e6 * bullet.cost.cpu_time_s / static_cast<double>(bullet.cost.steps));
+  std::printf(
+      "[ measured ] h = 2.5e-5 s: impacts per cycle %.4f (reference %.4f), frame 1 sensor peak %.4f g "
+      "(reference %.4f g, %+.2f %%), frame 2 %.4f g (reference %.4f g), %lld steps, %.1f us/step\n",
+      measured.impacts_per_cycle, expected.impacts_per_cycle, peak, expected_peak, 100 * (peak / expected_peak - 1),
+      measured.frames[1].sensor_peak_acceleration_g, expected.frames[1].sensor_peak_acceleration_g, bullet.cost.steps,
+      1e6 * bullet.cost.cpu_time_s / static_cast<double>(bullet.cost.steps));
 }
 
 }  // namespace bullet_resonance_test

@@ -77,7 +77,8 @@ TEST(BulletSimulator, EveryPathRunsEveryLaw) {
         EXPECT_EQ(diagnostic(r, "time_step_s"), 5e-5) << what;
         EXPECT_EQ(diagnostic(r, "chain_links"), 8) << what;
         EXPECT_EQ(r.cost.steps, 1400) << what;
-        const bool injected = std::string(path) == "injected" || (std::string(path) == "matched" && law == ContactLaw::hertz);
+        const bool injected =
+            std::string(path) == "injected" || (std::string(path) == "matched" && law == ContactLaw::hertz);
         EXPECT_EQ(diagnostic(r, "contact_injected"), injected ? 1 : 0) << what;
         if (std::string(path) == "native") {
           // Bullet's defaults: a rigid, inelastic, frictional contact
@@ -128,7 +129,8 @@ TEST(BulletSimulator, InstabilityIsReportedWithTimeAndQuantity) {
       const RunResult r = make_bullet_simulator()->run(s, settings);
       EXPECT_EQ(r.status, RunStatus::unstable) << articulation << " " << damping;
       EXPECT_NE(r.reason.find("at t = "), std::string::npos) << r.reason;
-      EXPECT_TRUE(r.reason.find("tip displacement") != std::string::npos || r.reason.find("non-finite") != std::string::npos)
+      EXPECT_TRUE(r.reason.find("tip displacement") != std::string::npos ||
+                  r.reason.find("non-finite") != std::string::npos)
           << r.reason;
       EXPECT_LT(r.cost.steps, 750) << articulation << " " << damping;  // stopped there, not run to the end
       EXPECT_NEAR(diagnostic(r, "hinge_step_limit_s"), limit_s, 0.04 * limit_s) << articulation << " " << damping;

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "adapters/bullet/bullet_simulator.h"
-#include "reference_fixtures.h"
 #include "reference/reference_simulator.h"
+#include "reference_fixtures.h"
 
 namespace ib {
 namespace bullet_single_impact_test {
@@ -87,11 +87,12 @@ TEST(BulletSingleImpact, SpringDashpotDurationAndRestitutionAreTheReferencesAtAS
     const ContactEvent& b = bullet.trajectory.events[0];
     EXPECT_NEAR(duration(b) / force_duration, 1.0, 0.02) << articulation;
     EXPECT_NEAR(b.restitution / r.restitution, 1.0, 0.02) << articulation;
-    std::printf("[ measured ] %s, h = %g s: duration %.4g us (reference %.4g us while F > 0: %+.2f %%; %.4g us to delta = 0), "
-                "e = %.5f (reference %.5f: %+.2f %%), peak force %.4g N (reference %.4g N)\n",
-                articulation.c_str(), h, 1e6 * duration(b), 1e6 * force_duration, 100 * (duration(b) / force_duration - 1),
-                1e6 * duration(r), b.restitution, r.restitution, 100 * (b.restitution / r.restitution - 1), b.peak_force_n,
-                r.peak_force_n);
+    std::printf(
+        "[ measured ] %s, h = %g s: duration %.4g us (reference %.4g us while F > 0: %+.2f %%; %.4g us to delta = 0), "
+        "e = %.5f (reference %.5f: %+.2f %%), peak force %.4g N (reference %.4g N)\n",
+        articulation.c_str(), h, 1e6 * duration(b), 1e6 * force_duration, 100 * (duration(b) / force_duration - 1),
+        1e6 * duration(r), b.restitution, r.restitution, 100 * (b.restitution / r.restitution - 1), b.peak_force_n,
+        r.peak_force_n);
   }
 }
 
@@ -110,9 +111,11 @@ TEST(BulletSingleImpact, HertzAsAForceFromTheTipStates) {
   // the episode's ends are read at steps: 2 % and one step (4.4 % of 0.23 ms) of quantisation
   EXPECT_NEAR(duration(b) / force_duration, 1.0, 0.02 + 1e-5 / force_duration);
   EXPECT_NEAR(b.restitution / r.restitution, 1.0, 0.02);
-  std::printf("[ measured ] hertz, h = 1e-5 s: duration %.4g us (reference %.4g us: %+.2f %%), e = %.5f (reference %.5f: %+.2f %%)\n",
-              1e6 * duration(b), 1e6 * force_duration, 100 * (duration(b) / force_duration - 1), b.restitution,
-              r.restitution, 100 * (b.restitution / r.restitution - 1));
+  std::printf(
+      "[ measured ] hertz, h = 1e-5 s: duration %.4g us (reference %.4g us: %+.2f %%), e = %.5f (reference %.5f: %+.2f "
+      "%%)\n",
+      1e6 * duration(b), 1e6 * force_duration, 100 * (duration(b) / force_duration - 1), b.restitution, r.restitution,
+      100 * (b.restitution / r.restitution - 1));
 }
 
 // Newton's law through Bullet's restitution with the mapping's solver settings, at the adapter's

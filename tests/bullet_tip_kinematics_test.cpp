@@ -10,8 +10,8 @@
 #include <cmath>
 
 #include "adapters/bullet/bullet_world.h"
-#include "reference_fixtures.h"
 #include "adapters/common/rig.h"
+#include "reference_fixtures.h"
 
 namespace ib::bullet {
 namespace bullet_tip_kinematics_test {
@@ -59,7 +59,8 @@ TEST(BulletTipKinematics, TipMotionIsThePlanarChainsKinematics) {
       const double length = rig.frames[f].tip_z_m;
       EXPECT_NEAR(tip.x_m, expected.x_m, 1e-12 * length);
       EXPECT_NEAR(tip.x_m, bullet.chain(f).tip_x_m(), 1e-12 * length);
-      EXPECT_NEAR(tip.velocity_x_m_s, expected.velocity_x_m_s, 1e-12 * std::max(1.0, std::abs(expected.velocity_x_m_s)));
+      EXPECT_NEAR(tip.velocity_x_m_s, expected.velocity_x_m_s,
+                  1e-12 * std::max(1.0, std::abs(expected.velocity_x_m_s)));
     }
   }
   // the check means something only with angles far from small (sin x = x to 1e-12 below 2e-6 rad)

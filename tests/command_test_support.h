@@ -59,7 +59,8 @@ inline std::string paper_scenario(const std::string& name) {
 
 // A folder of this process in the temporary directory, PREFIX + NAME, removed if it was there (not created).
 inline std::filesystem::path fresh_command_folder(const std::string& prefix, const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / (prefix + name + "_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / (prefix + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   return dir;
 }

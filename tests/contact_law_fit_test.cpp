@@ -7,9 +7,9 @@
 // own samples, not from a list of engines.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
-#include <array>
 #include <ostream>
 #include <string>
 
@@ -60,7 +60,6 @@ Fit fit_law(const Trajectory& t, double gap_m, double exponent, double damping_e
   return fit;
 }
 
-
 void PrintTo(const Case& c, std::ostream* out) { *out << c.engine << " " << c.path << " " << to_string(c.law); }
 
 class ContactLawFit : public ::testing::TestWithParam<Case> {};
@@ -105,16 +104,19 @@ TEST_P(ContactLawFit, TheEnginesOwnForcesGiveBackTheScenariosStiffnessAndDamping
   // with the step, so the state whose fitted damping the step leaves alone (h and 2 h) is the one the force
   // came from. Its stiffness and damping must then be the law's: a mapping 5 % off is 5 % off at every step.
   const double m = c.law == ContactLaw::hertz ? n : 0;
-  const Fit from_start = fit_law(run.trajectory, s.gap_m, n, m, 1), from_end = fit_law(run.trajectory, s.gap_m, n, m, 0);
+  const Fit from_start = fit_law(run.trajectory, s.gap_m, n, m, 1),
+            from_end = fit_law(run.trajectory, s.gap_m, n, m, 0);
   const double start_drift = std::abs(fit_law(coarser.trajectory, s.gap_m, n, m, 1).damping / from_start.damping - 1);
   const double end_drift = std::abs(fit_law(coarser.trajectory, s.gap_m, n, m, 0).damping / from_end.damping - 1);
   ASSERT_FALSE(std::isnan(start_drift) && std::isnan(end_drift)) << "too few samples in contact to fit";
   const bool start = !(end_drift < start_drift);
   const Fit& fit = start ? from_start : from_end;
-  std::printf("%s %s %s: k = %.6g (law %.6g), c = %.6g (law %.6g) from %d samples (residual %.2g), force from the step's %s "
-              "(damping from h to 2 h: %+.2g %%; from the step's %s: %+.2g %%)\n", c.engine.c_str(), c.path.c_str(), to_string(c.law),
-              fit.stiffness, k, fit.damping, damping, fit.samples, fit.residual, start ? "start" : "end",
-              100 * (start ? start_drift : end_drift), start ? "end" : "start", 100 * (start ? end_drift : start_drift));
+  std::printf(
+      "%s %s %s: k = %.6g (law %.6g), c = %.6g (law %.6g) from %d samples (residual %.2g), force from the step's %s "
+      "(damping from h to 2 h: %+.2g %%; from the step's %s: %+.2g %%)\n",
+      c.engine.c_str(), c.path.c_str(), to_string(c.law), fit.stiffness, k, fit.damping, damping, fit.samples,
+      fit.residual, start ? "start" : "end", 100 * (start ? start_drift : end_drift), start ? "end" : "start",
+      100 * (start ? end_drift : start_drift));
   ASSERT_GE(fit.samples, 100);
   EXPECT_NEAR(fit.stiffness / k, 1, 0.01) << c.engine << " " << c.path;
   EXPECT_NEAR(fit.damping / damping, 1, 0.01) << c.engine << " " << c.path;
@@ -131,9 +133,10 @@ std::vector<Case> cases() {
   return all;
 }
 
-INSTANTIATE_TEST_SUITE_P(Engines, ContactLawFit, ::testing::ValuesIn(cases()), [](const ::testing::TestParamInfo<Case>& info) {
-  return info.param.engine + "_" + info.param.path + "_" + to_string(info.param.law);
-});
+INSTANTIATE_TEST_SUITE_P(Engines, ContactLawFit, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return info.param.engine + "_" + info.param.path + "_" + to_string(info.param.law);
+                         });
 
 }  // namespace contact_law_fit_test
 }  // namespace ib

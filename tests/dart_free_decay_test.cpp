@@ -18,7 +18,8 @@ using testing::contact_free_decay;
 using testing::free_decay_settings;
 
 RunResult run_dart(const Scenario& s, double h) {
-  return make_dart_simulator()->run(s, free_decay_settings(h, {{"contact", "injected"}}));  // no tip shapes: only the chains
+  return make_dart_simulator()->run(
+      s, free_decay_settings(h, {{"contact", "injected"}}));  // no tip shapes: only the chains
 }
 
 // h = 5e-6 s: the added damping omega_1 h / 2 is about 1.2e-4, 4 % of zeta = 0.003.

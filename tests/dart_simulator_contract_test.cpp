@@ -80,8 +80,8 @@ TEST(DartSimulator, TheModelsLengthUnitChangesNothingButTheContactConstants) {
     double largest_difference_m = 0;
     for (int f = 0; f < 2; ++f)
       for (std::size_t k = 0; k < runs["m"].size(); ++k)
-        largest_difference_m = std::max(largest_difference_m,
-                                        std::abs(runs[unit].displacement_m[f][k] - runs["m"].displacement_m[f][k]));
+        largest_difference_m =
+            std::max(largest_difference_m, std::abs(runs[unit].displacement_m[f][k] - runs["m"].displacement_m[f][k]));
     EXPECT_LT(largest_difference_m, 1e-10) << unit;
   }
 }
@@ -101,11 +101,14 @@ TEST(DartSimulator, EveryPathRunsEveryLaw) {
       ASSERT_EQ(r.status, RunStatus::ok) << path << " " << to_string(law) << ": " << r.reason;
       const Metrics m = compute_metrics(r.trajectory, MetricSettings{0, s.duration_s});
       EXPECT_GE(m.impacts, 1) << path << " " << to_string(law);
-      const bool dart_contact = std::string(path) == "native" || (std::string(path) == "matched" && law == ContactLaw::newton);
+      const bool dart_contact =
+          std::string(path) == "native" || (std::string(path) == "matched" && law == ContactLaw::newton);
       EXPECT_EQ(diagnostic(r, "contact_force_from_tip_states"), dart_contact ? 0 : 1) << path << " " << to_string(law);
       if (dart_contact) {
         EXPECT_GT(diagnostic(r, "contact_steps"), 0) << path;
-        EXPECT_GT(*std::max_element(r.trajectory.peak_contact_force_n.begin(), r.trajectory.peak_contact_force_n.end()), 0) << path;
+        EXPECT_GT(*std::max_element(r.trajectory.peak_contact_force_n.begin(), r.trajectory.peak_contact_force_n.end()),
+                  0)
+            << path;
         EXPECT_DOUBLE_EQ(diagnostic(r, "bounce_threshold_m_s"), 1e-3);
         EXPECT_DOUBLE_EQ(diagnostic(r, "restitution_of_pair"), std::string(path) == "native" ? 0.0 : 0.8);
       }

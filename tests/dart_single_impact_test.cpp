@@ -25,10 +25,13 @@ constexpr double kDuration_s = testing::kFirstImpactEnd_s;
 
 Scenario first_impact() { return testing::first_impact_scenario(false); }
 
-CrossingImpact reference_impact(const Scenario& s, ContactLaw law) { return testing::reference_impact(s, law, kSeriesStart_s); }
+CrossingImpact reference_impact(const Scenario& s, ContactLaw law) {
+  return testing::reference_impact(s, law, kSeriesStart_s);
+}
 
 RunResult dart_run(const Scenario& s, ContactLaw law, double h, std::map<std::string, std::string> options) {
-  RunResult r = make_dart_simulator()->run(s, testing::first_impact_settings(law, h, std::move(options), kSeriesStart_s));
+  RunResult r =
+      make_dart_simulator()->run(s, testing::first_impact_settings(law, h, std::move(options), kSeriesStart_s));
   if (r.status != RunStatus::ok) throw std::runtime_error("dart run not ok: " + r.reason);
   return r;
 }

@@ -21,8 +21,8 @@ double one_link_tip_mass_by_hand(const FrameSpec& frame) {
   const LinkChain chain = build_link_chain(frame, 1);
   const ChainBody& link = chain.bodies.front();
   const double arm = frame.length_m - link.start_m;
-  const double hinge_inertia = link.inertia_kg_m2 + link.mass_kg * std::pow(link.center_m - link.start_m, 2) +
-                               frame.tip_mass_kg * arm * arm;
+  const double hinge_inertia =
+      link.inertia_kg_m2 + link.mass_kg * std::pow(link.center_m - link.start_m, 2) + frame.tip_mass_kg * arm * arm;
   return hinge_inertia / (arm * arm);
 }
 
@@ -50,7 +50,8 @@ TEST(EffectiveMass, TheTwoTipsCombineAsTheChainsModalModelSays) {
       EXPECT_NEAR(rig.contact_effective_mass_kg / model.contact_effective_mass_kg(), 1, 1e-9) << name << ", " << links;
       // each frame alone: 1 / sum over its modes of phi_n(L)^2
       for (int f = 0; f < 2; ++f)
-        EXPECT_NEAR(rig.frames[f].tip_effective_mass_kg * model.frames[f].tip.squaredNorm(), 1, 1e-9) << name << ", " << links;
+        EXPECT_NEAR(rig.frames[f].tip_effective_mass_kg * model.frames[f].tip.squaredNorm(), 1, 1e-9)
+            << name << ", " << links;
     }
 }
 

@@ -29,27 +29,32 @@ TEST_P(EnergyBalance, MotorWorkEqualsEnergyChangePlusDissipation) {
   settings.modes.set = c.modes;
   settings.modes.chain_links = 8;
   const ModalModel model = build_modal_model(s, c.law, settings.modes);
-  const ReferenceSolution r = solve_reference(model, initial_state(s, model), s.duration_s, {s.duration_s, s.duration_s, 1}, settings);
+  const ReferenceSolution r =
+      solve_reference(model, initial_state(s, model), s.duration_s, {s.duration_s, s.duration_s, 1}, settings);
   ASSERT_EQ(r.status, RunStatus::ok) << r.reason;
   EXPECT_GE(r.impacts, 5);
   const EnergyLedger& e = r.energy;
   EXPECT_GT(e.contact_dissipation_j, 0.0);
   EXPECT_GT(e.structural_dissipation_j, 0.0);
-  EXPECT_LT(e.relative_residual(), 1e-6) << "work " << e.motor_work_j << " J, dE " << e.final_energy_j - e.initial_energy_j
-                                          << " J, structural " << e.structural_dissipation_j << " J, contact "
-                                          << e.contact_dissipation_j << " J";
+  EXPECT_LT(e.relative_residual(), 1e-6) << "work " << e.motor_work_j << " J, dE "
+                                         << e.final_energy_j - e.initial_energy_j << " J, structural "
+                                         << e.structural_dissipation_j << " J, contact " << e.contact_dissipation_j
+                                         << " J";
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Reference, EnergyBalance,
-    ::testing::Values(Case{"resonance", ContactLaw::hertz, ModeSet::beam, true}, Case{"resonance", ContactLaw::viscoelastic, ModeSet::beam},
-                      Case{"resonance", ContactLaw::newton, ModeSet::beam}, Case{"pre_resonance", ContactLaw::hertz, ModeSet::beam},
-                      Case{"free_vibration", ContactLaw::hertz, ModeSet::beam},
-                      Case{"free_vibration", ContactLaw::viscoelastic, ModeSet::beam},
-                      Case{"resonance", ContactLaw::hertz, ModeSet::chain}, Case{"resonance", ContactLaw::newton, ModeSet::chain}),
-    [](const ::testing::TestParamInfo<Case>& info) {
-      return std::string(info.param.scenario) + "_" + to_string(info.param.law) + "_" + to_string(info.param.modes);
-    });
+INSTANTIATE_TEST_SUITE_P(Reference, EnergyBalance,
+                         ::testing::Values(Case{"resonance", ContactLaw::hertz, ModeSet::beam, true},
+                                           Case{"resonance", ContactLaw::viscoelastic, ModeSet::beam},
+                                           Case{"resonance", ContactLaw::newton, ModeSet::beam},
+                                           Case{"pre_resonance", ContactLaw::hertz, ModeSet::beam},
+                                           Case{"free_vibration", ContactLaw::hertz, ModeSet::beam},
+                                           Case{"free_vibration", ContactLaw::viscoelastic, ModeSet::beam},
+                                           Case{"resonance", ContactLaw::hertz, ModeSet::chain},
+                                           Case{"resonance", ContactLaw::newton, ModeSet::chain}),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return std::string(info.param.scenario) + "_" + to_string(info.param.law) + "_" +
+                                  to_string(info.param.modes);
+                         });
 
 }  // namespace energy_balance_test
 }  // namespace ib

@@ -131,7 +131,8 @@ inline RunSettings first_impact_settings(ContactLaw law, double h, std::map<std:
 }
 
 // The reference's first impact on the engines' default chain.
-inline CrossingImpact reference_impact(const Scenario& s, ContactLaw law, double series_start_s = kFirstImpactSeriesStart_s) {
+inline CrossingImpact reference_impact(const Scenario& s, ContactLaw law,
+                                       double series_start_s = kFirstImpactSeriesStart_s) {
   const RunResult r = reference_on_chain(s, first_impact_settings(law, 0, {}, series_start_s), default_links(s));
   const auto impact = measure_impact(r.trajectory, s.gap_m);
   if (!impact) throw std::runtime_error("the reference has no impact");
@@ -190,15 +191,15 @@ inline ChainMode chain_mode(const Scenario& s) {
 
 // The released frame's first mode measured on r (from kDecayMeasuredFrom_s) against the chain's: r ok, at
 // least 5 peaks, the damped frequency and zeta each within its relative tolerance; `what` names the case.
-inline void expect_chain_mode(const std::string& what, const Scenario& s, const RunResult& r, double frequency_tolerance,
-                              double zeta_tolerance) {
+inline void expect_chain_mode(const std::string& what, const Scenario& s, const RunResult& r,
+                              double frequency_tolerance, double zeta_tolerance) {
   ASSERT_EQ(r.status, RunStatus::ok) << what << ": " << r.reason;
   const Decay d = measure_decay(r.trajectory, kDecayMeasuredFrom_s);
   const ChainMode mode = chain_mode(s);
   std::printf("%s: f = %.5f Hz (chain %.5f Hz, %+.4f %%), zeta = %.6f (chain %.4f, %+.2f %%), %d peaks, %.2f us/step\n",
-              what.c_str(), d.frequency_hz, mode.damped_frequency_hz, 100 * (d.frequency_hz / mode.damped_frequency_hz - 1),
-              d.damping_ratio, mode.zeta, 100 * (d.damping_ratio / mode.zeta - 1), d.peaks,
-              1e6 * r.cost.cpu_time_s / r.cost.steps);
+              what.c_str(), d.frequency_hz, mode.damped_frequency_hz,
+              100 * (d.frequency_hz / mode.damped_frequency_hz - 1), d.damping_ratio, mode.zeta,
+              100 * (d.damping_ratio / mode.zeta - 1), d.peaks, 1e6 * r.cost.cpu_time_s / r.cost.steps);
   ASSERT_GE(d.peaks, 5) << what;
   EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, frequency_tolerance) << what;
   EXPECT_NEAR(d.damping_ratio / mode.zeta, 1, zeta_tolerance) << what;
@@ -210,8 +211,8 @@ inline void expect_backward_euler_damping(const Scenario& s, const RunResult& r,
   const Decay d = measure_decay(r.trajectory, kDecayMeasuredFrom_s);
   const ChainMode mode = chain_mode(s);
   const double added = d.damping_ratio - mode.zeta, predicted = mode.omega_rad_s * h / 2;
-  std::printf("h = %g s: zeta = %.6f, added %.6f, omega h / 2 = %.6f; f = %.5f Hz (chain %.5f Hz)\n", h, d.damping_ratio,
-              added, predicted, d.frequency_hz, mode.damped_frequency_hz);
+  std::printf("h = %g s: zeta = %.6f, added %.6f, omega h / 2 = %.6f; f = %.5f Hz (chain %.5f Hz)\n", h,
+              d.damping_ratio, added, predicted, d.frequency_hz, mode.damped_frequency_hz);
   EXPECT_NEAR(added / predicted, 1, added_tolerance);
   EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, 0.005);
 }

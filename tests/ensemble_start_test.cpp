@@ -51,7 +51,8 @@ TEST(EnsembleStart, StartKDisplacesFrameOnesTipByItsOffsetAndRecordsWhichStartIt
   EXPECT_NEAR(tip_3, tip_0 * (u0_m + offset_m) / u0_m, 1e-12 * std::abs(tip_0));
   EXPECT_EQ(third.data.trajectory.displacement_m[1].front(), unperturbed.data.trajectory.displacement_m[1].front())
       << "frame 2 starts where the scenario says";
-  EXPECT_NE(third.record.metrics->frames[0].peak_displacement_m, unperturbed.record.metrics->frames[0].peak_displacement_m);
+  EXPECT_NE(third.record.metrics->frames[0].peak_displacement_m,
+            unperturbed.record.metrics->frames[0].peak_displacement_m);
 
   EXPECT_EQ(unperturbed.record.job_id, "short_free/reference/hertz") << "start 0 is the single run";
   EXPECT_EQ(third.record.job_id, "short_free/reference/hertz/start=3");

@@ -16,16 +16,22 @@ namespace export_score_command_test {
 namespace fs = std::filesystem;
 using Output = ib::test::CommandOutput;
 
-Output impactbench(const std::string& arguments) { return ib::test::run_impactbench_logged_as(arguments, "impactbench_export_score_"); }
+Output impactbench(const std::string& arguments) {
+  return ib::test::run_impactbench_logged_as(arguments, "impactbench_export_score_");
+}
 std::string paper(const std::string& name) { return ib::test::paper_scenario(name); }
-fs::path fresh_folder(const std::string& name) { return ib::test::fresh_command_folder("impactbench_export_score_", name); }
+fs::path fresh_folder(const std::string& name) {
+  return ib::test::fresh_command_folder("impactbench_export_score_", name);
+}
 
 TEST(ExportCommand, WritesTheReferencesModalModel) {
   const fs::path dir = fresh_folder("export");
   fs::create_directories(dir);
   const fs::path file = dir / "model.json";
-  const Output out = impactbench("export " + paper("resonance") + " --engine reference --law viscoelastic --rate 2048 "
-                                 "--option n=4 --option rtol=1e-10 --out " + file.string());
+  const Output out = impactbench("export " + paper("resonance") +
+                                 " --engine reference --law viscoelastic --rate 2048 "
+                                 "--option n=4 --option rtol=1e-10 --out " +
+                                 file.string());
   ASSERT_EQ(out.exit_code, 0) << out.text;
   const auto model = nlohmann::json::parse(std::ifstream(file));
   EXPECT_EQ(model["format"], "impactbench modal model 1");
@@ -77,8 +83,9 @@ TEST(ScoreCommand, GivesARunsMetricsBackFromItsFiles) {
   }
   EXPECT_GE(compared, 20);  // every metric of runs.csv
   EXPECT_GT(scored["impacts"].get<int>(), 0);
-  for (const char* error : {"vs_reference_frame1_sensor_peak_relative_error", "vs_reference_contact_duration_relative_error",
-                            "vs_reference_frame1_displacement_relative_rms_error"})
+  for (const char* error :
+       {"vs_reference_frame1_sensor_peak_relative_error", "vs_reference_contact_duration_relative_error",
+        "vs_reference_frame1_displacement_relative_rms_error"})
     EXPECT_EQ(scored[error].get<double>(), 0) << error;  // a run against itself
   fs::remove_all(dir);
 }

@@ -157,8 +157,8 @@ TEST(FixedStepLoop, AStepReadsRecordsAppliesStepsThenReadsTheContactForce) {
   loop.run(engine);
   // the series starts at 0: every state is one the recorder keeps, so its energy is read too
   // and at the end of a run that reached it, the state a later run may continue from
-  const std::vector<std::string> expected = {"read", "energy", "apply", "step", "force", "read", "energy",
-                                             "apply", "step", "force", "read", "energy", "save"};
+  const std::vector<std::string> expected = {"read",  "energy", "apply", "step", "force",  "read", "energy",
+                                             "apply", "step",   "force", "read", "energy", "save"};
   EXPECT_EQ(engine.calls, expected);
 }
 
@@ -178,7 +178,7 @@ TEST(FixedStepLoop, AContinuedRunStartsWhereTheSavedStateEndedAndSavesItsOwnEnd)
   EXPECT_EQ(continued.calls.front(), "restore");  // before the first state is read
   ASSERT_GT(second.result.trajectory.size(), 0u);
   EXPECT_DOUBLE_EQ(second.result.trajectory.displacement_m[1][0], 1e-3 * 5 + 5e-4);  // where the first run ended
-  EXPECT_EQ(second.result.trajectory.time_s[0], 0.0);  // its own clock starts at 0
+  EXPECT_EQ(second.result.trajectory.time_s[0], 0.0);                                // its own clock starts at 0
   EXPECT_EQ(second.result.final_state->values, std::vector<double>{8});
 }
 

@@ -31,7 +31,8 @@ std::pair<double, double> frame2_decay(const Trajectory& t) {
   const double frequency_hz = (n - 1) / (times.back() - times.front());
   double mt = 0, ml = 0, sxy = 0, sxx = 0;
   for (std::size_t i = 0; i < times.size(); ++i) mt += times[i] / n, ml += logs[i] / n;
-  for (std::size_t i = 0; i < times.size(); ++i) sxy += (times[i] - mt) * (logs[i] - ml), sxx += (times[i] - mt) * (times[i] - mt);
+  for (std::size_t i = 0; i < times.size(); ++i)
+    sxy += (times[i] - mt) * (logs[i] - ml), sxx += (times[i] - mt) * (times[i] - mt);
   const double ratio = (-sxy / sxx) / (2 * M_PI * frequency_hz);
   return {frequency_hz, ratio / std::sqrt(1 + ratio * ratio)};
 }
@@ -71,7 +72,8 @@ TEST(Frame2FreeDecay, RingsAtItsOwnFrequencyWithTheScenariosDamping) {
   const FrameSpec& f = s.frames[1];
   const double inertia = f.columns * f.column_width_m * std::pow(f.column_thickness_m, 3) / 12;
   const double rayleigh_hz = std::sqrt(3 * f.youngs_modulus_pa * inertia / std::pow(f.length_m, 3) /
-                                       (f.tip_mass_kg + 33.0 / 140.0 * f.beam_mass_kg())) / (2 * M_PI);
+                                       (f.tip_mass_kg + 33.0 / 140.0 * f.beam_mass_kg())) /
+                             (2 * M_PI);
   EXPECT_NEAR(frequency_hz / rayleigh_hz, 1, 0.01) << frequency_hz << " Hz, Rayleigh " << rayleigh_hz << " Hz";
 }
 

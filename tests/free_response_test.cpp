@@ -63,8 +63,8 @@ TEST(FreeResponse, EverySampleOfOneModeFollowsTheClosedForm) {
   double worst = 0;
   for (std::size_t k = 0; k < u.size(); ++k) {
     const double t = time[k];
-    const double closed_form = u[0] * std::exp(-zeta * omega * t) *
-                               (std::cos(omega_d * t) + zeta * omega / omega_d * std::sin(omega_d * t));
+    const double closed_form =
+        u[0] * std::exp(-zeta * omega * t) * (std::cos(omega_d * t) + zeta * omega / omega_d * std::sin(omega_d * t));
     worst = std::max(worst, std::abs(u[k] - closed_form));
   }
   EXPECT_LT(worst, 1e-10 * std::abs(u[0])) << "largest difference from the closed form [m]";
@@ -104,7 +104,8 @@ TEST(FreeResponse, ForcedResponseReachesTheSteadyStateAmplitude) {
   std::complex<double> receptance = 0;
   for (int n = 0; n < model.frame_mode_count(0); ++n) {
     const double om = model.omega_rad_s[n];
-    receptance += model.frames[0].tip[n] * model.frames[0].tip[n] / std::complex<double>(om * om - w * w, 2 * model.zeta[n] * om * w);
+    receptance += model.frames[0].tip[n] * model.frames[0].tip[n] /
+                  std::complex<double>(om * om - w * w, 2 * model.zeta[n] * om * w);
   }
   // samples straddle the crest: the largest is within (pi f / rate)^2 / 2 ~ 1e-6 below it
   EXPECT_NEAR(amplitude / (force * std::abs(receptance)), 1.0, 5e-6);

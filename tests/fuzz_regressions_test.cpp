@@ -59,27 +59,31 @@ void feed_all(const std::string& target, const std::string& file_name,
 }
 
 TEST(FuzzRegressions, ScenarioFilesAreReadOrRefusedWithTheFileNamed) {
-  feed_all("fuzz_scenario_toml", "fuzz.toml", [](const std::string& text) { return fuzz::feed_scenario_toml(text); }, 1);
+  feed_all(
+      "fuzz_scenario_toml", "fuzz.toml", [](const std::string& text) { return fuzz::feed_scenario_toml(text); }, 1);
 }
 
 TEST(FuzzRegressions, AcceptedScenariosGiveTheirFrequencies) {
-  feed_all("fuzz_scenario_frequencies", "fuzz.toml",
-           [](const std::string& text) { return fuzz::feed_scenario_frequencies(text); }, 1);
+  feed_all(
+      "fuzz_scenario_frequencies", "fuzz.toml",
+      [](const std::string& text) { return fuzz::feed_scenario_frequencies(text); }, 1);
 }
 
 TEST(FuzzRegressions, SavedSeriesAreReadOrRefusedWithTheFileNamed) {
-  feed_all("fuzz_series_csv", "series.csv", [](const std::string& text) { return fuzz::feed_series_csv(text); }, 1);
+  feed_all(
+      "fuzz_series_csv", "series.csv", [](const std::string& text) { return fuzz::feed_series_csv(text); }, 1);
 }
 
 TEST(FuzzRegressions, SavedEventsAreReadOrRefusedWithTheFileNamed) {
-  feed_all("fuzz_events_csv", "events.csv", [](const std::string& text) { return fuzz::feed_events_csv(text); }, 1);
+  feed_all(
+      "fuzz_events_csv", "events.csv", [](const std::string& text) { return fuzz::feed_events_csv(text); }, 1);
 }
 
 TEST(FuzzRegressions, SavedRunsAreRepairedForResume) {
   const std::string folder =
       (fs::temp_directory_path() / ("impactbench_fuzz_regressions_" + std::to_string(getpid()))).string();
-  feed_all("fuzz_runs_jsonl", "runs.jsonl",
-           [&](const std::string& text) { return fuzz::feed_runs_jsonl(text, folder); }, 1);
+  feed_all(
+      "fuzz_runs_jsonl", "runs.jsonl", [&](const std::string& text) { return fuzz::feed_runs_jsonl(text, folder); }, 1);
   fs::remove_all(folder);
 }
 

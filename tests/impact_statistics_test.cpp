@@ -32,8 +32,10 @@ struct Pulse {
 
 // Onsets 2 to 8 samples into a sensor window, contacts short enough to end inside it; 3 ms and more apart,
 // more than the merge window. The last lies after the scoring window [0, 0.5 s].
-const std::vector<Pulse> kPulses = {{16 * 100 + 2, 8, 3000, 0.20, 0.60},  {16 * 300 + 5, 10, 5000, 0.35, 0.70},
-                                    {16 * 500 + 8, 4, 2000, 0.10, 0.50},  {16 * 700 + 3, 12, 4000, 0.25, 0.80},
+const std::vector<Pulse> kPulses = {{16 * 100 + 2, 8, 3000, 0.20, 0.60},
+                                    {16 * 300 + 5, 10, 5000, 0.35, 0.70},
+                                    {16 * 500 + 8, 4, 2000, 0.10, 0.50},
+                                    {16 * 700 + 3, 12, 4000, 0.25, 0.80},
                                     {16 * 1100 + 2, 6, 9000, 0.50, 0.40}};
 
 // The tips' velocity with every pulse: piecewise linear, its corners on samples, so that the series read
@@ -42,7 +44,8 @@ Motion tip(double scale) {
   Motion m;
   m.v = [scale](double t) {
     double v = 0;
-    for (const Pulse& p : kPulses) v += scale * p.acceleration_m_s2 * std::clamp(t - p.onset_s(), 0.0, p.end_s() - p.onset_s());
+    for (const Pulse& p : kPulses)
+      v += scale * p.acceleration_m_s2 * std::clamp(t - p.onset_s(), 0.0, p.end_s() - p.onset_s());
     return v;
   };
   m.a = [scale](double t) {

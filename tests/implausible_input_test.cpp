@@ -24,7 +24,9 @@ namespace implausible_input_test {
 namespace fs = std::filesystem;
 using Output = ib::test::CommandOutput;
 
-Output impactbench(const std::string& arguments) { return ib::test::run_impactbench_logged_as(arguments, "impactbench_implausible_"); }
+Output impactbench(const std::string& arguments) {
+  return ib::test::run_impactbench_logged_as(arguments, "impactbench_implausible_");
+}
 std::string paper(const std::string& name) { return ib::test::paper_scenario(name); }
 fs::path fresh(const std::string& name) { return ib::test::fresh_command_folder("impactbench_implausible_", name); }
 
@@ -40,7 +42,8 @@ void refused(const std::string& arguments, const std::vector<std::string>& fragm
   const auto started = std::chrono::steady_clock::now();
   const Output out = impactbench(arguments);
   EXPECT_EQ(out.exit_code, 2) << arguments << "\n" << out.text;
-  for (const std::string& fragment : fragments) EXPECT_NE(out.text.find(fragment), std::string::npos) << arguments << "\n" << out.text;
+  for (const std::string& fragment : fragments)
+    EXPECT_NE(out.text.find(fragment), std::string::npos) << arguments << "\n" << out.text;
   EXPECT_EQ(out.text.find("Traceback"), std::string::npos) << out.text;
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 30) << arguments;
 }
@@ -50,7 +53,8 @@ TEST(ImplausibleInput, RunOptionsOutsideTheirRangesAreRefused) {
   const std::string run = "run " + paper("free_vibration") + " --engine reference";
   refused(run + " --rate 1e12" + out, {"--rate 1e+12: allowed: 256 <= x <= 1e+06 Hz"});
   refused(run + " --sensor-rate 1e9" + out, {"--sensor-rate 1e+09: allowed: 256 <= x <= 1e+06 Hz"});
-  refused(run + " --series-start 100" + out, {"--series-start 100: allowed: before the run's end", "duration_s = 14 s"});
+  refused(run + " --series-start 100" + out,
+          {"--series-start 100: allowed: before the run's end", "duration_s = 14 s"});
   refused(run + " --window -1" + out, {"--window -1: allowed: 0 < x <= 3600 s"});
   refused(run + " --window nan" + out, {"--window nan: allowed: 0 < x <= 3600 s"});
   refused(run + " --window 20" + out, {"--window 20", "allowed: at most the run"});
@@ -85,19 +89,25 @@ TEST(ImplausibleInput, ScenarioFilesThatNeverEndOrAreNotFilesAreRefused) {
     std::ofstream(dir / name) << t;
     return (dir / name).string();
   };
-  refused("run " + with("column_thickness_m = 1.75e-3", "column_thickness_m = 0.1", "thick.toml") + " --out " + (dir / "c").string(),
+  refused("run " + with("column_thickness_m = 1.75e-3", "column_thickness_m = 0.1", "thick.toml") + " --out " +
+              (dir / "c").string(),
           {"thick.toml:", "frame1.column_thickness_m = 0.1: out of range; allowed: x <= frame1.length_m / 10 = 0.03"});
-  refused("run " + with("youngs_modulus_pa = 200e9", "youngs_modulus_pa = 1e300", "stiff.toml") + " --out " + (dir / "d").string(),
+  refused("run " + with("youngs_modulus_pa = 200e9", "youngs_modulus_pa = 1e300", "stiff.toml") + " --out " +
+              (dir / "d").string(),
           {"stiff.toml:", "frame1.youngs_modulus_pa = 1e300: out of range; allowed: 100000 <= x <= 1.5e+12"});
-  refused("run " + with("tip_mass_kg = 0.64439", "tip_mass_kg = 1e300", "heavy.toml") + " --out " + (dir / "e").string(),
-          {"heavy.toml:", "frame1.tip_mass_kg = 1e300: out of range; allowed: 0 <= x <= 10000"});
+  refused(
+      "run " + with("tip_mass_kg = 0.64439", "tip_mass_kg = 1e300", "heavy.toml") + " --out " + (dir / "e").string(),
+      {"heavy.toml:", "frame1.tip_mass_kg = 1e300: out of range; allowed: 0 <= x <= 10000"});
   refused("run " + with("duration_s = 100.0", "duration_s = 1e300", "long.toml") + " --out " + (dir / "f").string(),
           {"long.toml:", "scenario.duration_s = 1e300: out of range; allowed: 0 < x <= 3600"});
-  refused("run " + with("speed_ratio_to_f1 = 1.00", "speed_ratio_to_f1 = 1e6", "fast.toml") + " --out " + (dir / "g").string(),
+  refused("run " + with("speed_ratio_to_f1 = 1.00", "speed_ratio_to_f1 = 1e6", "fast.toml") + " --out " +
+              (dir / "g").string(),
           {"fast.toml:", "motor.speed_ratio_to_f1 = 1e6: out of range; allowed: 0 < x <= 100"});
-  refused("run " + with("density_kg_m3 = 7850.0", "density_kg_m3 = 1e-300", "light.toml") + " --out " + (dir / "h").string(),
+  refused("run " + with("density_kg_m3 = 7850.0", "density_kg_m3 = 1e-300", "light.toml") + " --out " +
+              (dir / "h").string(),
           {"light.toml:", "frame1.density_kg_m3 = 1e-300: out of range; allowed: 10 <= x <= 25000"});
-  refused("run " + with("youngs_modulus_pa = 200e9", "youngs_modulus_pa = 1e5", "soft.toml") + " --out " + (dir / "i").string(),
+  refused("run " + with("youngs_modulus_pa = 200e9", "youngs_modulus_pa = 1e5", "soft.toml") + " --out " +
+              (dir / "i").string(),
           {"soft.toml:", "frame1: its first natural frequency would be about 0.0049", "allowed: 0.05 to 5000 Hz"});
   fs::remove_all(dir);
 }
@@ -115,7 +125,8 @@ TEST(ImplausibleInput, SuiteListsAndFoldersThatSayNothingAreRefused) {
   refused(suite + " --window -1", {"--window -1: allowed: 0 < x <= 3600 s"});
   refused(suite + " --rate 1e12", {"--rate 1e+12: allowed: 256 <= x <= 1e+06 Hz"});
   refused(suite + " --dt 1e-12", {"--dt 1e-12: allowed: 1e-09 <= x <= 0.01 s"});
-  refused("suite " + (dir / "nowhere").string() + " --out " + (dir / "out").string(), {"nowhere: no such file or folder"});
+  refused("suite " + (dir / "nowhere").string() + " --out " + (dir / "out").string(),
+          {"nowhere: no such file or folder"});
   fs::create_directories(dir / "empty");
   refused("suite " + (dir / "empty").string() + " --out " + (dir / "out").string(), {"empty: holds no scenario file"});
   refused("suite " + paper("free_vibration") + " --out ''", {"--out '': allowed: a folder path"});
@@ -127,7 +138,8 @@ TEST(ImplausibleInput, RunStopsAtItsTimeLimitAndRecordsWhy) {
   const fs::path dir = fresh("limit");
   // the published resonance (100 s of rig time, its 14 s window written at 4096 Hz with the peaks between samples)
   // takes ten times longer than 0.02 s of wall time
-  const Output out = impactbench("run " + paper("resonance") + " --engine reference --time-limit 0.02 --out " + dir.string());
+  const Output out =
+      impactbench("run " + paper("resonance") + " --engine reference --time-limit 0.02 --out " + dir.string());
   EXPECT_EQ(out.exit_code, 1) << out.text;
   EXPECT_NE(out.text.find("failed: stopped at the time limit of 0.02 s (--time-limit)"), std::string::npos) << out.text;
   const auto summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
@@ -140,7 +152,10 @@ TEST(ImplausibleInput, RunStopsAtItsTimeLimitAndRecordsWhy) {
 TEST(ImplausibleInput, ScoreRefusesDataItCannotMeasure) {
   const fs::path dir = fresh("score");
   const std::string scenario = paper("free_vibration");
-  ASSERT_EQ(impactbench("run " + scenario + " --engine reference --law hertz --series all --out " + (dir / "good").string()).exit_code, 0);
+  ASSERT_EQ(
+      impactbench("run " + scenario + " --engine reference --law hertz --series all --out " + (dir / "good").string())
+          .exit_code,
+      0);
   // the series as plain CSV, and the events
   const Output plain = ib::test::run_command("zcat " + (dir / "good" / "series.csv.gz").string());
   ASSERT_EQ(plain.exit_code, 0);
@@ -193,9 +208,12 @@ TEST(ImplausibleInput, TheReportOfADamagedFolderSaysWhatIsWrongWithoutATraceback
   const std::string engine = first_engine();
   if (engine.empty()) GTEST_SKIP() << "no engine in this build";
   ASSERT_LE(impactbench("suite " + paper("free_vibration") + " --engines reference," + engine +
-                        " --dt 1e-4 --laws viscoelastic --duration 1 --out " + dir.string()).exit_code, 1);
+                        " --dt 1e-4 --laws viscoelastic --duration 1 --out " + dir.string())
+                .exit_code,
+            1);
   // the engine run's series emptied (the report draws it)
-  const fs::path engine_series = dir / "runs" / "free_vibration" / engine / "viscoelastic" / "dt=0.0001" / "series.csv.gz";
+  const fs::path engine_series =
+      dir / "runs" / "free_vibration" / engine / "viscoelastic" / "dt=0.0001" / "series.csv.gz";
   ASSERT_TRUE(fs::exists(engine_series)) << engine_series;
   std::ofstream(engine_series, std::ios::trunc);
   Output out = impactbench("report " + dir.string());

@@ -38,7 +38,8 @@ TEST(LinkChain, UniformChainsFirstFrequencyConvergesToTheBeamsAsLinksGrow) {
   // rig.md section 4 quotes about 4 %, 1 %, 0.2 %, 0.06 % for K = 2, 4, 8, 16 (this rig: 3.8, 0.91, 0.22, 0.056)
   const std::pair<int, double> quoted[] = {{2, 0.04}, {4, 0.01}, {8, 0.002}, {16, 0.0006}};
   for (const auto& [links, error] : quoted)
-    EXPECT_NEAR(chain_modes(uniform_chain(frame, links)).omega_rad_s[0] / beam - 1, error, 0.25 * error) << "K = " << links;
+    EXPECT_NEAR(chain_modes(uniform_chain(frame, links)).omega_rad_s[0] / beam - 1, error, 0.25 * error)
+        << "K = " << links;
 }
 
 // The tuned joints k_j = (EI / l) a (1 + b x_j / L) give the chain the beam's first two frequencies to rounding
@@ -151,7 +152,8 @@ TEST(LinkChain, DampingIsStiffnessProportionalWithZetaOnModeOne) {
                 2 * frame.damping_ratio / modes.omega_rad_s[0] * chain.joint_stiffness_n_m_per_rad[j], 1e-15);
   // modal damping from the matrices: v^T C v / (2 omega) for mass-normalised v
   const ChainMatrices m = linearise(chain);
-  for (int n = 1; n < 8; ++n) EXPECT_NEAR(modes.zeta[n], frame.damping_ratio * modes.omega_rad_s[n] / modes.omega_rad_s[0], 1e-12);
+  for (int n = 1; n < 8; ++n)
+    EXPECT_NEAR(modes.zeta[n], frame.damping_ratio * modes.omega_rad_s[n] / modes.omega_rad_s[0], 1e-12);
   EXPECT_EQ(m.damping.diagonal(), Eigen::Map<const Eigen::VectorXd>(chain.joint_damping_n_m_s_per_rad.data(), 8));
   EXPECT_EQ(m.damping.norm(), m.damping.diagonal().norm());
 }

@@ -57,8 +57,8 @@ TEST(Metrics, IdenticalRunsHaveNoErrors) {
 TEST(Metrics, ScaledRunHasKnownErrors) {
   const MetricSettings s = forced(0, 2);
   const Trajectory reference = oscillation(1);
-  Trajectory run = oscillation(1.1, 4096, 2, 0.0012);   // 10 % larger motion, 20 % longer contacts
-  run.events.push_back(episode(1.999, 1.9992));         // and one impact more
+  Trajectory run = oscillation(1.1, 4096, 2, 0.0012);  // 10 % larger motion, 20 % longer contacts
+  run.events.push_back(episode(1.999, 1.9992));        // and one impact more
   const MetricErrors e = compare_metrics(compute_metrics(run, s), run, compute_metrics(reference, s), reference, s);
   for (int f = 0; f < 2; ++f) {
     EXPECT_NEAR(e.displacement_relative_rms_error[f], 0.1, 1e-12);
@@ -86,8 +86,8 @@ TEST(Metrics, ComparisonIsNaNWhereItIsNotDefined) {
   // a run that stopped at 1 s does not cover the window [0, 2]
   const Trajectory short_run = oscillation(1, 4096, 1);
   MetricSettings s = window(0, 2);  // no excitation: impacts per cycle is NaN on both sides
-  MetricErrors e = compare_metrics(compute_metrics(short_run, s), short_run, compute_metrics(reference, s),
-                                   reference, s);
+  MetricErrors e =
+      compare_metrics(compute_metrics(short_run, s), short_run, compute_metrics(reference, s), reference, s);
   EXPECT_TRUE(std::isnan(e.displacement_relative_rms_error[0]));
   EXPECT_TRUE(std::isnan(e.impacts_per_cycle_difference));
 

@@ -194,8 +194,7 @@ TEST(Metrics, OnsetsWithinTheMergeWindowAreOneImpact) {
 
 TEST(Metrics, MergingChainsFromEachOnsetToTheNextAndSortsFirst) {
   // 1.5 ms steps: each onset is within 2 ms of the one before, so all three are one impact
-  const std::vector<ContactEvent> events = {episode(0.303, 0.3031), episode(0.300, 0.3001),
-                                            episode(0.3015, 0.3016)};
+  const std::vector<ContactEvent> events = {episode(0.303, 0.3031), episode(0.300, 0.3001), episode(0.3015, 0.3016)};
   const std::vector<Impact> impacts = merge_impacts(events, 0, 1, 0.002);
   ASSERT_EQ(impacts.size(), 1u);
   EXPECT_EQ(impacts[0].onsets, 3);
@@ -287,10 +286,17 @@ TEST(Metrics, FlattenNamesEveryFigureOnceWithItsUnit) {
   const auto flat = flatten(m);
 
   // counts and ratios carry no unit
-  const std::set<std::string> dimensionless = {"impacts", "raw_onsets", "excitation_cycles",
-                                               "impacts_per_cycle", "impacts_per_beat", "mean_restitution",
-                                               "energy_change_relative", "frame1_log_decrement",
-                                               "frame2_log_decrement", "restitution_p50", "restitution_p95",
+  const std::set<std::string> dimensionless = {"impacts",
+                                               "raw_onsets",
+                                               "excitation_cycles",
+                                               "impacts_per_cycle",
+                                               "impacts_per_beat",
+                                               "mean_restitution",
+                                               "energy_change_relative",
+                                               "frame1_log_decrement",
+                                               "frame2_log_decrement",
+                                               "restitution_p50",
+                                               "restitution_p95",
                                                "sensor_peak_phases_read"};
   std::set<std::string> names;
   for (const auto& [name, value] : flat) {

@@ -9,9 +9,9 @@
 #include <complex>
 #include <vector>
 
-#include "physics/link_chain.h"
 #include "adapters/mujoco/mujoco_simulator.h"
 #include "modal_identification.h"
+#include "physics/link_chain.h"
 #include "reference_fixtures.h"
 
 namespace ib {
@@ -44,7 +44,8 @@ TEST_P(MujocoChainFreeDecay, FirstTwoModesAreTheReferenceChains) {
 
   const ModalBasis reference = chain_modes(build_link_chain(s.frames[0], links));
   // all 2K poles of the chain's tip response
-  std::vector<Mode> modes = test::matrix_pencil_modes(result.trajectory.displacement_m[0], 1 / run.output_rate_hz, 2 * links);
+  std::vector<Mode> modes =
+      test::matrix_pencil_modes(result.trajectory.displacement_m[0], 1 / run.output_rate_hz, 2 * links);
   ASSERT_GE(modes.size(), 2u);
   modes.resize(2);
   std::sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) { return a.frequency_hz < b.frequency_hz; });

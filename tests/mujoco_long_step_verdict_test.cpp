@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "reference_fixtures.h"
-#include "simulators/catalog.h"
-#include "reference/reference_simulator.h"
 #include "adapters/common/rig.h"
 #include "harness/jobs/run_job.h"
+#include "reference/reference_simulator.h"
+#include "reference_fixtures.h"
+#include "simulators/catalog.h"
 
 namespace ib {
 namespace mujoco_long_step_verdict_test {

@@ -10,11 +10,11 @@
 #include <fstream>
 #include <string>
 
+#include "adapters/common/rig.h"
 #include "adapters/mujoco/mujoco_engine.h"
 #include "adapters/mujoco/mujoco_model.h"
 #include "adapters/mujoco/mujoco_simulator.h"
 #include "reference_fixtures.h"
-#include "adapters/common/rig.h"
 
 namespace ib {
 namespace mujoco_model_export_test {

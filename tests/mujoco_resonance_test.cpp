@@ -12,10 +12,10 @@
 #include <cmath>
 #include <string>
 
-#include "harness/scoring/metrics.h"
 #include "adapters/mujoco/mujoco_simulator.h"
 #include "engine_measurements.h"
 #include "harness/jobs/run_job.h"
+#include "harness/scoring/metrics.h"
 
 namespace ib {
 namespace mujoco_resonance_test {

@@ -15,11 +15,11 @@
 #include <ostream>
 #include <string>
 
-#include "harness/scoring/metrics.h"
+#include "adapters/common/rig.h"
 #include "adapters/mujoco/mujoco_contact_mapping.h"
 #include "adapters/mujoco/mujoco_simulator.h"
 #include "engine_measurements.h"
-#include "adapters/common/rig.h"
+#include "harness/scoring/metrics.h"
 
 namespace ib {
 namespace mujoco_single_impact_test {
@@ -84,8 +84,7 @@ TEST_P(MujocoSingleImpact, DurationAndRestitutionMatchTheReference) {
   const double ref_duration = ref.end_time_s - ref.onset_time_s;
 
   // The published spring-dashpot pulls; MuJoCo's own contact (matched) cannot.
-  const bool law_pulls_engine_cannot =
-      c.law == ContactLaw::viscoelastic && !c.clip_tension && c.path == "matched";
+  const bool law_pulls_engine_cannot = c.law == ContactLaw::viscoelastic && !c.clip_tension && c.path == "matched";
   if (law_pulls_engine_cannot) {
     const Overlap overlap = first_overlap(engine.trajectory, s.gap_m);
     std::printf("%s: overlap %.5e s (reference %.5e, %+.2f %%), e %.5f (reference %.5f, %+.2f %%)\n", c.name.c_str(),
@@ -108,7 +107,8 @@ TEST_P(MujocoSingleImpact, DurationAndRestitutionMatchTheReference) {
               episode_duration, force_fraction * ref_duration, episode.restitution,
               100 * (episode.restitution / ref.restitution - 1));
   // the episode's ends are read at steps: 2 % and one step of quantisation (4.4 % of a 0.23 ms Hertz contact)
-  EXPECT_NEAR(episode_duration / (force_fraction * ref_duration), 1, 0.02 + run.time_step_s / (force_fraction * ref_duration));
+  EXPECT_NEAR(episode_duration / (force_fraction * ref_duration), 1,
+              0.02 + run.time_step_s / (force_fraction * ref_duration));
   EXPECT_NEAR(episode.restitution / ref.restitution, 1, 0.02);
 }
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "model/simulator.h"
 #include "reference_fixtures.h"
 #include "simulators/catalog.h"
-#include "model/simulator.h"
 
 namespace ib {
 namespace native_contact_law_test {

@@ -94,7 +94,9 @@ std::vector<Case> cases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, NewtonRestitution, ::testing::ValuesIn(cases()),
-                         [](const ::testing::TestParamInfo<Case>& info) { return info.param.engine + "_" + info.param.path; });
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return info.param.engine + "_" + info.param.path;
+                         });
 
 }  // namespace newton_restitution_test
 }  // namespace ib

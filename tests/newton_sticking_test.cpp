@@ -69,7 +69,8 @@ TEST(NewtonSticking, PlasticImpactsStickAndReleaseOnTheRig) {
   s.contact.newton->restitution = 0;
   ReferenceSettings settings;
   const ModalModel model = build_modal_model(s, ContactLaw::newton, settings.modes);
-  const ReferenceSolution r = solve_reference(model, initial_state(s, model), s.duration_s, {0, s.duration_s, 4096}, settings);
+  const ReferenceSolution r =
+      solve_reference(model, initial_state(s, model), s.duration_s, {0, s.duration_s, 4096}, settings);
   ASSERT_EQ(r.status, RunStatus::ok) << r.reason;
   EXPECT_GT(r.sticking_phases, 5);
   for (const ContactEvent& e : r.trajectory.events) {

@@ -62,12 +62,14 @@ TEST(NumberText, MeasuredTextIsPrintfsNineDigits) {
     std::snprintf(text, sizeof text, "%.9g", value);
     return std::string(text);
   };
-  std::vector<double> values = {0.5, -0.25, 1.0000000005, 1.0000000015, 0.99999999951, 9.9999999951, 999999999.5,
-                                1.23456789012345e-5, 1.23456789e-4, 9.999999995e-5, 123456789.4, 5e-324, 1.5e300};
+  std::vector<double> values = {0.5,           -0.25,          1.0000000005, 1.0000000015,
+                                0.99999999951, 9.9999999951,   999999999.5,  1.23456789012345e-5,
+                                1.23456789e-4, 9.999999995e-5, 123456789.4,  5e-324,
+                                1.5e300};
   for (int e = -320; e <= 300; ++e) {
     const double p = std::pow(10.0, e);
-    values.insert(values.end(), {p, std::nextafter(p, 0.0), std::nextafter(p, 1e308), 0.99999999951 * p,
-                                 1.0000000005 * p, -p / 3});
+    values.insert(values.end(),
+                  {p, std::nextafter(p, 0.0), std::nextafter(p, 1e308), 0.99999999951 * p, 1.0000000005 * p, -p / 3});
   }
   for (int k = 0; k < 2000; ++k) {  // ties in the shortest text: ten digits, the last a 5
     char tie[32];

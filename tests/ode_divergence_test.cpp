@@ -11,16 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "adapters/common/rig.h"
 #include "adapters/ode/ode_library.h"
-#include "simulators/catalog.h"
 #include "adapters/ode/ode_rig.h"
 #include "adapters/ode/ode_simulator.h"
-#include "reference_fixtures.h"
-#include "adapters/common/rig.h"
-#include "physics/link_chain.h"
-#include "harness/suite/suite.h"
-#include "suite_test_support.h"
 #include "harness/scoring/verdict.h"
+#include "harness/suite/suite.h"
+#include "physics/link_chain.h"
+#include "reference_fixtures.h"
+#include "simulators/catalog.h"
+#include "suite_test_support.h"
 
 namespace ib {
 namespace ode_divergence_test {
@@ -131,12 +131,14 @@ TEST(OdeDivergence, TheSuiteRecordsTheVerdictAndAnOdeAbort) {
   ASSERT_TRUE(by_engine.count("ode"));
   ASSERT_TRUE(by_engine.count("ode_unguarded"));
   const auto& guarded = by_engine["ode"];
-  std::printf("ode: %s: %s\n", guarded["verdict"].get<std::string>().c_str(), guarded["reason"].get<std::string>().c_str());
+  std::printf("ode: %s: %s\n", guarded["verdict"].get<std::string>().c_str(),
+              guarded["reason"].get<std::string>().c_str());
   EXPECT_EQ(guarded["verdict"], "unstable");
   EXPECT_NE(guarded["reason"].get<std::string>().find("tip displacement"), std::string::npos);
   EXPECT_NE(guarded["reason"].get<std::string>().find("explicit hinge springs"), std::string::npos);
   const auto& aborted = by_engine["ode_unguarded"];
-  std::printf("ode_unguarded: %s: %s\n", aborted["verdict"].get<std::string>().c_str(), aborted["reason"].get<std::string>().c_str());
+  std::printf("ode_unguarded: %s: %s\n", aborted["verdict"].get<std::string>().c_str(),
+              aborted["reason"].get<std::string>().c_str());
   EXPECT_EQ(aborted["verdict"], "failed");
   EXPECT_NE(aborted["reason"].get<std::string>().find("signal 6"), std::string::npos);
   EXPECT_NE(aborted["reason"].get<std::string>().find("ODE internal error"), std::string::npos);

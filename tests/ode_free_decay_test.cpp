@@ -40,7 +40,8 @@ TEST(OdeFreeDecay, TheEstimatorFindsTheReferenceChainsMode) {
     settings.options = chain_reference_options_with_damping(default_links(s), damping);
     const RunResult r = make_reference_simulator()->run(s, settings);
     const Decay d = measure_decay(r.trajectory, kMeasureFrom_s);
-    EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, damping == ChainDamping::hinge ? 1e-4 : 4e-4) << to_string(damping);
+    EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, damping == ChainDamping::hinge ? 1e-4 : 4e-4)
+        << to_string(damping);
     EXPECT_NEAR(d.damping_ratio / mode.zeta, 1, 0.01) << to_string(damping);
   }
 }
@@ -74,7 +75,8 @@ TEST(OdeFreeDecay, ExplicitSpringsGiveTheChainModeBelowTheirStepLimit) {
   const Decay d = measure_decay(r.trajectory, kMeasureFrom_s);
   const ChainMode mode = chain_mode(s);
   std::printf("explicit, h = %g s: f = %.5f Hz (chain %.5f Hz), zeta = %.6f (chain %.4f), %.2f us/step\n", h,
-              d.frequency_hz, mode.damped_frequency_hz, d.damping_ratio, mode.zeta, 1e6 * r.cost.cpu_time_s / r.cost.steps);
+              d.frequency_hz, mode.damped_frequency_hz, d.damping_ratio, mode.zeta,
+              1e6 * r.cost.cpu_time_s / r.cost.steps);
   EXPECT_NEAR(d.frequency_hz / mode.damped_frequency_hz, 1, 0.005);
   EXPECT_NEAR(d.damping_ratio / mode.zeta, 1, 0.02);
 }

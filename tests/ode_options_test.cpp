@@ -8,10 +8,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "adapters/ode/ode_simulator.h"
-#include "simulators/catalog.h"
-#include "reference_fixtures.h"
 #include "adapters/common/rig.h"
+#include "adapters/ode/ode_simulator.h"
+#include "reference_fixtures.h"
+#include "simulators/catalog.h"
 
 namespace ib {
 namespace ode_options_test {
@@ -92,7 +92,7 @@ TEST(OdeOptions, DefaultsAreTheDocumentedOnes) {
   EXPECT_TRUE(has_diagnostic(r, "frame1_hinge_stop_erp"));
   EXPECT_TRUE(has_diagnostic(r, "contact_soft_erp"));
   EXPECT_FALSE(has_diagnostic(r, "quick_step_iterations"));
-  EXPECT_EQ(diagnostic(r, "world_erp"), 0.2);     // ODE's defaults for the hinges' own rows
+  EXPECT_EQ(diagnostic(r, "world_erp"), 0.2);  // ODE's defaults for the hinges' own rows
   EXPECT_EQ(diagnostic(r, "world_cfm"), 1e-10);
 
   settings.options = {{"stepper", "quick"}};
@@ -142,8 +142,9 @@ TEST(OdeOptions, QuickStepIterationsControlItsAgreementWithTheDirectSolver) {
   };
   const double amplitude = std::abs(s.initial.frame1_tip_displacement_m);
   const double with_default = largest_difference("20"), with_few = largest_difference("5");
-  std::printf("quick step against dWorldStep: largest tip difference %.3g m (20 iterations), %.3g m (5), amplitude %.3g m\n",
-              with_default, with_few, amplitude);
+  std::printf(
+      "quick step against dWorldStep: largest tip difference %.3g m (20 iterations), %.3g m (5), amplitude %.3g m\n",
+      with_default, with_few, amplitude);
   EXPECT_LT(with_default, 1e-6 * amplitude);
   EXPECT_GT(with_few, 1e-3 * amplitude);
 }

@@ -17,11 +17,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "harness/scoring/metrics.h"
-#include "physics/modal_model.h"
 #include "adapters/ode/ode_simulator.h"
 #include "engine_measurements.h"
 #include "harness/jobs/run_job.h"
+#include "harness/scoring/metrics.h"
+#include "physics/modal_model.h"
 
 namespace ib {
 namespace ode_resonance_test {
@@ -39,16 +39,18 @@ TEST(OdeResonance, SpringDashpotImpactsPerCycleAndSensorPeakMatchTheReference) {
   ASSERT_EQ(run.status, RunStatus::ok) << run.reason;
   const Metrics &reference = c.reference, &ode = c.engine;
 
-  std::printf("reference: %.4f impacts/cycle (%d impacts, %.1f cycles), frame 1 sensor peak %.3f g, frame 2 %.3f g, e %.3f\n",
-              reference.impacts_per_cycle, reference.impacts, reference.excitation_cycles,
-              reference.frames[0].sensor_peak_acceleration_g, reference.frames[1].sensor_peak_acceleration_g,
-              reference.mean_restitution);
-  std::printf("ode h = 2e-5 s: %.4f impacts/cycle (%d impacts), frame 1 sensor peak %.3f g (%+.1f %%), frame 2 %.3f g, e %.3f; "
-              "%.1f s CPU, %.2f us/step\n",
-              ode.impacts_per_cycle, ode.impacts, ode.frames[0].sensor_peak_acceleration_g,
-              100 * (ode.frames[0].sensor_peak_acceleration_g / reference.frames[0].sensor_peak_acceleration_g - 1),
-              ode.frames[1].sensor_peak_acceleration_g, ode.mean_restitution, run.cost.cpu_time_s,
-              1e6 * run.cost.cpu_time_s / run.cost.steps);
+  std::printf(
+      "reference: %.4f impacts/cycle (%d impacts, %.1f cycles), frame 1 sensor peak %.3f g, frame 2 %.3f g, e %.3f\n",
+      reference.impacts_per_cycle, reference.impacts, reference.excitation_cycles,
+      reference.frames[0].sensor_peak_acceleration_g, reference.frames[1].sensor_peak_acceleration_g,
+      reference.mean_restitution);
+  std::printf(
+      "ode h = 2e-5 s: %.4f impacts/cycle (%d impacts), frame 1 sensor peak %.3f g (%+.1f %%), frame 2 %.3f g, e %.3f; "
+      "%.1f s CPU, %.2f us/step\n",
+      ode.impacts_per_cycle, ode.impacts, ode.frames[0].sensor_peak_acceleration_g,
+      100 * (ode.frames[0].sensor_peak_acceleration_g / reference.frames[0].sensor_peak_acceleration_g - 1),
+      ode.frames[1].sensor_peak_acceleration_g, ode.mean_restitution, run.cost.cpu_time_s,
+      1e6 * run.cost.cpu_time_s / run.cost.steps);
   ASSERT_GT(reference.impacts, 0);
   // equal, up to the one impact by which a window edge can cut a two-cycle pattern differently
   EXPECT_LE(std::abs(ode.impacts_per_cycle - reference.impacts_per_cycle), 1.0 / reference.excitation_cycles + 1e-12);

@@ -47,10 +47,11 @@ TEST(OdeSingleImpact, SpringDashpotConvergesToTheReferenceAsTheStepShrinks) {
     const double duration_error = ode.impact.duration_s / reference.duration_s - 1;
     restitution_errors.push_back(restitution_error);
     const Metrics m = compute_metrics(ode.run.trajectory, MetricSettings{0, kFirstImpactEnd_s});
-    std::printf("ode h = %g s: duration %.4f ms (%+.2f %%), restitution %.4f (%+.2f %%); harness's event: duration "
-                "%.4f ms, restitution %.4f\n",
-                step.h, 1e3 * ode.impact.duration_s, 100 * duration_error, ode.impact.restitution, 100 * restitution_error,
-                1e3 * m.contact_duration_mean_s, m.mean_restitution);
+    std::printf(
+        "ode h = %g s: duration %.4f ms (%+.2f %%), restitution %.4f (%+.2f %%); harness's event: duration "
+        "%.4f ms, restitution %.4f\n",
+        step.h, 1e3 * ode.impact.duration_s, 100 * duration_error, ode.impact.restitution, 100 * restitution_error,
+        1e3 * m.contact_duration_mean_s, m.mean_restitution);
     EXPECT_LT(restitution_error, 0) << "backward Euler loses energy, h = " << step.h;
     EXPECT_LT(std::abs(restitution_error), step.restitution_tolerance) << "h = " << step.h;
     EXPECT_LT(std::abs(duration_error), step.duration_tolerance) << "h = " << step.h;

@@ -1,7 +1,8 @@
 // The one mapping from a spring-damper (k, c) and the step h to ODE's ERP/CFM, and what ODE does with
 // it: on a single contact between two free spheres, and on a single hinge, ODE reproduces the
 // backward-Euler spring-dashpot step for step; against the exact spring-dashpot it loses energy at first
-// order in the step, about as exp(-pi omega h / 2). Also: the ODE this build links is the double-precision 0.16 library.
+// order in the step, about as exp(-pi omega h / 2). Also: the ODE this build links is the double-precision 0.16
+// library.
 #include "adapters/ode/soft_constraint.h"
 
 #include <gtest/gtest.h>
@@ -118,7 +119,8 @@ std::vector<ContactStep> backward_euler_contact(const TwoSpheres& p, double h, s
   for (std::size_t n = 0; n < steps; ++n) {
     double force = 0;
     if (depth > 0) {
-      force = (p.stiffness * depth + (h * p.stiffness + p.damping) * rate) / (1 + h * (h * p.stiffness + p.damping) / m);
+      force =
+          (p.stiffness * depth + (h * p.stiffness + p.damping) * rate) / (1 + h * (h * p.stiffness + p.damping) / m);
       force = std::max(0.0, force);
     }
     const double start_depth = depth;
@@ -134,9 +136,12 @@ std::vector<ContactStep> backward_euler_contact(const TwoSpheres& p, double h, s
 double exact_restitution(const TwoSpheres& p) {
   const double m = p.reduced_mass(), omega = std::sqrt(p.stiffness / m);
   const double zeta = p.damping / (2 * std::sqrt(p.stiffness * m)), omega_d = omega * std::sqrt(1 - zeta * zeta);
-  const auto depth = [&](double t) { return p.approach / omega_d * std::exp(-zeta * omega * t) * std::sin(omega_d * t); };
+  const auto depth = [&](double t) {
+    return p.approach / omega_d * std::exp(-zeta * omega * t) * std::sin(omega_d * t);
+  };
   const auto rate = [&](double t) {
-    return p.approach * std::exp(-zeta * omega * t) * (std::cos(omega_d * t) - zeta * omega / omega_d * std::sin(omega_d * t));
+    return p.approach * std::exp(-zeta * omega * t) *
+           (std::cos(omega_d * t) - zeta * omega / omega_d * std::sin(omega_d * t));
   };
   double low = 0.25 * M_PI / omega_d, high = M_PI / omega_d;  // force > 0 at low, < 0 at high
   for (int i = 0; i < 200; ++i) {
@@ -157,12 +162,14 @@ TEST(OdeSoftConstraint, OdeContactIsTheBackwardEulerSpringDashpotStepForStep) {
       worst_speed = std::max(worst_speed, std::abs(ode_steps[n].closing_speed_m_s - expected[n].closing_speed_m_s));
       worst_force = std::max(worst_force, std::abs(ode_steps[n].force_n - expected[n].force_n));
     }
-    std::printf("h = %g s: %zu steps, largest differences from backward Euler: %.3g m/s (of %.3g), %.3g N (of %.3g)\n", h,
-                ode_steps.size(), worst_speed, p.approach, worst_force, peak);
+    std::printf("h = %g s: %zu steps, largest differences from backward Euler: %.3g m/s (of %.3g), %.3g N (of %.3g)\n",
+                h, ode_steps.size(), worst_speed, p.approach, worst_force, peak);
     for (std::size_t n = 0; n < ode_steps.size(); ++n) {
       // ODE's own sphere depth and dWorldStep's LCP solve: agreement to rounding (1e-9 of the scales)
-      EXPECT_NEAR(ode_steps[n].depth_m, expected[n].depth_m, 1e-9 * p.approach * h * 100) << "h = " << h << ", step " << n;
-      EXPECT_NEAR(ode_steps[n].closing_speed_m_s, expected[n].closing_speed_m_s, 1e-9 * p.approach) << "h = " << h << ", step " << n;
+      EXPECT_NEAR(ode_steps[n].depth_m, expected[n].depth_m, 1e-9 * p.approach * h * 100)
+          << "h = " << h << ", step " << n;
+      EXPECT_NEAR(ode_steps[n].closing_speed_m_s, expected[n].closing_speed_m_s, 1e-9 * p.approach)
+          << "h = " << h << ", step " << n;
       EXPECT_NEAR(ode_steps[n].force_n, expected[n].force_n, 1e-9 * peak) << "h = " << h << ", step " << n;
     }
   }
@@ -182,8 +189,8 @@ TEST(OdeSoftConstraint, OdeContactLosesEnergyAtFirstOrderInTheStep) {
     const double e = -steps.back().closing_speed_m_s / p.approach;
     const double ratio = e / e_exact;
     loss.push_back(1 - ratio);
-    std::printf("h = %g s: omega h = %.4f, e = %.4f against the exact %.4f: ratio %.4f, exp(-pi omega h / 2) = %.4f\n", h,
-                omega * h, e, e_exact, ratio, std::exp(-M_PI * omega * h / 2));
+    std::printf("h = %g s: omega h = %.4f, e = %.4f against the exact %.4f: ratio %.4f, exp(-pi omega h / 2) = %.4f\n",
+                h, omega * h, e, e_exact, ratio, std::exp(-M_PI * omega * h / 2));
     EXPECT_LT(ratio, 1.0) << "backward Euler never gains energy; h = " << h;
     if (omega * h < 0.1) {
       // -ln(ratio) / (omega h) is the loss coefficient: pi / 2 for a full undamped half period

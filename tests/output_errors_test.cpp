@@ -13,14 +13,14 @@
 #include <sstream>
 #include <string>
 
-#include "reference/reference_simulator.h"
-#include "simulators/catalog.h"
+#include "command_test_support.h"
 #include "harness/records/reporters.h"
-#include "suite_test_support.h"
 #include "harness/records/run_files.h"
 #include "harness/records/run_record.h"
-#include "command_test_support.h"
 #include "harness/suite/suite.h"
+#include "reference/reference_simulator.h"
+#include "simulators/catalog.h"
+#include "suite_test_support.h"
 
 namespace ib {
 namespace output_errors_test {
@@ -108,7 +108,8 @@ TEST_F(OutputErrors, AFullDiskUnderARunsFilesNamesTheFileTheReasonAndWhatToDo) {
 TEST_F(OutputErrors, AFullDiskUnderTheSuitesTablesNamesTheTable) {
   full_disk_file("runs.jsonl");
   std::string message = output_error([&] { append_run(root_.string(), a_record()); });
-  EXPECT_EQ(message.rfind((root_ / "runs.jsonl").string() + ": cannot append to: " + kFullDiskReason, 0), 0u) << message;
+  EXPECT_EQ(message.rfind((root_ / "runs.jsonl").string() + ": cannot append to: " + kFullDiskReason, 0), 0u)
+      << message;
   fs::remove(root_ / "runs.jsonl");
   full_disk_file("runs.csv");
   message = output_error([&] { append_run(root_.string(), a_record()); });
@@ -183,7 +184,9 @@ TEST_F(OutputErrors, ARunsFolderThatCannotBeMadeStopsTheSuite) {
   fs::create_directories(root_ / "out");
   std::ofstream(root_ / "out" / "runs") << "a file where the run folders go";
   const std::string message = output_error([&] { run_suite(s); });
-  EXPECT_EQ(message.rfind(s.out + "/runs/short_free_vibration/reference/hertz: cannot create the run folder: Not a directory", 0), 0u)
+  EXPECT_EQ(message.rfind(
+                s.out + "/runs/short_free_vibration/reference/hertz: cannot create the run folder: Not a directory", 0),
+            0u)
       << message;
 }
 
@@ -198,14 +201,17 @@ TEST_F(OutputErrors, TheSuiteCommandExitsWith3AndResumesOnceThereIsRoom) {
   fs::create_directories(out);
   fs::create_symlink("/dev/full", out / "runs.csv");
   const std::string arguments = "suite " + std::string(IMPACTBENCH_TEST_DATA_DIR) +
-                                "/report_suite/short_free_vibration.toml --laws hertz,newton --jobs 1 --out " + out.string();
+                                "/report_suite/short_free_vibration.toml --laws hertz,newton --jobs 1 --out " +
+                                out.string();
   const Output full = impactbench(arguments, root_ / "log.txt");
   EXPECT_EQ(full.exit_code, 3) << full.text;
-  EXPECT_NE(full.text.find("impactbench: " + (out / "runs.csv").string() + ": cannot append to: " + kFullDiskReason +
-                           "; free space on that disk (or choose another output folder), then continue the suite with --resume"),
+  EXPECT_NE(full.text.find(
+                "impactbench: " + (out / "runs.csv").string() + ": cannot append to: " + kFullDiskReason +
+                "; free space on that disk (or choose another output folder), then continue the suite with --resume"),
             std::string::npos)
       << full.text;
-  EXPECT_EQ(test::line_count(out / "runs.jsonl"), 1u);  // the first result is in runs.jsonl, the record of what finished
+  EXPECT_EQ(test::line_count(out / "runs.jsonl"),
+            1u);  // the first result is in runs.jsonl, the record of what finished
   // room again: --resume rebuilds runs.csv from runs.jsonl and runs the rest
   fs::remove(out / "runs.csv");
   const Output resumed = impactbench(arguments + " --resume", root_ / "log.txt");

@@ -77,7 +77,7 @@ TEST(Regime, PeriodTwoWithOneImpactPerTwoPeriodsIsReadAsSuch) {
 
 TEST(Regime, NoiseBelowTheToleranceKeepsThePeriodAndAboveItMakesItIrregular) {
   EXPECT_EQ(classify_regime(orbit(3, 40, 0.004), kScale, 40, 40).period, 3);  // +-0.4 %: within 1 %
-  const Regime noisy = classify_regime(orbit(3, 40, 0.02), kScale, 40, 40);    // +-2 %
+  const Regime noisy = classify_regime(orbit(3, 40, 0.02), kScale, 40, 40);   // +-2 %
   EXPECT_EQ(noisy.kind, RegimeKind::irregular);
   EXPECT_EQ(noisy.label(), "irregular");
   EXPECT_TRUE(std::isnan(noisy.impacts_per_period));

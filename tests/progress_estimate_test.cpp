@@ -15,9 +15,9 @@ namespace progress_estimate_test {
 
 struct SyntheticJob {
   JobWork work;
-  double seconds;             // what it really takes, its process's start and files included
-  double compute_s = -1;      // of which the simulator's own time
-  double fraction_run = 1;    // of its planned steps (less: it stopped unstable)
+  double seconds;           // what it really takes, its process's start and files included
+  double compute_s = -1;    // of which the simulator's own time
+  double fraction_run = 1;  // of its planned steps (less: it stopped unstable)
 };
 
 // A suite like the default study: per scenario and law a beam and a chain reference (adaptive, in
@@ -51,7 +51,9 @@ std::vector<SyntheticJob> default_study_like() {
             const double fraction = std::string(engine) == "diverging_engine" && dt > 7.5e-5 ? 0.05 : 1.0;
             const double compute_s = cost_per_step_s * steps * fraction * next_scatter();
             const std::string kind = std::string(engine) + "/" + path;
-            jobs.push_back({{kind, engine, steps, true, kind + "/dt=" + std::to_string(dt)}, compute_s + 0.2, compute_s,
+            jobs.push_back({{kind, engine, steps, true, kind + "/dt=" + std::to_string(dt)},
+                            compute_s + 0.2,
+                            compute_s,
                             fraction});
           }
         }
@@ -84,14 +86,13 @@ std::vector<Check> run_pool(const std::vector<SyntheticJob>& jobs, int workers) 
   while (!pending.empty() || !running.empty()) {
     while (!pending.empty() && static_cast<int>(running.size()) < workers) {
       // References are a phase of their own: engine jobs wait for them (as in the suite).
-      const bool references_left = std::any_of(pending.begin(), pending.end(),
-                                               [&](std::size_t i) { return !jobs[i].work.in_steps; });
+      const bool references_left =
+          std::any_of(pending.begin(), pending.end(), [&](std::size_t i) { return !jobs[i].work.in_steps; });
       std::vector<std::size_t> phase;
       for (std::size_t i : pending)
         if (jobs[i].work.in_steps != references_left) phase.push_back(i);
-      if (references_left && std::any_of(running.begin(), running.end(), [&](const Running& r) {
-            return jobs[r.job].work.in_steps;
-          }))
+      if (references_left &&
+          std::any_of(running.begin(), running.end(), [&](const Running& r) { return jobs[r.job].work.in_steps; }))
         break;
       std::vector<JobWork> work;
       for (std::size_t i : phase) work.push_back(jobs[i].work);
@@ -168,9 +169,8 @@ TEST(ProgressEstimate, StartsEachKindOnceBeforeTheCostliestFirst) {
   estimate.plan("m1", {"engine_a/", "engine_a", 1e5, true});
   estimate.start("m1", 0);
   estimate.finish("m1", 1.0);
-  const std::vector<JobWork> pending = {{"engine_a/", "engine_a", 1e5, true},
-                                        {"engine_a/", "engine_a", 4e5, true},
-                                        {"engine_b/", "engine_b", 1e5, true}};
+  const std::vector<JobWork> pending = {
+      {"engine_a/", "engine_a", 1e5, true}, {"engine_a/", "engine_a", 4e5, true}, {"engine_b/", "engine_b", 1e5, true}};
   EXPECT_EQ(next_to_start(estimate, pending), 2u);  // engine_b: not measured yet
   estimate.plan("o1", pending[2]);
   estimate.start("o1", 1.0);

@@ -39,7 +39,8 @@ TEST(ProvenanceFile, NamesTheBuildItsCommitCompilerAndFlags) {
   EXPECT_TRUE(hex || commit == "unknown") << commit;
   EXPECT_TRUE(build["tracked_files_modified"].is_boolean());
 #if defined(__GNUC__) && !defined(__clang__)
-  EXPECT_EQ(build["compiler"].get<std::string>().rfind("GNU " + std::to_string(__GNUC__) + ".", 0), 0u) << build["compiler"];
+  EXPECT_EQ(build["compiler"].get<std::string>().rfind("GNU " + std::to_string(__GNUC__) + ".", 0), 0u)
+      << build["compiler"];
 #endif
   EXPECT_FALSE(build["build_type"].get<std::string>().empty());
 #ifdef NDEBUG

@@ -73,8 +73,10 @@ TEST(ReferenceConvergence, MoreModesChangeAnImpactLessAndLess) {
   }
   auto duration = [](const ContactEvent& e) { return e.end_time_s - e.onset_time_s; };
   for (std::size_t i = 1; i + 1 < first.size(); ++i) {
-    EXPECT_LT(std::abs(duration(first[i + 1]) - duration(first[i])), std::abs(duration(first[i]) - duration(first[i - 1])));
-    EXPECT_LT(std::abs(first[i + 1].peak_force_n - first[i].peak_force_n), std::abs(first[i].peak_force_n - first[i - 1].peak_force_n));
+    EXPECT_LT(std::abs(duration(first[i + 1]) - duration(first[i])),
+              std::abs(duration(first[i]) - duration(first[i - 1])));
+    EXPECT_LT(std::abs(first[i + 1].peak_force_n - first[i].peak_force_n),
+              std::abs(first[i].peak_force_n - first[i - 1].peak_force_n));
   }
   EXPECT_LT(std::abs(duration(first[3]) / duration(first[2]) - 1), 2e-3);  // 20 and 40 modes agree
 }

@@ -31,17 +31,20 @@ ReferenceSettings fine_grid_only() {
 }
 
 // The whole run with one output sample at its end: the events are what is compared.
-ReferenceSolution solve(const ModalModel& model, const ModalState& x0, double duration_s, const ReferenceSettings& settings) {
+ReferenceSolution solve(const ModalModel& model, const ModalState& x0, double duration_s,
+                        const ReferenceSettings& settings) {
   return solve_reference(model, x0, duration_s, {duration_s, duration_s, 1}, settings);
 }
 
 // The same onsets: as many, each within the tolerance.
-void expect_same_onsets(const std::vector<ContactEvent>& a, const std::vector<ContactEvent>& b, const std::string& what) {
+void expect_same_onsets(const std::vector<ContactEvent>& a, const std::vector<ContactEvent>& b,
+                        const std::string& what) {
   ASSERT_EQ(a.size(), b.size()) << what << ": contact episodes, bounded steps against the fine grid";
   for (std::size_t i = 0; i < a.size(); ++i) {
-    const double closing_m = std::abs(a[i].onset_time_s - b[i].onset_time_s) * std::max(b[i].approach_velocity_m_s, 1e-3);
-    EXPECT_LE(closing_m, kOnsetTolerance_m) << what << ": onset " << i << " at " << b[i].onset_time_s << " s against "
-                                            << a[i].onset_time_s << " s";
+    const double closing_m =
+        std::abs(a[i].onset_time_s - b[i].onset_time_s) * std::max(b[i].approach_velocity_m_s, 1e-3);
+    EXPECT_LE(closing_m, kOnsetTolerance_m)
+        << what << ": onset " << i << " at " << b[i].onset_time_s << " s against " << a[i].onset_time_s << " s";
   }
 }
 
@@ -102,8 +105,9 @@ TEST(ReferenceEventSearch, StiffAndExtremeScenariosHaveTheFineGridsOnsets) {
         ASSERT_EQ(run.status, RunStatus::ok) << path;
         const std::string what = path + " " + to_string(law);
         // from the start: the first onset
-        const double first_end_s = run.trajectory.events.empty() ? s.duration_s
-                                                                 : std::min(s.duration_s, run.trajectory.events[0].onset_time_s + 1e-3);
+        const double first_end_s = run.trajectory.events.empty()
+                                       ? s.duration_s
+                                       : std::min(s.duration_s, run.trajectory.events[0].onset_time_s + 1e-3);
         auto first_onsets = [&](const ReferenceSolution& r, double after_s) {
           std::vector<ContactEvent> onsets;
           for (const ContactEvent& e : r.trajectory.events)
@@ -111,14 +115,20 @@ TEST(ReferenceEventSearch, StiffAndExtremeScenariosHaveTheFineGridsOnsets) {
           return onsets;
         };
         expect_same_onsets(first_onsets(solve(model, x0, first_end_s, {}), -1),
-                           first_onsets(solve(model, x0, first_end_s, fine_grid_only()), -1), what + ", from the start");
+                           first_onsets(solve(model, x0, first_end_s, fine_grid_only()), -1),
+                           what + ", from the start");
         // from every free flight's start: its onset (the next one the run found, or none)
         for (const FlightStart& start : run.flight_starts) {
           double next_s = s.duration_s;
           for (const ContactEvent& e : run.trajectory.events)
-            if (e.onset_time_s > start.t_s) { next_s = std::min(s.duration_s, e.onset_time_s + 1e-3); break; }
-          const ReferenceSolution bounded = solve_reference_after_contact(model, start, next_s, {next_s, next_s, 1}, {});
-          const ReferenceSolution fine = solve_reference_after_contact(model, start, next_s, {next_s, next_s, 1}, fine_grid_only());
+            if (e.onset_time_s > start.t_s) {
+              next_s = std::min(s.duration_s, e.onset_time_s + 1e-3);
+              break;
+            }
+          const ReferenceSolution bounded =
+              solve_reference_after_contact(model, start, next_s, {next_s, next_s, 1}, {});
+          const ReferenceSolution fine =
+              solve_reference_after_contact(model, start, next_s, {next_s, next_s, 1}, fine_grid_only());
           expect_same_onsets(first_onsets(bounded, start.t_s), first_onsets(fine, start.t_s),
                              what + ", from the flight at " + std::to_string(start.t_s) + " s");
           ++flights;

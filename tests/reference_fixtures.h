@@ -5,9 +5,9 @@
 #include <cmath>
 #include <string>
 
+#include "model/scenario_toml.h"
 #include "physics/modal_model.h"
 #include "reference/reference_solver.h"
-#include "model/scenario_toml.h"
 
 namespace ib::testing {
 

@@ -33,7 +33,8 @@ void expect_peaks_between_samples(const char* scenario, ContactLaw law, const Wi
   const ReferenceSolution coarse = solve_reference(model, x0, w.end_s, {w.start_s, w.end_s, w.coarse_rate_hz}, {});
   ReferenceSettings samples_only;
   samples_only.peaks_between_samples = false;
-  const ReferenceSolution dense = solve_reference(model, x0, w.end_s, {w.start_s, w.end_s, w.dense_rate_hz}, samples_only);
+  const ReferenceSolution dense =
+      solve_reference(model, x0, w.end_s, {w.start_s, w.end_s, w.dense_rate_hz}, samples_only);
   ASSERT_EQ(coarse.status, RunStatus::ok) << coarse.reason;
   ASSERT_EQ(dense.status, RunStatus::ok) << dense.reason;
   ASSERT_FALSE(coarse.trajectory.events.empty()) << scenario << ": the stretch should hold impacts";
@@ -55,7 +56,7 @@ void expect_peaks_between_samples(const char* scenario, ContactLaw law, const Wi
           << scenario << ", frame " << f + 1 << " at " << c.time_s[k] << " s: the two runs are one motion";
       const double peak = c.peak_abs_acceleration_m_s2[f][k];
       EXPECT_GE(peak, dense_peak - 1e-9 * largest) << scenario << ", frame " << f + 1 << ", interval ending "
-                                                  << c.time_s[k] << " s: a peak between the samples was missed";
+                                                   << c.time_s[k] << " s: a peak between the samples was missed";
       EXPECT_LE(peak, dense_peak + miss) << scenario << ", frame " << f + 1 << ", interval ending " << c.time_s[k]
                                          << " s: larger than anything the dense samples approach";
       const double ends = std::max(std::abs(c.acceleration_m_s2[f][k - 1]), std::abs(c.acceleration_m_s2[f][k]));

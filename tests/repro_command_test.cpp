@@ -18,7 +18,9 @@ namespace repro_command_test {
 namespace fs = std::filesystem;
 using Output = ib::test::CommandOutput;
 
-Output impactbench(const std::string& arguments) { return ib::test::run_impactbench_logged_as(arguments, "impactbench_repro_"); }
+Output impactbench(const std::string& arguments) {
+  return ib::test::run_impactbench_logged_as(arguments, "impactbench_repro_");
+}
 fs::path fresh_folder(const std::string& name) { return ib::test::fresh_command_folder("impactbench_repro_", name); }
 
 nlohmann::json summary_of(const fs::path& run) { return nlohmann::json::parse(std::ifstream(run / "summary.json")); }
@@ -27,8 +29,8 @@ nlohmann::json summary_of(const fs::path& run) { return nlohmann::json::parse(st
 void expect_same_run(const fs::path& original, const fs::path& rerun) {
   const nlohmann::json a = summary_of(original), b = summary_of(rerun);
   for (const char* key : {"verdict", "impacts", "frame1_sensor_peak_acceleration_g", "frame2_true_peak_acceleration_g",
-                          "contact_duration_mean_s", "mean_restitution", "time_step_s", "window_start_s", "window_end_s",
-                          "initial_displacement_offset_m"})
+                          "contact_duration_mean_s", "mean_restitution", "time_step_s", "window_start_s",
+                          "window_end_s", "initial_displacement_offset_m"})
     EXPECT_EQ(a[key], b[key]) << key;
 }
 
@@ -51,7 +53,8 @@ TEST(ReproCommand, ARunsReproRerunsItToTheSameNumbers) {
   const nlohmann::json record = nlohmann::json::parse(std::ifstream(out / "repro.json"));
   EXPECT_EQ(record["engine"], engine);
   EXPECT_EQ(record["verdict"], summary_of(dir / "run")["verdict"]);
-  if (!record["model_file"].get<std::string>().empty()) EXPECT_TRUE(fs::exists(out / record["model_file"].get<std::string>()));
+  if (!record["model_file"].get<std::string>().empty())
+    EXPECT_TRUE(fs::exists(out / record["model_file"].get<std::string>()));
   expect_same_run(dir / "run", rerun(out));
   fs::remove_all(dir);
   fs::remove_all(out);
@@ -60,8 +63,9 @@ TEST(ReproCommand, ARunsReproRerunsItToTheSameNumbers) {
 TEST(ReproCommand, AnEnsemblesDisplacedStartIsRerunFromItsOwnStart) {
   const std::string engine = ib::test::command_engines().front();
   const fs::path dir = fresh_folder("suite"), out = fresh_folder("member");
-  const Output suite = impactbench("suite " + ib::test::paper_scenario("free_vibration") + " --engines reference," + engine +
-                                   " --laws hertz --dt 5e-5 --duration 0.5 --ensemble 2 --jobs 2 --out " + dir.string());
+  const Output suite =
+      impactbench("suite " + ib::test::paper_scenario("free_vibration") + " --engines reference," + engine +
+                  " --laws hertz --dt 5e-5 --duration 0.5 --ensemble 2 --jobs 2 --out " + dir.string());
   ASSERT_TRUE(suite.exit_code == 0 || suite.exit_code == 1) << suite.text;
   fs::path member;
   for (const auto& entry : fs::recursive_directory_iterator(dir / "runs"))
@@ -81,11 +85,13 @@ TEST(ReproCommand, AFolderThatIsNoRunsIsRefusedAndNamed) {
   fs::create_directories(dir);
   const Output empty = impactbench("repro " + dir.string() + " " + out.string());
   EXPECT_EQ(empty.exit_code, 2) << empty.text;
-  EXPECT_NE(empty.text.find(dir.string() + ": not a run's folder: it has no summary.json"), std::string::npos) << empty.text;
+  EXPECT_NE(empty.text.find(dir.string() + ": not a run's folder: it has no summary.json"), std::string::npos)
+      << empty.text;
   std::ofstream(dir / "summary.json") << "{ cut";
   const Output damaged = impactbench("repro " + dir.string() + " " + out.string());
   EXPECT_EQ(damaged.exit_code, 2) << damaged.text;
-  EXPECT_NE(damaged.text.find((dir / "summary.json").string() + ": not a run's record"), std::string::npos) << damaged.text;
+  EXPECT_NE(damaged.text.find((dir / "summary.json").string() + ": not a run's record"), std::string::npos)
+      << damaged.text;
   EXPECT_FALSE(fs::exists(out));
   fs::remove_all(dir);
 }

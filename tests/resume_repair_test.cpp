@@ -34,9 +34,12 @@ TEST(ResumeRepair, RowsAreLaidOutByTheHeaderWhateverTheKeyOrder) {
   fs::remove_all(folder);
   fs::create_directories(folder);
   std::ofstream(folder / "runs.jsonl")
-      << R"({"verdict":"ok","impacts":3,"job_id":"s/reference/hertz","scenario":"s"})" "\n"
-      << R"({"job_id":"s/reference/newton","scenario":"s"})" "\n"  // no verdict: not a record
-      << R"({"job_id":"s/engine_a/hertz","verdict":"unstable","reason":"a, b","law":"hertz"})" "\n";
+      << R"({"verdict":"ok","impacts":3,"job_id":"s/reference/hertz","scenario":"s"})"
+         "\n"
+      << R"({"job_id":"s/reference/newton","scenario":"s"})"
+         "\n"  // no verdict: not a record
+      << R"({"job_id":"s/engine_a/hertz","verdict":"unstable","reason":"a, b","law":"hertz"})"
+         "\n";
   for (const char* id : {"s/reference/hertz", "s/engine_a/hertz"}) {  // a run that ran has its folder
     fs::create_directories(folder / "runs" / id);
     std::ofstream(folder / "runs" / id / "summary.json") << "{}\n";

@@ -55,7 +55,8 @@ TEST(Rig, ExplicitHingeStepLimitIsSetByTheFastestChainMode) {
   // modal damping: zeta in every mode, 2 (sqrt(1 + zeta^2) - zeta) / omega_max
   const RigSpec modal = build_rig(s, ContactLaw::hertz, 8, ChainDamping::modal);
   double omega_max = 0;
-  for (const FrameRig& frame : modal.frames) omega_max = std::max(omega_max, chain_modes(frame.chain).omega_rad_s.maxCoeff());
+  for (const FrameRig& frame : modal.frames)
+    omega_max = std::max(omega_max, chain_modes(frame.chain).omega_rad_s.maxCoeff());
   const double zeta = s.frames[0].damping_ratio;
   ASSERT_EQ(zeta, s.frames[1].damping_ratio);
   EXPECT_NEAR(explicit_hinge_step_limit_s(modal), 2 * (std::sqrt(1 + zeta * zeta) - zeta) / omega_max, 1e-15);
@@ -77,7 +78,8 @@ double energy_ratio_after_steps(const FrameRig& frame, double step_s, bool impli
   Eigen::VectorXd q = static_tip_load_angles(frame.chain, 1.0), w = Eigen::VectorXd::Zero(q.size());
   auto energy = [&] { return 0.5 * w.dot(m.mass * w) + 0.5 * q.dot(m.stiffness * q); };
   const double start = energy();
-  const Eigen::LDLT<Eigen::MatrixXd> lhs(implicit_springs ? Eigen::MatrixXd(m.mass + step_s * step_s * m.stiffness) : m.mass);
+  const Eigen::LDLT<Eigen::MatrixXd> lhs(implicit_springs ? Eigen::MatrixXd(m.mass + step_s * step_s * m.stiffness)
+                                                          : m.mass);
   for (int n = 0; n < 400; ++n) {
     const Eigen::VectorXd held_damping = -m.damping * w;
     // (M + h^2 K) w' = M w + h (-C w - K q) with the spring at the step's end (q' = q + h w'); M w' = ... without

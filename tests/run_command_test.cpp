@@ -21,19 +21,39 @@ namespace fs = std::filesystem;
 
 using Output = ib::test::CommandOutput;
 
-Output impactbench(const std::string& arguments) { return ib::test::run_impactbench_logged_as(arguments, "impactbench_cli_"); }
+Output impactbench(const std::string& arguments) {
+  return ib::test::run_impactbench_logged_as(arguments, "impactbench_cli_");
+}
 std::string paper(const std::string& name) { return ib::test::paper_scenario(name); }
 fs::path fresh_folder(const std::string& name) { return ib::test::fresh_command_folder("impactbench_cli_", name); }
 
 TEST(RunCommand, WritesSummarySeriesAndEvents) {
   const fs::path dir = fresh_folder("run");
-  const Output out = impactbench("run " + paper("free_vibration") + " --engine reference --law hertz --out " + dir.string());
+  const Output out =
+      impactbench("run " + paper("free_vibration") + " --engine reference --law hertz --out " + dir.string());
   ASSERT_EQ(out.exit_code, 0) << out.text;
   const auto summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
-  for (const char* key : {"scenario", "engine", "law", "verdict", "reason", "window_start_s", "window_end_s", "impacts",
-                          "raw_onsets", "impacts_per_cycle", "contact_duration_mean_s", "frame1_sensor_peak_acceleration_g",
-                          "frame1_true_peak_acceleration_g", "frame2_true_peak_acceleration_g", "wall_time_s", "cpu_time_s",
-                          "steps", "wall_time_per_simulated_s", "output_rate_hz", "options", "diagnostics"})
+  for (const char* key : {"scenario",
+                          "engine",
+                          "law",
+                          "verdict",
+                          "reason",
+                          "window_start_s",
+                          "window_end_s",
+                          "impacts",
+                          "raw_onsets",
+                          "impacts_per_cycle",
+                          "contact_duration_mean_s",
+                          "frame1_sensor_peak_acceleration_g",
+                          "frame1_true_peak_acceleration_g",
+                          "frame2_true_peak_acceleration_g",
+                          "wall_time_s",
+                          "cpu_time_s",
+                          "steps",
+                          "wall_time_per_simulated_s",
+                          "output_rate_hz",
+                          "options",
+                          "diagnostics"})
     EXPECT_TRUE(summary.contains(key)) << key;
   EXPECT_EQ(summary["verdict"], "ok");
   EXPECT_EQ(summary["scenario"], "free_vibration");
@@ -87,7 +107,8 @@ TEST(RunCommand, RecordsTheStepAndChainItUsedAndRunsOnce) {
 TEST(RunCommand, AWindowInTheStartUpTransientWarns) {
   const fs::path dir = fresh_folder("transient");
   // 30 s of the published 100 s keep the test short: the rule reads the window's start, not the run's length
-  Output out = impactbench("run " + paper("pre_resonance") + " --duration 30 --window 25 --series none --out " + dir.string());
+  Output out =
+      impactbench("run " + paper("pre_resonance") + " --duration 30 --window 25 --series none --out " + dir.string());
   ASSERT_EQ(out.exit_code, 0) << out.text;
   EXPECT_NE(out.text.find("warning: pre_resonance: the scoring window starts at 5 s, before the start-up "
                           "transient's end (22.9 s"),
@@ -96,7 +117,9 @@ TEST(RunCommand, AWindowInTheStartUpTransientWarns) {
   // and recorded with the run's results (docs/results.md#warnings), once
   auto summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
   ASSERT_EQ(summary["warnings"].size(), 1u) << summary["warnings"].dump();
-  EXPECT_EQ(summary["warnings"][0].get<std::string>().rfind("pre_resonance: the scoring window starts at 5 s, before", 0), 0u);
+  EXPECT_EQ(
+      summary["warnings"][0].get<std::string>().rfind("pre_resonance: the scoring window starts at 5 s, before", 0),
+      0u);
   out = impactbench("run " + paper("pre_resonance") + " --duration 30 --window 5 --series none --out " + dir.string());
   ASSERT_EQ(out.exit_code, 0) << out.text;
   EXPECT_EQ(out.text.find("warning"), std::string::npos) << out.text;

@@ -71,13 +71,15 @@ std::string zlib_text(const std::string& gz) {
 
 // zcat's exit status as well as its output: it writes what it could decode of a file cut short.
 bool zcat_reads_as(const std::string& gz, const std::string& plain) {
-  return std::system(("zcat '" + gz + "' > '" + gz + ".text' && cmp -s '" + gz + ".text' '" + plain + "'").c_str()) == 0;
+  return std::system(("zcat '" + gz + "' > '" + gz + ".text' && cmp -s '" + gz + ".text' '" + plain + "'").c_str()) ==
+         0;
 }
 
 bool python_gzip_reads_as(const std::string& gz, const std::string& plain) {
   const std::string script =
       R"(import gzip, sys; sys.exit(gzip.open(sys.argv[1]).read() != open(sys.argv[2], "rb").read()))";
-  return std::system((std::string(IMPACTBENCH_PYTHON) + " -c '" + script + "' '" + gz + "' '" + plain + "'").c_str()) == 0;
+  return std::system((std::string(IMPACTBENCH_PYTHON) + " -c '" + script + "' '" + gz + "' '" + plain + "'").c_str()) ==
+         0;
 }
 
 TEST_F(RunFilesGzip, AnEmptyTableIsItsHeaderInEveryReader) {
@@ -102,7 +104,7 @@ TEST_F(RunFilesGzip, ASeriesOfSeveralMegabytesReadsBackEqualInEveryReader) {
   const std::string plain = read_text_file(path("series.csv"));
   ASSERT_GT(plain.size(), 4u << 20);
   EXPECT_LT(fs::file_size(path("series.csv.gz")), plain.size() / 2);  // compressed, not stored
-  EXPECT_TRUE(zlib_text(path("series.csv.gz")) == plain);  // not EXPECT_EQ, which prints both texts (MB)
+  EXPECT_TRUE(zlib_text(path("series.csv.gz")) == plain);             // not EXPECT_EQ, which prints both texts (MB)
   EXPECT_TRUE(zcat_reads_as(path("series.csv.gz"), path("series.csv")));
   EXPECT_TRUE(python_gzip_reads_as(path("series.csv.gz"), path("series.csv")));
 
@@ -117,7 +119,8 @@ TEST_F(RunFilesGzip, ASeriesOfSeveralMegabytesReadsBackEqualInEveryReader) {
     EXPECT_TRUE(from_gzip.displacement_m[f] == from_plain.displacement_m[f]) << "frame " << f + 1;
     EXPECT_TRUE(from_gzip.velocity_m_s[f] == from_plain.velocity_m_s[f]) << "frame " << f + 1;
     EXPECT_TRUE(from_gzip.acceleration_m_s2[f] == from_plain.acceleration_m_s2[f]) << "frame " << f + 1;
-    EXPECT_TRUE(from_gzip.peak_abs_acceleration_m_s2[f] == from_plain.peak_abs_acceleration_m_s2[f]) << "frame " << f + 1;
+    EXPECT_TRUE(from_gzip.peak_abs_acceleration_m_s2[f] == from_plain.peak_abs_acceleration_m_s2[f])
+        << "frame " << f + 1;
   }
   EXPECT_TRUE(from_gzip.contact_force_n == from_plain.contact_force_n);
   EXPECT_TRUE(from_gzip.peak_contact_force_n == from_plain.peak_contact_force_n);

@@ -56,9 +56,9 @@ ScenarioError error_from(Load load) {
 
 struct PaperCase {
   std::string name;
-  bool forced;              // motor present
-  double speed_ratio;       // motor speed / f_1
-  double initial_tip_m;     // frame 1's initial tip displacement
+  bool forced;           // motor present
+  double speed_ratio;    // motor speed / f_1
+  double initial_tip_m;  // frame 1's initial tip displacement
   double duration_s;
   double window_s;
 };
@@ -242,65 +242,111 @@ struct MalformedCase {
 void PrintTo(const MalformedCase& c, std::ostream* os) { *os << c.file; }
 
 const std::vector<MalformedCase> kMalformed = {
-    {"unknown_key", 13, "frame1.colums",
+    {"unknown_key",
+     13,
+     "frame1.colums",
      {"frame1.colums: unknown key; allowed keys in [frame1]: columns, youngs_modulus_pa, density_kg_m3, "
       "column_thickness_m, column_width_m, length_m, tip_mass_kg, damping_ratio"}},
-    {"unknown_table", 54, "output",
+    {"unknown_table",
+     54,
+     "output",
      {"output: unknown table; allowed tables: [scenario], [frame1], [frame2], [rig], [motor], [initial], "
       "[contact]"}},
-    {"missing_key", 12, "frame1.tip_mass_kg",
+    {"missing_key",
+     12,
+     "frame1.tip_mass_kg",
      {"frame1.tip_mass_kg: missing required key; allowed: 0 <= x <= 10000 (tip mass [kg])"}},
     {"missing_table", 1, "rig", {"rig: missing required table [rig]"}},
-    {"wrong_type_string", 14, "frame1.youngs_modulus_pa",
+    {"wrong_type_string",
+     14,
+     "frame1.youngs_modulus_pa",
      {"frame1.youngs_modulus_pa = \"200e9\": wrong type (string); expected a number with 100000 <= x <= 1.5e+12"}},
-    {"float_for_integer", 23, "frame2.columns",
-     {"frame2.columns = 2.5: wrong type (float); expected an integer >= 1"}},
-    {"out_of_range_columns", 13, "frame1.columns",
+    {"float_for_integer", 23, "frame2.columns", {"frame2.columns = 2.5: wrong type (float); expected an integer >= 1"}},
+    {"out_of_range_columns",
+     13,
+     "frame1.columns",
      {"frame1.columns = 0: out of range; allowed: >= 1 (number of columns"}},
-    {"out_of_range_tip_mass", 19, "frame1.tip_mass_kg",
+    {"out_of_range_tip_mass",
+     19,
+     "frame1.tip_mass_kg",
      {"frame1.tip_mass_kg = -1: out of range; allowed: 0 <= x <= 10000 (tip mass [kg])"}},
-    {"out_of_range_damping_ratio", 30, "frame2.damping_ratio",
+    {"out_of_range_damping_ratio",
+     30,
+     "frame2.damping_ratio",
      {"frame2.damping_ratio = 1.0: out of range; allowed: 0 <= x < 1 (damping ratio"}},
     {"out_of_range_gap", 33, "rig.gap_m", {"rig.gap_m = -1.0e-3: out of range; allowed: 0 <= x <= 0.1 (surface gap"}},
-    {"out_of_range_hertz_exponent", 42, "contact.hertz.exponent",
+    {"out_of_range_hertz_exponent",
+     42,
+     "contact.hertz.exponent",
      {"contact.hertz.exponent = 3.5: out of range; allowed: 1 <= x <= 3 (Hertz exponent n [-])"}},
-    {"out_of_range_newton_restitution", 52, "contact.newton.restitution",
+    {"out_of_range_newton_restitution",
+     52,
+     "contact.newton.restitution",
      {"contact.newton.restitution = 1.2: out of range; allowed: 0 <= x <= 1 (coefficient of restitution"}},
-    {"out_of_range_initial_displacement", 37, "initial.frame1_tip_displacement_m",
+    {"out_of_range_initial_displacement",
+     37,
+     "initial.frame1_tip_displacement_m",
      {"initial.frame1_tip_displacement_m = -0.05: out of range; allowed: |x| <= frame1.length_m / 10 = 0.03",
       "small-deflection theory"}},
-    {"motor_both_speeds", 39, "motor.frequency_hz",
+    {"motor_both_speeds",
+     39,
+     "motor.frequency_hz",
      {"motor.frequency_hz = 6.95: conflicts with motor.speed_ratio_to_f1 = 1.00 (line 38)",
       "allowed: exactly one of motor.speed_ratio_to_f1 0 < x <= 100", "or motor.frequency_hz 0 < x <= 10000"}},
-    {"motor_no_speed", 35, "motor",
-     {"motor: the motor speed is missing",
-      "allowed: exactly one of motor.speed_ratio_to_f1 0 < x <= 100", "or motor.frequency_hz 0 < x <= 10000"}},
-    {"hertz_damping_and_restitution", 45, "contact.hertz.damping",
+    {"motor_no_speed",
+     35,
+     "motor",
+     {"motor: the motor speed is missing", "allowed: exactly one of motor.speed_ratio_to_f1 0 < x <= 100",
+      "or motor.frequency_hz 0 < x <= 10000"}},
+    {"hertz_damping_and_restitution",
+     45,
+     "contact.hertz.damping",
      {"contact.hertz.damping = 1.01e11: ambiguous together with contact.hertz.restitution = 0.8 (line 43)",
       "allowed: either contact.hertz.damping"}},
-    {"hertz_missing_approach_velocity", 40, "contact.hertz.approach_velocity_m_s",
+    {"hertz_missing_approach_velocity",
+     40,
+     "contact.hertz.approach_velocity_m_s",
      {"contact.hertz.approach_velocity_m_s: missing required key; allowed: 0 < x <= 100 (mean approach velocity",
       "only when contact.hertz.damping is given"}},
     {"syntax_error", 18, "", {"TOML syntax error: "}},
-    {"non_finite_nan", 24, "frame2.youngs_modulus_pa",
+    {"non_finite_nan",
+     24,
+     "frame2.youngs_modulus_pa",
      {"frame2.youngs_modulus_pa = nan: not a finite number; allowed: 100000 <= x <= 1.5e+12 (Young's modulus E [Pa]"}},
-    {"non_finite_inf", 41, "contact.hertz.stiffness",
+    {"non_finite_inf",
+     41,
+     "contact.hertz.stiffness",
      {"contact.hertz.stiffness = inf: not a finite number; allowed: 0 < x <= 1e+15 (Hertz stiffness k_h [N/m^n])"}},
-    {"empty_name", 6, "scenario.name",
+    {"empty_name",
+     6,
+     "scenario.name",
      {"scenario.name = \"\": not a valid name; allowed: 1 to 64 characters of a-z, 0-9 and _"}},
-    {"window_longer_than_duration", 9, "scenario.scoring_window_s",
+    {"window_longer_than_duration",
+     9,
+     "scenario.scoring_window_s",
      {"scenario.scoring_window_s = 150.0: out of range; allowed: 0 < x <= scenario.duration_s = 100"}},
     // plausibility (issue 20): each value within its type, none within physics
-    {"out_of_range_youngs_modulus", 14, "frame1.youngs_modulus_pa",
+    {"out_of_range_youngs_modulus",
+     14,
+     "frame1.youngs_modulus_pa",
      {"frame1.youngs_modulus_pa = 1e300: out of range; allowed: 100000 <= x <= 1.5e+12"}},
-    {"not_slender_column", 16, "frame1.column_thickness_m",
+    {"not_slender_column",
+     16,
+     "frame1.column_thickness_m",
      {"frame1.column_thickness_m = 1.0: out of range; allowed: x <= frame1.length_m / 10 = 0.03", "slender column"}},
-    {"frequency_too_low", 12, "frame1",
+    {"frequency_too_low",
+     12,
+     "frame1",
      {"frame1: its first natural frequency would be about 0.0049", "frame1.youngs_modulus_pa = 100000",
       "allowed: 0.05 to 5000 Hz"}},
     {"name_too_long", 6, "scenario.name", {"not a valid name; allowed: 1 to 64 characters of a-z, 0-9 and _"}},
-    {"duration_too_long", 8, "scenario.duration_s", {"scenario.duration_s = 1e300: out of range; allowed: 0 < x <= 3600"}},
-    {"boolean_as_string", 49, "contact.viscoelastic.clip_tension",
+    {"duration_too_long",
+     8,
+     "scenario.duration_s",
+     {"scenario.duration_s = 1e300: out of range; allowed: 0 < x <= 3600"}},
+    {"boolean_as_string",
+     49,
+     "contact.viscoelastic.clip_tension",
      {"contact.viscoelastic.clip_tension = \"no\": wrong type (string); expected a boolean (true or false)"}},
 };
 
@@ -340,10 +386,8 @@ TEST(MalformedSyntax, GivesLineAndColumn) {
   const ScenarioError error = error_from([&] { load_scenario(path); });
   EXPECT_EQ(error.line(), 18);
   EXPECT_GT(error.column(), 0);
-  EXPECT_EQ(std::string(error.what()).rfind(path + ":18:" + std::to_string(error.column()) +
-                                                ": TOML syntax error: ",
-                                            0),
-            0u)
+  EXPECT_EQ(
+      std::string(error.what()).rfind(path + ":18:" + std::to_string(error.column()) + ": TOML syntax error: ", 0), 0u)
       << error.what();
 }
 
@@ -359,9 +403,10 @@ TEST(MalformedText, NoContactLaw) {
   const ScenarioError error = error_from([&] { parse_scenario(out, "x.toml"); });
   EXPECT_EQ(error.line(), 39);
   EXPECT_EQ(error.key(), "contact");
-  EXPECT_NE(std::string(error.what()).find("x.toml:39: contact: no contact law given; allowed: at least one "
-                                           "of the tables [contact.hertz], [contact.viscoelastic], "
-                                           "[contact.newton]"),
+  EXPECT_NE(std::string(error.what())
+                .find("x.toml:39: contact: no contact law given; allowed: at least one "
+                      "of the tables [contact.hertz], [contact.viscoelastic], "
+                      "[contact.newton]"),
             std::string::npos)
       << error.what();
 }
@@ -399,8 +444,7 @@ TEST(MalformedText, EmptyDocumentMissesTheScenarioTable) {
   const ScenarioError error = error_from([&] { parse_scenario("# nothing here\n", "x.toml"); });
   EXPECT_EQ(error.line(), 1);
   EXPECT_EQ(error.key(), "scenario");
-  EXPECT_NE(std::string(error.what()).find("x.toml:1: scenario: missing required table [scenario]"),
-            std::string::npos)
+  EXPECT_NE(std::string(error.what()).find("x.toml:1: scenario: missing required table [scenario]"), std::string::npos)
       << error.what();
 }
 
@@ -417,8 +461,7 @@ TEST(UnreadableScenario, MissingFileNamesThePath) {
 
 TEST(UnreadableScenario, FolderNamesThePath) {
   const ScenarioError error = error_from([&] { load_scenario(kPaperDir); });
-  EXPECT_EQ(std::string(error.what()).rfind(kPaperDir + ": cannot read scenario file: ", 0), 0u)
-      << error.what();
+  EXPECT_EQ(std::string(error.what()).rfind(kPaperDir + ": cannot read scenario file: ", 0), 0u) << error.what();
 }
 
 }  // namespace scenario_loading_test

@@ -66,8 +66,7 @@ TEST(Metrics, VelocityJumpOffTheSensorGridIsSharedByTheTwoWindowsItsRampSpans) {
     velocity_change += sensor.acceleration_m_s2[k] / fs;
   }
   EXPECT_NEAR(velocity_change, kJump, 1e-12);
-  EXPECT_NEAR(compute_metrics(t, window(0, 1)).frames[0].sensor_peak_acceleration_g, 0.84375 * kJump * fs / g,
-              1e-9);
+  EXPECT_NEAR(compute_metrics(t, window(0, 1)).frames[0].sensor_peak_acceleration_g, 0.84375 * kJump * fs / g, 1e-9);
 }
 
 // The window average of a = A sin(w t) over [t - T/2, t + T/2] is a(t) sin(w T/2) / (w T/2).

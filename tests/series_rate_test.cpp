@@ -4,10 +4,10 @@
 // series first), while its file reads back at 2048 Hz with the same largest peaks.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 #include "harness/jobs/run_job.h"
 #include "harness/records/run_files.h"
@@ -29,7 +29,8 @@ Trajectory nine_samples() {
       t.displacement_m[f].push_back(1e-4 * k);
       t.velocity_m_s[f].push_back(0.01 * k);
       t.acceleration_m_s2[f].push_back(k);
-      t.peak_abs_acceleration_m_s2[f].push_back(k % 2 == 1 ? 100.0 * (k + f) : 1.0);  // the peaks fall between kept samples
+      t.peak_abs_acceleration_m_s2[f].push_back(k % 2 == 1 ? 100.0 * (k + f)
+                                                           : 1.0);  // the peaks fall between kept samples
     }
     t.contact_force_n.push_back(0.5 * k);
     t.peak_contact_force_n.push_back(k == 3 ? 40.0 : 0.0);
@@ -49,13 +50,14 @@ TEST(SeriesRate, EveryKthSampleWithThePeaksBetween) {
     EXPECT_DOUBLE_EQ(kept.displacement_m[0][j], full.displacement_m[0][2 * j]);
     EXPECT_DOUBLE_EQ(kept.mechanical_energy_j[j], 2.0);
   }
-  EXPECT_DOUBLE_EQ(kept.peak_abs_acceleration_m_s2[0][0], 1.0);             // the first sample closes no interval
-  EXPECT_DOUBLE_EQ(kept.peak_abs_acceleration_m_s2[0][1], 100.0);           // sample 1's peak, closed by sample 2
+  EXPECT_DOUBLE_EQ(kept.peak_abs_acceleration_m_s2[0][0], 1.0);              // the first sample closes no interval
+  EXPECT_DOUBLE_EQ(kept.peak_abs_acceleration_m_s2[0][1], 100.0);            // sample 1's peak, closed by sample 2
   EXPECT_DOUBLE_EQ(kept.peak_abs_acceleration_m_s2[1][4], 100.0 * (7 + 1));  // sample 7's peak, closed by sample 8
-  EXPECT_DOUBLE_EQ(kept.peak_contact_force_n[2], 40.0);                     // sample 3's, closed by sample 4
+  EXPECT_DOUBLE_EQ(kept.peak_contact_force_n[2], 40.0);                      // sample 3's, closed by sample 4
   for (int f = 0; f < 2; ++f)
-    EXPECT_DOUBLE_EQ(*std::max_element(kept.peak_abs_acceleration_m_s2[f].begin(), kept.peak_abs_acceleration_m_s2[f].end()),
-                     *std::max_element(full.peak_abs_acceleration_m_s2[f].begin(), full.peak_abs_acceleration_m_s2[f].end()));
+    EXPECT_DOUBLE_EQ(
+        *std::max_element(kept.peak_abs_acceleration_m_s2[f].begin(), kept.peak_abs_acceleration_m_s2[f].end()),
+        *std::max_element(full.peak_abs_acceleration_m_s2[f].begin(), full.peak_abs_acceleration_m_s2[f].end()));
 }
 
 TEST(SeriesRate, ARateThatIsNotLowerKeepsEverySample) {
@@ -77,8 +79,10 @@ TEST(SeriesRate, TheRunMeasuresTheSameAndItsFileReadsBackAtTheLowerRate) {
   Measurement every, halved;
   every.series = halved.series = SeriesOutput::all;
   halved.series_rate_hz = 2048;
-  const RunRecord a = run_job(scenario, job, every, nullptr, nullptr, (root / "every").string(), nullptr, simulator_catalog().make);
-  const RunRecord b = run_job(scenario, job, halved, nullptr, nullptr, (root / "halved").string(), nullptr, simulator_catalog().make);
+  const RunRecord a =
+      run_job(scenario, job, every, nullptr, nullptr, (root / "every").string(), nullptr, simulator_catalog().make);
+  const RunRecord b =
+      run_job(scenario, job, halved, nullptr, nullptr, (root / "halved").string(), nullptr, simulator_catalog().make);
   ASSERT_TRUE(a.metrics && b.metrics);
   for (int f = 0; f < 2; ++f) {
     EXPECT_EQ(a.metrics->frames[f].sensor_peak_acceleration_g, b.metrics->frames[f].sensor_peak_acceleration_g);

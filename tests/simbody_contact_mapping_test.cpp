@@ -50,7 +50,8 @@ TEST(SimbodyContactMapping, HertzMaterialGivesTheLawInClosedForm) {
   const HuntCrossleyMaterial m = hertz_material(law, kTipSphereRadius_m);
   for (double delta : {1e-7, 1e-6, 2e-5})
     for (double rate : {-0.1, 0.0, 0.2}) {
-      const double expected = std::max(0.0, law.stiffness * std::pow(delta, 1.5) + law.damping * std::pow(delta, 1.5) * rate);
+      const double expected =
+          std::max(0.0, law.stiffness * std::pow(delta, 1.5) + law.damping * std::pow(delta, 1.5) * rate);
       EXPECT_NEAR(hunt_crossley_force_n(m, kTipSphereRadius_m, delta, rate) / expected, 1, 1e-12);
     }
 }

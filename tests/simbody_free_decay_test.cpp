@@ -47,8 +47,8 @@ TEST(SimbodyFreeDecay, EveryIntegratorGivesTheChainMode) {
   for (const char* integrator : {"rk3", "rkm", "verlet"})
     expect_chain_mode((std::string(integrator) + " 5e-5 s").c_str(), s,
                       run_simbody(s, 5e-5, {{"integrator", integrator}}), 0.02);
-  expect_chain_mode("rk2 5e-5 s, hinge damping", s, run_simbody(s, 5e-5, {{"integrator", "rk2"}, {"chain_damping", "hinge"}}),
-                    0.02);
+  expect_chain_mode("rk2 5e-5 s, hinge damping", s,
+                    run_simbody(s, 5e-5, {{"integrator", "rk2"}, {"chain_damping", "hinge"}}), 0.02);
   Scenario short_run = s;
   short_run.duration_s = short_run.scoring_window_s = 0.2;
   const RunResult rk2_modal = run_simbody(short_run, 5e-5, {{"integrator", "rk2"}});

@@ -21,13 +21,15 @@ using testing::first_impact_settings;
 using testing::reference_impact;
 using Impact = testing::CrossingImpact;  // the impact as rig.md section 5 defines it, from the sampled tip motion
 
-testing::EngineImpact simbody_impact(const Scenario& s, ContactLaw law, double h, std::map<std::string, std::string> options) {
+testing::EngineImpact simbody_impact(const Scenario& s, ContactLaw law, double h,
+                                     std::map<std::string, std::string> options) {
   return engine_impact(*make_simbody_simulator(), s, first_impact_settings(law, h, std::move(options)));
 }
 
 void expect_impact_near(const char* what, const Impact& got, const Impact& reference, double restitution_tolerance,
                         double duration_tolerance) {
-  const double e_error = got.restitution / reference.restitution - 1, t_error = got.duration_s / reference.duration_s - 1;
+  const double e_error = got.restitution / reference.restitution - 1,
+               t_error = got.duration_s / reference.duration_s - 1;
   std::printf("%s: duration %.4f ms (reference %.4f, %+.2f %%), restitution %.4f (reference %.4f, %+.2f %%)\n", what,
               1e3 * got.duration_s, 1e3 * reference.duration_s, 100 * t_error, got.restitution, reference.restitution,
               100 * e_error);
@@ -61,7 +63,8 @@ TEST(SimbodySingleImpact, MatchedHertzErrorControlled) {
   const Scenario s = first_impact_scenario(false);
   const Impact reference = reference_impact(s, ContactLaw::hertz);
   for (const char* integrator : {"rkm", "cpodes"}) {
-    const testing::EngineImpact sb = simbody_impact(s, ContactLaw::hertz, 2e-6, {{"integrator", integrator}, {"accuracy", "1e-8"}});
+    const testing::EngineImpact sb =
+        simbody_impact(s, ContactLaw::hertz, 2e-6, {{"integrator", integrator}, {"accuracy", "1e-8"}});
     char what[64];
     std::snprintf(what, sizeof what, "hertz matched %s accuracy 1e-8", integrator);
     expect_impact_near(what, sb.impact, reference, 0.001, 0.001);

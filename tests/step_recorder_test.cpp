@@ -55,7 +55,7 @@ TEST(StepRecorder, AccelerationIsTheVelocityChangeOfAStepAndItsPeakIsKept) {
   const Trajectory t = bounce();
   // the jump of -2 m/s in the step ending at 0.51 s: -200 m/s^2; the sample at 0.55 s carries it as its peak
   ASSERT_EQ(t.size(), 21u);
-  EXPECT_EQ(t.acceleration_m_s2[0][10], 0.0);   // 0.50 s
+  EXPECT_EQ(t.acceleration_m_s2[0][10], 0.0);                     // 0.50 s
   EXPECT_NEAR(t.peak_abs_acceleration_m_s2[0][11], 200.0, 1e-9);  // (0.50, 0.55]
   EXPECT_EQ(t.peak_abs_acceleration_m_s2[0][12], 0.0);
 }
@@ -131,7 +131,7 @@ TEST(StepRecorder, TheZoomHoldsTheFirstImpactOfTheWindow) {
   StepState s;
   for (int k = 0; k * h <= end + 1e-12; ++k) {
     s.t = k * h;
-    const bool before = s.t > 0.05 && s.t < 0.052, first = s.t > 0.15 && s.t < 0.152, second = s.t > 0.25 && s.t < 0.252;
+    const bool before = s.t > 0.05 && s.t<0.052, first = s.t> 0.15 && s.t<0.152, second = s.t> 0.25 && s.t < 0.252;
     s.contact_force_n = before ? 500.0 : first ? 20.0 : second ? 300.0 : 0.0;
     s.energy_j = 1;
     recorder.record(s);

@@ -11,8 +11,8 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -22,8 +22,8 @@
 #include <thread>
 #include <vector>
 
-#include "reference/reference_simulator.h"
 #include "harness/suite/suite.h"
+#include "reference/reference_simulator.h"
 #include "suite_test_support.h"
 
 namespace ib {
@@ -34,8 +34,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The known boundaries of the synthetic engine [s].
 constexpr double kUnstableAbove_s = 2e-4;
-constexpr double kSensorPeakOffAbove_s = 5e-5;    // frame 1's sensor peak 20 % high above this
-constexpr double kDurationOffAbove_s = 1e-5;      // contact durations 30 % long above this
+constexpr double kSensorPeakOffAbove_s = 5e-5;  // frame 1's sensor peak 20 % high above this
+constexpr double kDurationOffAbove_s = 1e-5;    // contact durations 30 % long above this
 
 ProbeResult synthetic(double dt) {
   ProbeResult r;
@@ -139,8 +139,7 @@ TEST(StepSearchLogic, NonMonotoneOutcomesAreNoted) {
   EXPECT_EQ(search.stability().largest_pass_step_s, search.grid()[31]);
   EXPECT_EQ(search.stability().smallest_fail_step_s, search.grid()[30]);
   bool noted = false;
-  for (const auto& note : search.notes())
-    noted |= note.find("non-monotone: stable at the larger") != std::string::npos;
+  for (const auto& note : search.notes()) noted |= note.find("non-monotone: stable at the larger") != std::string::npos;
   EXPECT_TRUE(noted) << (search.notes().empty() ? "no notes" : search.notes().front());
   // without the glitch the same probes give the stability boundary and no note
   StepSearch clean(StepSearchSettings{}, forced_reference(), "reference");
@@ -188,14 +187,16 @@ TEST(StepSearchLogic, MetricsTheReferenceLacksAreNotApplicable) {
   ReferenceFacts free{true, 20.0, 1e-3, kNaN};  // no excitation
   StepSearch search(StepSearchSettings{}, free, "reference on the 4-link chain");
   run(search, synthetic);
-  EXPECT_EQ(search.accuracy(HeadlineMetric::impacts_per_cycle).status, "not applicable: the scenario has no excitation");
+  EXPECT_EQ(search.accuracy(HeadlineMetric::impacts_per_cycle).status,
+            "not applicable: the scenario has no excitation");
   EXPECT_TRUE(std::isnan(search.accuracy(HeadlineMetric::impacts_per_cycle).largest_pass_step_s));
   ReferenceFacts no_impacts{true, 20.0, kNaN, 0.0};
   StepSearch quiet(StepSearchSettings{}, no_impacts, "beam reference");
   EXPECT_EQ(quiet.accuracy(HeadlineMetric::contact_duration).status,
             "not applicable: the beam reference has no impacts in the window");
   StepSearch orphan(StepSearchSettings{}, ReferenceFacts{}, "beam reference");
-  EXPECT_EQ(orphan.accuracy(HeadlineMetric::frame1_sensor_peak).status, "not applicable: the beam reference did not finish");
+  EXPECT_EQ(orphan.accuracy(HeadlineMetric::frame1_sensor_peak).status,
+            "not applicable: the beam reference did not finish");
 }
 
 // ---- through the suite runner ------------------------------------------------------------------------
@@ -303,7 +304,7 @@ TEST_F(StepSearchSuite, FindsTheKnownStepsAndResumesWithoutRepeating) {
   EXPECT_EQ(test::json_lines(settings_.out + "/runs.jsonl").size(), runs.size());
   // other tolerances are another search: a second row, reusing the probes it shares with the first
   settings_.measurement.verdicts.accuracy.sensor_peak_relative = 0.3;  // the one tolerance record
-  EXPECT_THROW(run_suite(settings_), std::invalid_argument);  // another suite in this folder: said, not mixed
+  EXPECT_THROW(run_suite(settings_), std::invalid_argument);           // another suite in this folder: said, not mixed
   settings_.extend = true;
   const SuiteOutcome looser = run_suite(settings_);
   const auto both = test::json_lines(settings_.out + "/steps.jsonl");
@@ -357,7 +358,8 @@ TEST(StepSearchCommand, BadSearchOptionsAreClearErrors) {
   const Command tolerance = run_command(suite + "--find-steps --tolerance sensor=0.1");
   EXPECT_EQ(tolerance.exit_code, 2) << tolerance.output;
   EXPECT_NE(tolerance.output.find("--tolerance sensor=0.1: expected metric=value with metric frame1_sensor_peak"),
-            std::string::npos) << tolerance.output;
+            std::string::npos)
+      << tolerance.output;
   const Command negative = run_command(suite + "--find-steps --tolerance contact_duration=-1");
   EXPECT_EQ(negative.exit_code, 2) << negative.output;
   EXPECT_NE(negative.output.find("-1: allowed: a number > 0"), std::string::npos) << negative.output;

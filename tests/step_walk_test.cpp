@@ -133,7 +133,7 @@ TEST(StepWalkSuite, AWalkThroughAStepASuitePartRunsReadsThatRunInsteadOfRunningI
   part.simulators = simulator_catalog();
   part.simulators.make = test_factory;
   SuiteSettings suite = part, search = part;
-  suite.time_steps_s = {1e-4};                        // the walk's third grid step
+  suite.time_steps_s = {1e-4};                       // the walk's third grid step
   search.step_search = walk_settings(2.5e-5, 2e-4);  // 2e-4, 1.41e-4, 1e-4, 7.1e-5, 5e-5, 3.5e-5, 2.5e-5
   const SuiteOutcome outcome = run_suites({suite, search});
 
@@ -150,7 +150,8 @@ TEST(StepWalkSuite, AWalkThroughAStepASuitePartRunsReadsThatRunInsteadOfRunningI
   // the mirror is the reference on its chain at any step: the error against the beam is the same at every
   // step, so the walk stops after three: the first sets the score, two more do not lower it
   EXPECT_EQ(rows[0]["probes"].get<int>(), 3);
-  EXPECT_NE(rows[0]["probe_outcomes"].get<std::string>().find("0.0001:"), std::string::npos) << rows[0]["probe_outcomes"];
+  EXPECT_NE(rows[0]["probe_outcomes"].get<std::string>().find("0.0001:"), std::string::npos)
+      << rows[0]["probe_outcomes"];
   fs::remove_all(root);
 }
 

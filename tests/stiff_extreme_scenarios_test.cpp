@@ -29,7 +29,8 @@ struct ReferenceRun {
 // the end (events and the energy ledger cover the whole run whatever the output window).
 ReferenceRun run_reference(const Scenario& s, ContactLaw law, ReferenceSettings settings = {}) {
   ReferenceRun r{build_modal_model(s, law, settings.modes), {}};
-  r.solution = solve_reference(r.model, initial_state(s, r.model), s.duration_s, {s.duration_s, s.duration_s, 1}, settings);
+  r.solution =
+      solve_reference(r.model, initial_state(s, r.model), s.duration_s, {s.duration_s, s.duration_s, 1}, settings);
   return r;
 }
 
@@ -232,7 +233,8 @@ TEST(RestitutionOne, ContactsLoseNoEnergy) {
     EXPECT_LT(e.relative_residual(), 1e-6) << to_string(law);
     if (law == ContactLaw::newton) {
       for (const ContactEvent& ev : r.solution.trajectory.events)
-        EXPECT_NEAR(ev.rebound_velocity_m_s, ev.approach_velocity_m_s, 1e-12) << "impact at " << ev.onset_time_s << " s";
+        EXPECT_NEAR(ev.rebound_velocity_m_s, ev.approach_velocity_m_s, 1e-12)
+            << "impact at " << ev.onset_time_s << " s";
     }
   }
 }
@@ -276,7 +278,8 @@ TEST(InitialPenetration, TipsPartWithTheEnergyTheOverlapStored) {
       const SpringDashpotContact closed(v.stiffness_n_per_m, v.damping_n_s_per_m, r.model.contact_effective_mass_kg());
       std::printf("%d modes, spring-dashpot: separation speed %.6g m/s, closed form %.6g m/s\n", modes,
                   first.rebound_velocity_m_s, closed.separation_speed_from_rest_m_s(x0));
-      EXPECT_NEAR(first.rebound_velocity_m_s / closed.separation_speed_from_rest_m_s(x0), 1.0, tolerance) << modes << " modes";
+      EXPECT_NEAR(first.rebound_velocity_m_s / closed.separation_speed_from_rest_m_s(x0), 1.0, tolerance)
+          << modes << " modes";
       // the ledger starts with the overlap's elastic energy (plus frame 1's strain energy, below 1e-3 of it)
       EXPECT_NEAR(r.solution.energy.initial_energy_j / (0.5 * v.stiffness_n_per_m * x0 * x0), 1.0, 1e-3);
     }
@@ -289,7 +292,8 @@ TEST(InitialPenetration, TipsPartWithTheEnergyTheOverlapStored) {
       const double stored = h.stiffness * std::pow(x0, h.exponent + 1) / (h.exponent + 1);
       const double speed = first.rebound_velocity_m_s;
       const double kinetic = 0.5 * r.model.contact_effective_mass_kg() * speed * speed;
-      std::printf("%d modes, Hertz undamped: kinetic energy at separation %.6g J, stored %.6g J\n", modes, kinetic, stored);
+      std::printf("%d modes, Hertz undamped: kinetic energy at separation %.6g J, stored %.6g J\n", modes, kinetic,
+                  stored);
       EXPECT_NEAR(kinetic / stored, 1.0, tolerance) << modes << " modes";
       EXPECT_NEAR(r.solution.energy.initial_energy_j / stored, 1.0, 1e-3);
     }

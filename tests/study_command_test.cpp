@@ -18,12 +18,15 @@ using ib::test::run_impactbench_logged_as;
 
 // A study file of this test in the temporary folder.
 fs::path study_file(const std::string& name, const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / ("impactbench-study-" + std::to_string(::getpid()) + "-" + name + ".toml");
+  const fs::path path =
+      fs::temp_directory_path() / ("impactbench-study-" + std::to_string(::getpid()) + "-" + name + ".toml");
   std::ofstream(path) << text;
   return path;
 }
 
-ib::test::CommandOutput study(const std::string& arguments) { return run_impactbench_logged_as("study " + arguments, "study-test-"); }
+ib::test::CommandOutput study(const std::string& arguments) {
+  return run_impactbench_logged_as("study " + arguments, "study-test-");
+}
 
 const char* kFreeVibration = R"([[suite]]
 name = "free vibration"
@@ -41,7 +44,8 @@ TEST(StudyFile, TheShippedStudiesAreValidAndAllMeansEveryEngineOfTheBuild) {
     for (const std::string& engine : ib::simulator_names()) every_engine += (every_engine.empty() ? "" : ",") + engine;
     EXPECT_NE(out.text.find("engines " + every_engine + ";"), std::string::npos) << name << ": " << out.text;
     EXPECT_NE(out.text.find("laws hertz,viscoelastic,newton;"), std::string::npos) << out.text;
-    EXPECT_NE(out.text.find("; starts "), std::string::npos) << name << " runs the resonance as an ensemble: " << out.text;
+    EXPECT_NE(out.text.find("; starts "), std::string::npos)
+        << name << " runs the resonance as an ensemble: " << out.text;
   }
   // The cluster's study names its engines (Simbody's sweep first, the costliest): a build without one of them
   // refuses it, as it should.
@@ -70,8 +74,8 @@ TEST(StudyFile, AnArrayItemKeepsItsComma) {
   // A scenario file whose name holds a comma: one item of the array, not two.
   const fs::path folder = fs::temp_directory_path() / ("impactbench-study-comma-" + std::to_string(::getpid()));
   fs::create_directories(folder);
-  fs::copy_file(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/free_vibration.toml", folder / "free,vibration.toml",
-                fs::copy_options::overwrite_existing);
+  fs::copy_file(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/free_vibration.toml",
+                folder / "free,vibration.toml", fs::copy_options::overwrite_existing);
   const fs::path file = study_file("comma", "[[suite]]\nscenarios = [\"" + (folder / "free,vibration.toml").string() +
                                                 "\"]\nengines = [\"reference\"]\n");
   const auto out = study(file.string() + " --plan");
@@ -93,30 +97,38 @@ class StudyFileErrors : public ::testing::TestWithParam<BadStudy> {};
 TEST_P(StudyFileErrors, ExitTwoNamingTheFileTheLineTheKeyTheValueAndWhatIsAllowed) {
   const BadStudy& bad = GetParam();
   const fs::path file = study_file(bad.name, bad.text);
-  const auto out = study(file.string() + " --out " + (fs::temp_directory_path() / "impactbench-study-never-written").string());
+  const auto out =
+      study(file.string() + " --out " + (fs::temp_directory_path() / "impactbench-study-never-written").string());
   fs::remove(file);
   EXPECT_EQ(out.exit_code, 2) << out.text;
   EXPECT_NE(out.text.find(file.string()), std::string::npos) << out.text;
-  for (const std::string& piece : bad.said) EXPECT_NE(out.text.find(piece), std::string::npos) << piece << " in: " << out.text;
+  for (const std::string& piece : bad.said)
+    EXPECT_NE(out.text.find(piece), std::string::npos) << piece << " in: " << out.text;
   EXPECT_FALSE(fs::exists(fs::temp_directory_path() / "impactbench-study-never-written"));
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, StudyFileErrors,
     ::testing::Values(
-        BadStudy{"unknown_key", "[[suite]]\nscenarios = [\"scenarios/paper\"]\ntime_step = 1e-4\n",
+        BadStudy{"unknown_key",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\ntime_step = 1e-4\n",
                  {":3:", "time_step", "unknown key", "dt_s"}},
         BadStudy{"unknown_table", "[[suites]]\nscenarios = [\"scenarios/paper\"]\n", {":1:", "suites", "[[suite]]"}},
-        BadStudy{"wrong_type", "[[suite]]\nscenarios = \"scenarios/paper\"\n",
+        BadStudy{"wrong_type",
+                 "[[suite]]\nscenarios = \"scenarios/paper\"\n",
                  {":2:", "scenarios", "wrong type", "an array of strings"}},
-        BadStudy{"zero_step", "[[suite]]\nscenarios = [\"scenarios/paper\"]\n\ndt_s = [0]\n",
+        BadStudy{"zero_step",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\n\ndt_s = [0]\n",
                  {":4:", "dt_s", "--dt 0", "allowed"}},
-        BadStudy{"negative_duration", "[[search]]\nscenarios = [\"scenarios/stiff\"]\nduration_s = -1\n",
+        BadStudy{"negative_duration",
+                 "[[search]]\nscenarios = [\"scenarios/stiff\"]\nduration_s = -1\n",
                  {":3:", "duration_s", "-1", "allowed"}},
-        BadStudy{"unknown_engine", "[[suite]]\nscenarios = [\"scenarios/paper\"]\nengines = [\"reference\", \"havok\"]\n",
+        BadStudy{"unknown_engine",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\nengines = [\"reference\", \"havok\"]\n",
                  {":3:", "engines", "havok"}},
         BadStudy{"missing_scenarios", "[[suite]]\nengines = \"all\"\n", {":1:", "scenarios", "missing required key"}},
-        BadStudy{"all_misspelt", "[[suite]]\nscenarios = [\"scenarios/paper\"]\nlaws = \"every\"\n",
+        BadStudy{"all_misspelt",
+                 "[[suite]]\nscenarios = [\"scenarios/paper\"]\nlaws = \"every\"\n",
                  {":3:", "laws", "\"all\" or an array of strings"}},
         BadStudy{"sweep_without_name", "[[sweep]]\nscenario = \"scenarios/paper/resonance.toml\"\n", {":1:", "name"}},
         BadStudy{"two_sweeps_one_folder",
@@ -154,8 +166,8 @@ TEST(StudyCommand, APartGivesTheResultsOfTheCommandItStandsFor) {
   fs::remove(file);
   ASSERT_EQ(by_study.exit_code, 0) << by_study.text;
   const auto by_suite = run_impactbench_logged_as(
-      "suite " + ib::test::paper_scenario("free_vibration") + " --engines reference --laws hertz,newton --duration 0.5 --jobs 2 --out " +
-          (folder / "suite").string(),
+      "suite " + ib::test::paper_scenario("free_vibration") +
+          " --engines reference --laws hertz,newton --duration 0.5 --jobs 2 --out " + (folder / "suite").string(),
       "study-test-suite-");
   ASSERT_EQ(by_suite.exit_code, 0) << by_suite.text;
   const auto read = [](const fs::path& path) {
@@ -164,10 +176,12 @@ TEST(StudyCommand, APartGivesTheResultsOfTheCommandItStandsFor) {
   };
   // runs.csv's rows arrive in the order the jobs end: compare them sorted, without the timing columns
   const auto metrics = [&](const fs::path& csv) {
-    const auto out = ib::test::run_command("/usr/bin/python3 -c \"import csv,sys; rows=list(csv.DictReader(open(sys.argv[1]))); "
-                                           "keep=lambda r: {k: v for k, v in r.items() if 'time' not in k and 'per_s' not in k "
-                                           "and k not in ('scenario_file', 'steps_per_cpu_second', 'load_average')}; "
-                                           "print(sorted(str(sorted(keep(r).items())) for r in rows))\" " + csv.string());
+    const auto out = ib::test::run_command(
+        "/usr/bin/python3 -c \"import csv,sys; rows=list(csv.DictReader(open(sys.argv[1]))); "
+        "keep=lambda r: {k: v for k, v in r.items() if 'time' not in k and 'per_s' not in k "
+        "and k not in ('scenario_file', 'steps_per_cpu_second', 'load_average')}; "
+        "print(sorted(str(sorted(keep(r).items())) for r in rows))\" " +
+        csv.string());
     return out.text;
   };
   EXPECT_EQ(metrics(folder / "study" / "runs.csv"), metrics(folder / "suite" / "runs.csv"));

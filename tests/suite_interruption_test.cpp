@@ -8,12 +8,12 @@
 //   - SIGTERM to one worker alone: the suite goes on, records nothing for that job and says so.
 // Each is sent once a few results are recorded. The suite (two short scenarios, two laws, the reference
 // and the build's first engine, tests/catalog_engines.h) is compared with an uninterrupted run of the
-// same command: the same job ids and every field of runs.jsonl and runs.csv equal except the timing ones (ib::timing_field_names()), compared sorted by job id, and every run's series.csv.gz, events.csv and
-// impact.csv.gz equal byte for byte. The report is made from nothing else, so one test (Ctrl-C) also makes
-// both reports (it takes matplotlib several seconds each) and compares summary.md with its date, its
-// folder and the timing it shows masked (the run-time column, and the "at equal run time" line, whose
-// choice depends on measured times). The report sorts its runs by job id, so that the order in which
-// jobs finished does not show.
+// same command: the same job ids and every field of runs.jsonl and runs.csv equal except the timing ones
+// (ib::timing_field_names()), compared sorted by job id, and every run's series.csv.gz, events.csv and impact.csv.gz
+// equal byte for byte. The report is made from nothing else, so one test (Ctrl-C) also makes both reports (it takes
+// matplotlib several seconds each) and compares summary.md with its date, its folder and the timing it shows masked
+// (the run-time column, and the "at equal run time" line, whose choice depends on measured times). The report sorts its
+// runs by job id, so that the order in which jobs finished does not show.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -45,12 +45,19 @@ using Json = nlohmann::json;
 const std::vector<std::string>& kTimingFields = ib::timing_field_names();
 
 std::vector<std::string> suite_arguments(const fs::path& out) {
-  std::vector<std::string> args = {IMPACTBENCH_EXECUTABLE, "suite", std::string(IMPACTBENCH_TEST_DATA_DIR) + "/report_suite",
-                                   "--laws", "hertz,viscoelastic", "--jobs", "2", "--out", out.string()};
+  std::vector<std::string> args = {IMPACTBENCH_EXECUTABLE,
+                                   "suite",
+                                   std::string(IMPACTBENCH_TEST_DATA_DIR) + "/report_suite",
+                                   "--laws",
+                                   "hertz,viscoelastic",
+                                   "--jobs",
+                                   "2",
+                                   "--out",
+                                   out.string()};
   const std::vector<std::string> engines = ib::test::engines_among(ib::simulator_names());
   if (!engines.empty())
-    for (const std::string& a : {std::string("--engines"), ib::test::engines_option("reference", engines, 1), std::string("--dt"),
-                                 std::string("1e-4")})
+    for (const std::string& a : {std::string("--engines"), ib::test::engines_option("reference", engines, 1),
+                                 std::string("--dt"), std::string("1e-4")})
       args.push_back(a);
   return args;
 }
@@ -178,7 +185,8 @@ std::map<std::string, std::string> csv_results(const fs::path& out, std::string&
     for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
     std::string masked;
     for (std::size_t i = 0; i < cells.size(); ++i) {
-      const bool timing = i < names.size() && std::find(kTimingFields.begin(), kTimingFields.end(), names[i]) != kTimingFields.end();
+      const bool timing =
+          i < names.size() && std::find(kTimingFields.begin(), kTimingFields.end(), names[i]) != kTimingFields.end();
       masked += (i ? "," : "") + (timing ? std::string("<time>") : cells[i]);
     }
     by_id[cells.empty() ? "" : cells[0]] = masked;
@@ -206,7 +214,8 @@ std::string masked_summary(const fs::path& report) {
     if (line.rfind("| ", 0) == 0) {
       std::vector<std::string> cells;
       std::size_t at = 0;
-      for (std::size_t next; (next = line.find(" | ", at)) != std::string::npos; at = next + 3) cells.push_back(line.substr(at, next - at));
+      for (std::size_t next; (next = line.find(" | ", at)) != std::string::npos; at = next + 3)
+        cells.push_back(line.substr(at, next - at));
       cells.push_back(line.substr(at));
       bool header = false;
       for (std::size_t i = 0; i < cells.size(); ++i)
@@ -278,7 +287,8 @@ class SuiteInterruption : public ::testing::Test {
     }
     const int status = wait_for(pid);
     // no worker outlives the suite, whatever stopped it
-    for (int i = 0; i < 200 && live_processes_in_group(pid) > 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    for (int i = 0; i < 200 && live_processes_in_group(pid) > 0; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(25));
     EXPECT_EQ(live_processes_in_group(pid), 0) << "a worker outlived the suite";
     return status;
   }
@@ -337,8 +347,8 @@ TEST_F(SuiteInterruption, CtrlCKeepsEveryFinishedResultAndSaysHowToResume) {
   EXPECT_GE(recorded, 3u);
   EXPECT_LT(recorded, jobs_) << "the suite finished before the interruption: the test proves nothing";
   EXPECT_EQ(lines_of(root_ / "cut" / "runs.csv"), recorded + 1);
-  const std::string message = "impactbench: interrupted after " + std::to_string(recorded) + " of " + std::to_string(jobs_) +
-                              " jobs; continue with: impactbench suite ";
+  const std::string message = "impactbench: interrupted after " + std::to_string(recorded) + " of " +
+                              std::to_string(jobs_) + " jobs; continue with: impactbench suite ";
   EXPECT_NE(log.find(message), std::string::npos) << log;
   EXPECT_NE(log.find(" --resume\n"), std::string::npos) << log;
   EXPECT_EQ(log.find("failed"), std::string::npos) << "a worker stopped by Ctrl-C was recorded as failed:\n" << log;
@@ -376,7 +386,8 @@ TEST_F(SuiteInterruption, StaggeredSigtermWorkersFirstLosesNoJob) {
   ASSERT_TRUE(WIFEXITED(status)) << log;
   EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM) << log;
   EXPECT_EQ(read_text(root_ / "cut" / "runs.jsonl").find("died of signal"), std::string::npos)
-      << "a worker stopped from outside was recorded as failed:\n" << read_text(root_ / "cut" / "runs.jsonl");
+      << "a worker stopped from outside was recorded as failed:\n"
+      << read_text(root_ / "cut" / "runs.jsonl");
   const std::size_t recorded = lines_of(root_ / "cut" / "runs.jsonl");
   EXPECT_LT(recorded, jobs_) << "the suite finished before the signals: the test proves nothing";
   resume_and_compare(recorded, /*compare_reports=*/false);

@@ -113,8 +113,8 @@ TEST_F(SuiteNativeContact, AResumedSuiteRecordsALostScoredRowAgain) {
   std::ofstream(jsonl, std::ios::trunc) << kept;
   settings_.resume = true;
   const SuiteOutcome resumed = run_suite(settings_);
-  EXPECT_EQ(resumed.jobs_run, 1);               // the lost row alone is recorded
-  EXPECT_EQ(test::line_count(g_run_log), 4u + 1u);      // by running the native run again
+  EXPECT_EQ(resumed.jobs_run, 1);                   // the lost row alone is recorded
+  EXPECT_EQ(test::line_count(g_run_log), 4u + 1u);  // by running the native run again
   std::map<std::string, nlohmann::json> before, after;
   for (const auto& r : whole) before[r["job_id"]] = r;
   for (const auto& r : test::json_lines(jsonl)) after[r["job_id"]] = r;

@@ -61,7 +61,9 @@ class SuiteParts : public ::testing::Test {
     }
     return out;
   }
-  static std::vector<nlohmann::json> settings_lines(const fs::path& folder) { return test::json_lines(folder / "suite.jsonl"); }
+  static std::vector<nlohmann::json> settings_lines(const fs::path& folder) {
+    return test::json_lines(folder / "suite.jsonl");
+  }
 
   fs::path root_;
   SuiteSettings first_, second_;

@@ -47,7 +47,8 @@ class SuitePlan : public ::testing::Test {
     return map;
   }
   static int count(const std::vector<PlannedUnit>& units, PlannedUnit::Kind kind) {
-    return static_cast<int>(std::count_if(units.begin(), units.end(), [kind](const PlannedUnit& u) { return u.kind == kind; }));
+    return static_cast<int>(
+        std::count_if(units.begin(), units.end(), [kind](const PlannedUnit& u) { return u.kind == kind; }));
   }
 
   fs::path root_;
@@ -73,7 +74,8 @@ TEST_F(SuitePlan, TheMatrixAndWhatEachRunWaitsFor) {
       EXPECT_EQ(plan.at(u.after[1]).kind, PlannedUnit::Kind::chain_reference);
       // each run is compared with the references of its own law
       const std::string law = u.id.find("/hertz/") != std::string::npos ? "/hertz" : "/newton";
-      for (const std::string& before : u.after) EXPECT_NE(before.find(law), std::string::npos) << u.id << " -> " << before;
+      for (const std::string& before : u.after)
+        EXPECT_NE(before.find(law), std::string::npos) << u.id << " -> " << before;
     }
     if (u.kind == PlannedUnit::Kind::chain_reference) {
       ASSERT_EQ(u.after.size(), 1u) << u.id << " is compared with the beam";
@@ -146,7 +148,8 @@ TEST_F(SuitePlan, AnEnsemblePlansEveryStartAgainstTheReferencesOfTheSameStart) {
       EXPECT_LT(start_of(u.id), 2) << u.id;
     }
     if (start_of(u.id) == 2) ++third_reference_starts;
-    for (const std::string& before : u.after) EXPECT_EQ(start_of(before), start_of(u.id)) << u.id << " waits for " << before;
+    for (const std::string& before : u.after)
+      EXPECT_EQ(start_of(before), start_of(u.id)) << u.id << " waits for " << before;
     if (!u.same_run_as.empty()) {  // braces: GoogleTest's macros hold an if of their own
       EXPECT_EQ(start_of(u.same_run_as), start_of(u.id)) << u.id << " <- " << u.same_run_as;
     }
@@ -183,13 +186,16 @@ TEST_F(SuitePlan, ReferenceChainsPlanTheReferenceOnEachChainForEveryStart) {
   for (const PlannedUnit& u : units) {
     if (u.kind != PlannedUnit::Kind::chain_reference) continue;
     EXPECT_TRUE(u.id.find("/links=4;modes=chain") != std::string::npos ||
-                u.id.find("/links=16;modes=chain") != std::string::npos) << u.id;
+                u.id.find("/links=16;modes=chain") != std::string::npos)
+        << u.id;
     ASSERT_EQ(u.after.size(), 1u) << u.id << " is compared with the beam";
     EXPECT_EQ(plan.at(u.after[0]).kind, PlannedUnit::Kind::beam_reference) << u.id;
     const std::size_t at = u.id.rfind("/start=");
     const std::string start = at == std::string::npos ? "" : u.id.substr(at);
-    EXPECT_EQ(u.after[0].size() >= start.size() && u.after[0].compare(u.after[0].size() - start.size(), start.size(), start) == 0,
-              true) << u.id << " waits for " << u.after[0] << ", of another start";
+    EXPECT_EQ(u.after[0].size() >= start.size() &&
+                  u.after[0].compare(u.after[0].size() - start.size(), start.size(), start) == 0,
+              true)
+        << u.id << " waits for " << u.after[0] << ", of another start";
   }
   // the mirror engine builds a 4-link chain: planned beside the chains, its chain reference is one of them
   settings_.engines = {"reference", "mirror"};

@@ -107,8 +107,9 @@ TEST_F(SuiteRecords, ExtendAddsJobsButNeverMixesSettings) {
     run_suite(settings_);
     FAIL() << "--extend mixed two durations in one job's record";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("job short_free/reference/hertz was recorded with other settings (max_duration_s"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("job short_free/reference/hertz was recorded with other settings (max_duration_s"),
+        std::string::npos)
         << e.what();
   }
   // what a run keeps of its series is not a result (a reference keeps its window whatever --series says):
@@ -161,7 +162,8 @@ TEST_F(SuiteRecords, AFolderInUseIsRefusedAndADeadHolderHoldsNothing) {
     pause();
     _exit(0);
   }
-  for (int i = 0; i < 200 && read_text(out() / ".impactbench.lock").find("doomed") == std::string::npos; ++i) usleep(10000);
+  for (int i = 0; i < 200 && read_text(out() / ".impactbench.lock").find("doomed") == std::string::npos; ++i)
+    usleep(10000);
   EXPECT_THROW(run_suite(settings_), FolderBusy);
   kill(child, SIGKILL);
   waitpid(child, nullptr, 0);

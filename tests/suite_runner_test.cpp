@@ -18,8 +18,8 @@
 #include <thread>
 #include <vector>
 
-#include "mirror_simulator.h"
 #include "harness/records/reporters.h"
+#include "mirror_simulator.h"
 
 namespace ib {
 namespace suite_runner_test {
@@ -206,7 +206,8 @@ TEST_F(SuiteRunner, AnOutputFolderThatCannotBeMadeIsAClearError) {
     run_suite(settings_);
     FAIL() << "expected an error";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find(settings_.out + ": cannot create the output folder"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(settings_.out + ": cannot create the output folder"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -39,8 +39,11 @@ const std::set<std::string> kRunTimingFields(ib::timing_field_names().begin(), i
 const std::set<std::string> kStepTimingFields = {"probes_wall_time_s"};
 constexpr int kShards = 3;
 
-// The reference and the build's first two engines (tests/catalog_engines.h): sharding is the harness's, any engine does.
-std::string engines() { return ib::test::engines_option("reference", ib::test::engines_among(ib::simulator_names()), 2); }
+// The reference and the build's first two engines (tests/catalog_engines.h): sharding is the harness's, any engine
+// does.
+std::string engines() {
+  return ib::test::engines_option("reference", ib::test::engines_among(ib::simulator_names()), 2);
+}
 
 std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 
@@ -71,10 +74,14 @@ std::vector<std::string> cells_of(const std::string& line) {
   bool quoted_cell = false;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
-    if (quoted_cell && c == '"' && i + 1 < line.size() && line[i + 1] == '"') cells.back() += line[++i];
-    else if (c == '"') quoted_cell = !quoted_cell;
-    else if (c == ',' && !quoted_cell) cells.emplace_back();
-    else cells.back() += c;
+    if (quoted_cell && c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+      cells.back() += line[++i];
+    else if (c == '"')
+      quoted_cell = !quoted_cell;
+    else if (c == ',' && !quoted_cell)
+      cells.emplace_back();
+    else
+      cells.back() += c;
   }
   return cells;
 }
@@ -143,7 +150,8 @@ void expect_engine_jobs_divided(const fs::path& whole, const std::vector<fs::pat
       }
       ++engine_jobs[id];
       needed.insert(beam);
-      if (r["chain_links"] > 0) needed.insert(beam + "/links=" + std::to_string(r["chain_links"].get<int>()) + ";modes=chain");
+      if (r["chain_links"] > 0)
+        needed.insert(beam + "/links=" + std::to_string(r["chain_links"].get<int>()) + ";modes=chain");
     }
     EXPECT_FALSE(references.empty()) << shard;
     EXPECT_EQ(references, needed) << shard << " runs other references than its jobs need";
@@ -176,7 +184,8 @@ class SuiteSharding : public ::testing::Test {
     root_ = new fs::path(fs::temp_directory_path() / ("impactbench_sharding_" + std::to_string(getpid())));
     fs::remove_all(*root_);
     ib::test::write_short_free_vibration(*root_ / "scenarios");
-    fs::copy_file(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/resonance.toml", *root_ / "scenarios/resonance.toml");
+    fs::copy_file(std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/resonance.toml",
+                  *root_ / "scenarios/resonance.toml");
     done_ = new std::map<fs::path, int>;
   }
   static void TearDownTestSuite() {
@@ -188,7 +197,8 @@ class SuiteSharding : public ::testing::Test {
   // The small suite's command line with `extra` options, into `out`.
   static std::string suite_arguments(const std::string& extra, const fs::path& out) {
     return "suite " + quoted(*root_ / "scenarios") + " --engines " + engines() +
-           " --laws hertz,viscoelastic --dt 1e-4,5e-5 --duration 1 --repeat 0 --jobs 2 " + extra + " --out " + quoted(out);
+           " --laws hertz,viscoelastic --dt 1e-4,5e-5 --duration 1 --repeat 0 --jobs 2 " + extra + " --out " +
+           quoted(out);
   }
   // Runs the small suite into `out` (once) and returns its exit code: 0, or 1 when a run is unstable or failed.
   static int suite(const std::string& extra, const fs::path& out) {
@@ -268,8 +278,8 @@ TEST_F(SuiteSharding, IncompleteShardsAreReportedAndTheResumeCommandFinishesThem
   const CommandOutput partial = command("merge " + quoted(*root_ / "partial") + shards + " --no-report");
   EXPECT_EQ(partial.exit_code, 4) << partial.text;
   EXPECT_FALSE(fs::exists(*root_ / "partial" / "report")) << "--no-report";
-  const std::string missing = "shard 2/3 in " + cut.string() + " is missing " + std::to_string(planned - 3) + " of its " +
-                              std::to_string(planned) + " jobs";
+  const std::string missing = "shard 2/3 in " + cut.string() + " is missing " + std::to_string(planned - 3) +
+                              " of its " + std::to_string(planned) + " jobs";
   EXPECT_NE(partial.text.find(missing), std::string::npos) << partial.text;
   const std::string prefix = "then merge again into an empty folder: impactbench ";
   const auto at = partial.text.find(prefix);
@@ -315,13 +325,15 @@ TEST_F(SuiteSharding, BadShardValuesAreClearErrors) {
   const CommandOutput other = command(tiny.substr(0, tiny.size() - 3) + "2/2 --resume");
   EXPECT_EQ(other.exit_code, 2) << other.text;
   EXPECT_NE(other.text.find("holds shard 1/2 of a suite (shard.jsonl), not --shard 2/2: resume it with --shard 1/2"),
-            std::string::npos) << other.text;
+            std::string::npos)
+      << other.text;
 }
 
 TEST_F(SuiteSharding, MergeRefusesWhatItCannotJoin) {
   const std::string out = quoted(*root_ / "refused");
   // a folder that does not exist
-  const CommandOutput nowhere = command("merge " + out + shard_list() + " " + quoted(*root_ / "shard-4") + " --no-report");
+  const CommandOutput nowhere =
+      command("merge " + out + shard_list() + " " + quoted(*root_ / "shard-4") + " --no-report");
   EXPECT_EQ(nowhere.exit_code, 2) << nowhere.text;
   EXPECT_NE(nowhere.text.find((*root_ / "shard-4").string() + ": no such folder"), std::string::npos) << nowhere.text;
   // a runs.csv of another layout
@@ -329,12 +341,14 @@ TEST_F(SuiteSharding, MergeRefusesWhatItCannotJoin) {
   std::string csv = read_text(renamed / "runs.csv");
   csv.replace(csv.find(",verdict,"), 9, ",outcome,");
   std::ofstream(renamed / "runs.csv") << csv;
-  const CommandOutput header =
-      command("merge " + out + " " + quoted(shard(1)) + " " + quoted(shard(2)) + " " + quoted(renamed) + " --no-report");
+  const CommandOutput header = command("merge " + out + " " + quoted(shard(1)) + " " + quoted(shard(2)) + " " +
+                                       quoted(renamed) + " --no-report");
   EXPECT_EQ(header.exit_code, 2) << header.text;
-  EXPECT_NE(header.text.find((renamed / "runs.csv").string() + ": header differs from this build's: column 11 is 'outcome', "
-                             "expected 'verdict'"),
-            std::string::npos) << header.text;
+  EXPECT_NE(
+      header.text.find((renamed / "runs.csv").string() + ": header differs from this build's: column 11 is 'outcome', "
+                                                         "expected 'verdict'"),
+      std::string::npos)
+      << header.text;
   // two shards that disagree on a job (a reference both ran)
   const fs::path changed = copy_records(shard(3), *root_ / "changed");
   const auto in_shard_1 = records(shard(1) / "runs.jsonl", "job_id", {});
@@ -351,15 +365,18 @@ TEST_F(SuiteSharding, MergeRefusesWhatItCannotJoin) {
   in.close();
   std::ofstream(changed / "runs.jsonl") << jsonl;
   ASSERT_FALSE(reference.empty());
-  const CommandOutput conflict = command("merge " + out + " " + quoted(shard(1)) + " " + quoted(changed) + " --no-report");
+  const CommandOutput conflict =
+      command("merge " + out + " " + quoted(shard(1)) + " " + quoted(changed) + " --no-report");
   EXPECT_EQ(conflict.exit_code, 2) << conflict.text;
   EXPECT_NE(conflict.text.find(shard(1).string() + " and " + changed.string() + " disagree on job " + reference +
                                ": field impacts is "),
-            std::string::npos) << conflict.text;
+            std::string::npos)
+      << conflict.text;
   // a shard whose run folders are gone
   const fs::path hollow = copy_records(shard(3), *root_ / "hollow");
   fs::remove_all(hollow / "runs");
-  const CommandOutput damaged = command("merge " + out + " " + quoted(shard(1)) + " " + quoted(hollow) + " --no-report");
+  const CommandOutput damaged =
+      command("merge " + out + " " + quoted(shard(1)) + " " + quoted(hollow) + " --no-report");
   EXPECT_EQ(damaged.exit_code, 2) << damaged.text;
   EXPECT_NE(damaged.text.find(hollow.string() + ": its results are damaged ("), std::string::npos) << damaged.text;
   EXPECT_NE(damaged.text.find("/ (summary.json) is gone"), std::string::npos) << damaged.text;
@@ -367,30 +384,38 @@ TEST_F(SuiteSharding, MergeRefusesWhatItCannotJoin) {
   // a shard whose plan file is damaged
   const fs::path scribbled = copy_records(shard(3), *root_ / "scribbled");
   std::ofstream(scribbled / "shard.jsonl", std::ios::app) << "{\"shard\": \"three\"}\n";
-  const CommandOutput plan = command("merge " + out + " " + quoted(shard(1)) + " " + quoted(scribbled) + " --no-report");
+  const CommandOutput plan =
+      command("merge " + out + " " + quoted(shard(1)) + " " + quoted(scribbled) + " --no-report");
   EXPECT_EQ(plan.exit_code, 2) << plan.text;
   EXPECT_NE(plan.text.find((scribbled / "shard.jsonl").string() + " line 2: not a shard's plan"), std::string::npos)
       << plan.text;
   // a shard of another suite (other scenarios: other jobs)
   const fs::path stranger = *root_ / "stranger";
   ASSERT_LE(command("suite " + quoted(*root_ / "scenarios" / "short_free.toml") + " --laws hertz --shard 2/3 --out " +
-                    quoted(stranger)).exit_code, 1);
-  const CommandOutput mixed = command("merge " + out + " " + quoted(shard(1)) + " " + quoted(stranger) + " --no-report");
+                    quoted(stranger))
+                .exit_code,
+            1);
+  const CommandOutput mixed =
+      command("merge " + out + " " + quoted(shard(1)) + " " + quoted(stranger) + " --no-report");
   EXPECT_EQ(mixed.exit_code, 2) << mixed.text;
   EXPECT_NE(mixed.text.find(shard(1).string() + " and " + stranger.string() + " are shards of different suites"),
-            std::string::npos) << mixed.text;
+            std::string::npos)
+      << mixed.text;
   EXPECT_FALSE(fs::exists(*root_ / "refused")) << "nothing is written when the input is bad";
   // an OUT that holds something already
   const CommandOutput full = command("merge" + shard_list() + " --no-report");
   EXPECT_EQ(full.exit_code, 2) << full.text;
-  EXPECT_NE(full.text.find(shard(1).string() + ": not empty (it holds a suite's results); merge writes a new suite folder"),
-            std::string::npos) << full.text;
+  EXPECT_NE(
+      full.text.find(shard(1).string() + ": not empty (it holds a suite's results); merge writes a new suite folder"),
+      std::string::npos)
+      << full.text;
 }
 
 // --find-steps: the step-search groups are divided; the merged steps.csv is the whole search's.
 TEST_F(SuiteSharding, StepSearchShardsMergedGiveTheWholeSearch) {
-  const std::string search = "suite " + quoted(*root_ / "scenarios" / "short_free.toml") + " --engines " + engines() +
-                             " --laws hertz,viscoelastic --find-steps --step-range 5e-5,2e-4 --repeat 0 --jobs 2 --out ";
+  const std::string search =
+      "suite " + quoted(*root_ / "scenarios" / "short_free.toml") + " --engines " + engines() +
+      " --laws hertz,viscoelastic --find-steps --step-range 5e-5,2e-4 --repeat 0 --jobs 2 --out ";
   const CommandOutput whole = command(search + quoted(*root_ / "steps-whole"));
   ASSERT_LE(whole.exit_code, 1) << whole.text;
   std::string list;

@@ -13,7 +13,9 @@ namespace sweep_command_test {
 
 namespace fs = std::filesystem;
 
-CommandOutput sweep(const std::string& arguments) { return run_impactbench_logged_as("sweep " + arguments, "sweep_command_"); }
+CommandOutput sweep(const std::string& arguments) {
+  return run_impactbench_logged_as("sweep " + arguments, "sweep_command_");
+}
 
 TEST(SweepCommand, BadInputExitsWith2NamingTheOptionTheValueAndWhatIsAllowed) {
   const fs::path out = fresh_command_folder("sweep_bad_", "out");
@@ -31,7 +33,8 @@ TEST(SweepCommand, BadInputExitsWith2NamingTheOptionTheValueAndWhatIsAllowed) {
       {paper_scenario("free_vibration"), "a sweep needs a motor"},
       {scenario + " --reference-ensemble 0", "--reference-ensemble 0: allowed: 1 <= x <= 100"},
       {scenario + " --reference-ensemble 8 --ensemble-step 1e-5", "--ensemble-step 1e-05: allowed: above 0 m"},
-      {scenario + " --reference-ensemble 8 --start up", "the ensemble's starts are from rest; needs rest among --start"},
+      {scenario + " --reference-ensemble 8 --start up",
+       "the ensemble's starts are from rest; needs rest among --start"},
       {scenario + " --start rest --reference-ensemble 8 --ensemble-ratios 1.3",
        "--ensemble-ratios 1.3: 1.3 is not one of the sweep's ratios"},
       {scenario + " --ensemble-ratios 1.0", "--ensemble-ratios 1.0: needs --reference-ensemble N > 1"},
@@ -46,15 +49,20 @@ TEST(SweepCommand, BadInputExitsWith2NamingTheOptionTheValueAndWhatIsAllowed) {
 
 TEST(SweepCommand, WritesItsTablesAndAResumeWithOtherSettingsIsRefused) {
   const fs::path out = fresh_command_folder("sweep_tables_", "out");
-  const std::string common = paper_scenario("resonance") + " --ratios 0.99:1.0:0.01 --start up --duration 3 "
-                             "--rest-duration 3 --out " + out.string();
+  const std::string common = paper_scenario("resonance") +
+                             " --ratios 0.99:1.0:0.01 --start up --duration 3 "
+                             "--rest-duration 3 --out " +
+                             out.string();
   const CommandOutput first = sweep(common + " --window 2");
   ASSERT_EQ(first.exit_code, 0) << first.text;
   std::ifstream table(out / "sweep.csv");
   std::string header, row;
   std::getline(table, header);
-  EXPECT_EQ(header.rfind("id,scenario,engine,engine_version,law,options,contact_path,law_simulated,time_step_s,start,ratio,"
-                         "ensemble_start,ensemble_starts,initial_displacement_offset_m,motor_frequency_hz,", 0), 0u);
+  EXPECT_EQ(
+      header.rfind("id,scenario,engine,engine_version,law,options,contact_path,law_simulated,time_step_s,start,ratio,"
+                   "ensemble_start,ensemble_starts,initial_displacement_offset_m,motor_frequency_hz,",
+                   0),
+      0u);
   int rows = 0;
   while (std::getline(table, row)) ++rows;
   EXPECT_EQ(rows, 2);
@@ -76,8 +84,10 @@ TEST(SweepCommand, AResumeAfterItsScenarioFileWasEditedIsRefused) {
   const fs::path out = fresh_command_folder("sweep_edited_", "out");
   const fs::path scenario = out.string() + ".toml";
   fs::copy_file(paper_scenario("resonance"), scenario, fs::copy_options::overwrite_existing);
-  const std::string common = scenario.string() + " --engines reference --ratios 0.99:1.0:0.01 --start up --duration 3 "
-                             "--rest-duration 3 --window 2 --out " + out.string();
+  const std::string common = scenario.string() +
+                             " --engines reference --ratios 0.99:1.0:0.01 --start up --duration 3 "
+                             "--rest-duration 3 --window 2 --out " +
+                             out.string();
   const CommandOutput first = sweep(common);
   ASSERT_EQ(first.exit_code, 0) << first.text;
   std::stringstream text;

@@ -11,8 +11,8 @@
 #include <set>
 #include <sstream>
 
-#include "harness/study/merge.h"
 #include "harness/records/reporters.h"
+#include "harness/study/merge.h"
 #include "reference_fixtures.h"
 #include "simulators/catalog.h"
 
@@ -31,7 +31,8 @@ TEST(SweepRatios, FromToStepIncludesBothEndsOnAClean1e9Grid) {
 }
 
 TEST(SweepRatios, BadRangesNameTheOptionTheValueAndWhatIsAllowed) {
-  for (const char* bad : {"1.2:0.85:0.01", "a:1:0.1", "0.85:1.2", "0.01:1:0.1", "0.9:1:0", "0.9:1:-0.1", "0.9:1:1e-9", "nan:1:0.1"}) {
+  for (const char* bad :
+       {"1.2:0.85:0.01", "a:1:0.1", "0.85:1.2", "0.01:1:0.1", "0.9:1:0", "0.9:1:-0.1", "0.9:1:1e-9", "nan:1:0.1"}) {
     try {
       parse_ratios(bad);
       ADD_FAILURE() << bad << " was accepted";
@@ -148,7 +149,8 @@ TEST(ReferenceContinuation, TwoRunsJoinedByTheSavedStateAreTheOneRunTheyReplace)
   ASSERT_GT(onsets_whole.size(), 0u);
   // measured: up to 3.0e-9 s apart (the free-flight grid restarts at the continued run's t = 0, and the
   // contact integrator's tolerance is 1e-9); a continuation that lost the velocities is off by milliseconds
-  for (std::size_t i = 0; i < onsets_whole.size(); ++i) EXPECT_NEAR(second.trajectory.events[i].onset_time_s, onsets_whole[i], 1e-8);
+  for (std::size_t i = 0; i < onsets_whole.size(); ++i)
+    EXPECT_NEAR(second.trajectory.events[i].onset_time_s, onsets_whole[i], 1e-8);
 }
 
 std::string read_all(const std::string& path) {
@@ -214,8 +216,9 @@ std::vector<std::string> csv_columns(const std::string& header_line) {
 }
 
 // One vocabulary: a quantity sweep.csv shares with runs.csv has runs.csv's name and unit (the sensor peak in
-// g, not m/s^2), with the run record's own value (summary.json, written by the code that writes runs.csv); the contact path has its column; a start from rest whose
-// window lies in the start-up transient carries the warning in its records (row.json, summary.json).
+// g, not m/s^2), with the run record's own value (summary.json, written by the code that writes runs.csv); the contact
+// path has its column; a start from rest whose window lies in the start-up transient carries the warning in its records
+// (row.json, summary.json).
 TEST(SweepResults, SharedQuantitiesHaveTheRunsCsvNamesUnitsAndValues) {
   const std::string root = ::testing::TempDir() + "/sweep_vocabulary";
   fs::remove_all(root);
@@ -231,33 +234,37 @@ TEST(SweepResults, SharedQuantitiesHaveTheRunsCsvNamesUnitsAndValues) {
   std::ifstream table(root + "/sweep.csv");
   std::string header;
   std::getline(table, header);
-  const std::vector<std::string> runs = csv_columns(csv_header(RunRecord{}).substr(0, csv_header(RunRecord{}).size() - 1));
+  const std::vector<std::string> runs =
+      csv_columns(csv_header(RunRecord{}).substr(0, csv_header(RunRecord{}).size() - 1));
   const std::set<std::string> runs_columns(runs.begin(), runs.end());
   // the sweep's own: what a run of a suite does not have (its place in the sweep, the regime, the samples)
-  const std::set<std::string> sweep_only = {"id", "start", "ratio", "motor_frequency_hz", "window_s", "timed_out",
-                                            "regime", "period_n", "impacts_per_period", "poincare_samples"};
+  const std::set<std::string> sweep_only = {
+      "id",        "start",  "ratio",    "motor_frequency_hz", "window_s",
+      "timed_out", "regime", "period_n", "impacts_per_period", "poincare_samples"};
   for (const std::string& column : csv_columns(header))
     EXPECT_TRUE(runs_columns.count(column) || sweep_only.count(column)) << column << " is not a runs.csv column";
-  for (const char* shared : {"frame1_sensor_peak_acceleration_g", "frame2_sensor_peak_acceleration_g",
-                             "frame1_peak_displacement_m", "frame2_peak_displacement_m", "contact_duration_mean_s",
-                             "mean_approach_velocity_m_s", "impacts", "impacts_per_cycle", "contact_path", "law_simulated"})
+  for (const char* shared :
+       {"frame1_sensor_peak_acceleration_g", "frame2_sensor_peak_acceleration_g", "frame1_peak_displacement_m",
+        "frame2_peak_displacement_m", "contact_duration_mean_s", "mean_approach_velocity_m_s", "impacts",
+        "impacts_per_cycle", "contact_path", "law_simulated"})
     EXPECT_NE(("," + header + ",").find(std::string(",") + shared + ","), std::string::npos) << shared;
 
   for (const std::string& engine : {std::string("reference"), engine_name}) {
-    const std::string folder = root + "/runs/resonance/" + engine + "/hertz" + (engine == engine_name ? "/contact=native" : "") +
-                               "/rest/r=1";
+    const std::string folder =
+        root + "/runs/resonance/" + engine + "/hertz" + (engine == engine_name ? "/contact=native" : "") + "/rest/r=1";
     const auto row = nlohmann::json::parse(read_all(folder + "/row.json"));
     const auto summary = nlohmann::json::parse(read_all(folder + "/summary.json"));
     ASSERT_EQ(row["verdict"], "ok") << folder << ": " << row["reason"];
-    for (const char* same : {"frame1_sensor_peak_acceleration_g", "frame2_peak_displacement_m", "contact_duration_mean_s",
-                             "impacts", "contact_path", "law_simulated"})
+    for (const char* same : {"frame1_sensor_peak_acceleration_g", "frame2_peak_displacement_m",
+                             "contact_duration_mean_s", "impacts", "contact_path", "law_simulated"})
       EXPECT_EQ(row[same], summary[same]) << engine << " " << same;
     EXPECT_EQ(row["contact_path"], engine == engine_name ? "native" : "");
     EXPECT_EQ(row["law_simulated"], engine == engine_name ? "no" : "yes");
     EXPECT_EQ(row["timed_out"], false);
     // 4 s from rest scored from 2 s: inside the 22.9 s transient
     ASSERT_EQ(row["warnings"].size(), 1u) << row.dump();
-    EXPECT_NE(row["warnings"][0].get<std::string>().find("before the start-up transient's end (22.9 s"), std::string::npos);
+    EXPECT_NE(row["warnings"][0].get<std::string>().find("before the start-up transient's end (22.9 s"),
+              std::string::npos);
     EXPECT_EQ(summary["warnings"], row["warnings"]);
   }
   EXPECT_EQ(header.find("warnings"), std::string::npos);  // a list: sweep.jsonl's alone

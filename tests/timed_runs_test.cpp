@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "reference/reference_simulator.h"
-#include "simulators/catalog.h"
 #include "harness/jobs/run_job.h"
 #include "model/scenario_toml.h"
+#include "reference/reference_simulator.h"
+#include "simulators/catalog.h"
 #include "suite_test_support.h"
 
 namespace ib {
@@ -62,7 +62,8 @@ TEST(TimedRuns, TheCostIsTheMedianOfTheTimedRunsWithTheirSpreadAndTheLoggedRunBe
   };
   Measurement measurement;
   measurement.timed_repeats = 3;
-  const RunRecord r = run_job(f.scenario, f.job, measurement, nullptr, nullptr, (folder / "run").string(), nullptr, factory);
+  const RunRecord r =
+      run_job(f.scenario, f.job, measurement, nullptr, nullptr, (folder / "run").string(), nullptr, factory);
   EXPECT_EQ(runs, 4);  // one logged, three timed
   EXPECT_EQ(r.timed_runs, 3);
   EXPECT_DOUBLE_EQ(r.cost.wall_time_s, 3.0);

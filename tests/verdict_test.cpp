@@ -80,7 +80,8 @@ TEST(Verdict, EnergyGrowingWithoutInputIsUnstableButNotWithAMotor) {
   for (std::size_t k = 50; k < r.trajectory.size(); ++k) r.trajectory.mechanical_energy_j[k] = 1.2e-3;
   Judgement j = judge_stability(free_rig(), r, {});
   EXPECT_EQ(j.verdict, Verdict::unstable);
-  EXPECT_NE(j.reason.find("energy grew without input from 0.001 J to 0.0012 J at t = 0.5 s"), std::string::npos) << j.reason;
+  EXPECT_NE(j.reason.find("energy grew without input from 0.001 J to 0.0012 J at t = 0.5 s"), std::string::npos)
+      << j.reason;
   j = judge_stability(default_rig(), r, {});  // the motor feeds energy in: no verdict from energy
   EXPECT_EQ(j.verdict, Verdict::ok);
   // inside a contact the stored elastic energy may jump with the overlap a step resolves: not judged

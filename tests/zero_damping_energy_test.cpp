@@ -29,8 +29,8 @@ TEST(ZeroDamping1000s, TotalEnergyIsConserved) {
   const double strain_energy = 0.5 * 3 * f1.bending_stiffness_n_m2() / std::pow(f1.length_m, 3) * u0 * u0;
   for (ContactLaw law : {ContactLaw::hertz, ContactLaw::viscoelastic, ContactLaw::newton}) {
     const ModalModel model = build_modal_model(s, law, ReferenceSettings{}.modes);
-    const ReferenceSolution solution =
-        solve_reference(model, initial_state(s, model), s.duration_s, {s.duration_s, s.duration_s, 1}, ReferenceSettings{});
+    const ReferenceSolution solution = solve_reference(model, initial_state(s, model), s.duration_s,
+                                                       {s.duration_s, s.duration_s, 1}, ReferenceSettings{});
     ASSERT_EQ(solution.status, RunStatus::ok) << to_string(law) << ": " << solution.reason;
     const EnergyLedger& e = solution.energy;
     EXPECT_GT(solution.impacts, 1000) << to_string(law);

@@ -128,11 +128,11 @@ class MultiBodyChain final : public BulletChain {
   // it is a few products per link instead of Bullet's general quaternion algebra.
   TipMotion tip_motion() const override {
     const int links = body_->getNumLinks();
-    double s = 0, c = 1;                        // link frame -> world, about y (the base: identity)
+    double s = 0, c = 1;  // link frame -> world, about y (the base: identity)
     double x = body_->getBasePos().x(), z = body_->getBasePos().z();  // link frame origin in the world
     double cos_turn = 1, sin_turn = 0;
     double sum_rate = 0, sum_rate_hinge_z = 0;  // sum theta'_j, sum theta'_j h_jz
-    for (int j = 0; j < links; ++j) {  // a serial chain: link j's parent is link j - 1 (the base for j = 0)
+    for (int j = 0; j < links; ++j) {           // a serial chain: link j's parent is link j - 1 (the base for j = 0)
       // to_world * parent_to_local^-1, with parent_to_local = (0, ps, 0, pc)
       const btQuaternion& parent_to_local = body_->getParentToLocalRot(j);
       const double ps = parent_to_local.y(), pc = parent_to_local.w();
@@ -212,8 +212,9 @@ class ConstraintChain final : public BulletChain {
     for (int j = 0; j < links; ++j) {
       const RigBody& b = frame.bodies[j];
       const bool tip = j + 1 == links;
-      btRigidBody::btRigidBodyConstructionInfo info(b.mass_kg, nullptr, tip ? static_cast<btCollisionShape*>(&tip_shape_.compound) : &link_shape_,
-                                                     principal_inertia(b));
+      btRigidBody::btRigidBodyConstructionInfo info(
+          b.mass_kg, nullptr, tip ? static_cast<btCollisionShape*>(&tip_shape_.compound) : &link_shape_,
+          principal_inertia(b));
       info.m_startWorldTransform.setOrigin(btVector3(frame.base_x_m, 0, b.com_z_m));
       info.m_friction = 0.5;  // Bullet's default; the contact paths set their own on the tip
       auto body = std::make_unique<btRigidBody>(info);
@@ -222,7 +223,8 @@ class ConstraintChain final : public BulletChain {
       body->setSleepingThresholds(0, 0);
       // Only the tip spheres collide, and only with each other.
       const bool collides = tip && tip_contact;
-      world_.addRigidBody(body.get(), collides ? kTipCollisionGroup : kLinkCollisionGroup, collides ? kTipCollisionGroup : 0);
+      world_.addRigidBody(body.get(), collides ? kTipCollisionGroup : kLinkCollisionGroup,
+                          collides ? kTipCollisionGroup : 0);
       bodies_.push_back(std::move(body));
     }
     for (int j = 0; j < links; ++j) {
@@ -300,7 +302,8 @@ class ConstraintChain final : public BulletChain {
       const btTransform& pose = body->getCenterOfMassTransform();
       const btVector3 p = pose.getOrigin(), v = body->getLinearVelocity(), w = body->getAngularVelocity();
       const btQuaternion q = pose.getRotation();
-      values.insert(values.end(), {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()});
+      values.insert(values.end(),
+                    {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()});
     }
     return values;
   }

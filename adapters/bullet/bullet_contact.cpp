@@ -13,12 +13,14 @@ static_assert(sizeof(btScalar) == 8, "impactbench needs Bullet's double-precisio
 namespace ib::bullet {
 
 std::array<ContactStiffnessDamping, 2> spring_dashpot_per_tip(double k, double c) {
-  if (!(k > 0) || !std::isfinite(k)) throw std::invalid_argument("contact stiffness must be > 0, got " + std::to_string(k));
-  if (!(c >= 0) || !std::isfinite(c)) throw std::invalid_argument("contact damping must be >= 0, got " + std::to_string(c));
+  if (!(k > 0) || !std::isfinite(k))
+    throw std::invalid_argument("contact stiffness must be > 0, got " + std::to_string(k));
+  if (!(c >= 0) || !std::isfinite(c))
+    throw std::invalid_argument("contact damping must be >= 0, got " + std::to_string(c));
   // Tip 1 carries the law's spring, tip 2 is rigid (infinite stiffness: 1/inf = 0 in the series
   // formula, so nothing is added to 1/k); each carries half the damping (a division by 2 is exact).
-  std::array<ContactStiffnessDamping, 2> tips = {ContactStiffnessDamping{k, c / 2},
-                                                 ContactStiffnessDamping{std::numeric_limits<double>::infinity(), c / 2}};
+  std::array<ContactStiffnessDamping, 2> tips = {
+      ContactStiffnessDamping{k, c / 2}, ContactStiffnessDamping{std::numeric_limits<double>::infinity(), c / 2}};
   // Bullet's last operation is a division, 1 / (1/k_1 + 1/k_2), whose results are sparser than the
   // doubles near k: k itself may be out of reach (6.99e6 is: the nearest results are 1 ulp either
   // side). Take the tip-1 value, among k and its neighbours, whose combination lands nearest to k.

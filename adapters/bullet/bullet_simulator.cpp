@@ -12,13 +12,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "model/simulator_options.h"
 #include "adapters/bullet/bullet_chain.h"
 #include "adapters/bullet/bullet_contact.h"
 #include "adapters/bullet/bullet_world.h"
 #include "adapters/common/fixed_step_loop.h"
-#include "physics/link_chain.h"
 #include "adapters/common/rig.h"
+#include "model/simulator_options.h"
+#include "physics/link_chain.h"
 
 // Bullet's single-precision build would keep a 40 um indentation at 0.3 m from the origin to a few
 // hundred float ulps; CMake refuses it too (adapters/bullet/CMakeLists.txt).
@@ -58,8 +58,9 @@ const std::vector<std::pair<std::string, std::string>> kOptions = {
 };
 
 Articulation articulation_option(const OptionReader& options) {
-  return options.choice("articulation", "multibody", {"multibody", "constraints"}) == "multibody" ? Articulation::multibody
-                                                                                                  : Articulation::constraints;
+  return options.choice("articulation", "multibody", {"multibody", "constraints"}) == "multibody"
+             ? Articulation::multibody
+             : Articulation::constraints;
 }
 
 std::string format(double value) {
@@ -74,7 +75,11 @@ class BulletStepper final : public FixedStepEngine {
  public:
   // Bullet's world keeps no step of its own (stepSimulation takes it each time): the stepper holds the run's.
   BulletStepper(const RigSpec& rig, BulletRig& bullet, bool injected, double time_step_s)
-      : rig_(rig), bullet_(bullet), injected_(injected), time_step_s_(time_step_s), energy_(rig),
+      : rig_(rig),
+        bullet_(bullet),
+        injected_(injected),
+        time_step_s_(time_step_s),
+        energy_(rig),
         instantaneous_(is_instantaneous(rig.law)) {}
 
   double time_step_s() const override { return time_step_s_; }
@@ -90,8 +95,10 @@ class BulletStepper final : public FixedStepEngine {
       chain.joint_state(angles_[f], rates_[f]);
     }
     for (int f = 0; f < 2; ++f)  // non-finite tips: the loop says so itself
-      if (std::isfinite(tips.displacement_m[f] + tips.velocity_m_s[f]) && !(angles_[f].allFinite() && rates_[f].allFinite()))
-        return "Bullet's state became non-finite (frame " + std::to_string(f + 1) + " hinges) at t = " + format(t_s) + " s";
+      if (std::isfinite(tips.displacement_m[f] + tips.velocity_m_s[f]) &&
+          !(angles_[f].allFinite() && rates_[f].allFinite()))
+        return "Bullet's state became non-finite (frame " + std::to_string(f + 1) + " hinges) at t = " + format(t_s) +
+               " s";
     return std::nullopt;
   }
 
@@ -156,7 +163,8 @@ class BulletStepper final : public FixedStepEngine {
 
  private:
   std::string state_layout() {
-    return "bullet " + std::to_string(bullet_.chain(0).state_size()) + " + " + std::to_string(bullet_.chain(1).state_size()) +
+    return "bullet " + std::to_string(bullet_.chain(0).state_size()) + " + " +
+           std::to_string(bullet_.chain(1).state_size()) +
            " values (multibody: hinge angles then rates; constraints: 13 per body)";
   }
 
@@ -223,7 +231,6 @@ class BulletSimulator final : public Simulator {
     d.emplace_back("max_contact_points", stepper.max_contact_points());
     return result;
   }
-
 };
 
 }  // namespace

@@ -13,9 +13,9 @@
 #include <utility>
 #include <vector>
 
-#include "model/simulator_options.h"
 #include "adapters/bullet/bullet_chain.h"
 #include "adapters/common/rig.h"
+#include "model/simulator_options.h"
 
 namespace ib::bullet {
 

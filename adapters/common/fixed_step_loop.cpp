@@ -26,8 +26,8 @@ std::optional<std::string> non_finite(const TipState& tips, double t_s) {
   for (int f = 0; f < 2; ++f)
     if (!std::isfinite(tips.displacement_m[f]) || !std::isfinite(tips.velocity_m_s[f])) {
       std::ostringstream why;
-      why << "non-finite state of frame " << f + 1 << " at t = " << time_text(t_s) << " s (tip u = " << tips.displacement_m[f]
-          << " m, v = " << tips.velocity_m_s[f] << " m/s)";
+      why << "non-finite state of frame " << f + 1 << " at t = " << time_text(t_s)
+          << " s (tip u = " << tips.displacement_m[f] << " m, v = " << tips.velocity_m_s[f] << " m/s)";
       return why.str();
     }
   return std::nullopt;
@@ -40,7 +40,8 @@ std::optional<std::string> beyond_bound(const TipState& tips, const RigSpec& rig
     if (std::abs(tips.displacement_m[f]) > bound_m) {
       std::ostringstream why;
       why << "frame " << f + 1 << " tip displacement |u| = " << std::abs(tips.displacement_m[f]) << " m beyond "
-          << bounds.displacement_bound_fraction_of_length << " L = " << bound_m << " m at t = " << time_text(t_s) << " s";
+          << bounds.displacement_bound_fraction_of_length << " L = " << bound_m << " m at t = " << time_text(t_s)
+          << " s";
       return why.str();
     }
   }
@@ -56,10 +57,11 @@ double resolve_time_step_s(const RunSettings& settings, double default_step_s, c
   return settings.time_step_s > 0 ? settings.time_step_s : default_step_s;
 }
 
-std::optional<std::string> nonfinite_hinges(double t_s, const TipState& tips, const std::array<Eigen::VectorXd, 2>& angles,
+std::optional<std::string> nonfinite_hinges(double t_s, const TipState& tips,
+                                            const std::array<Eigen::VectorXd, 2>& angles,
                                             const std::array<Eigen::VectorXd, 2>& rates) {
-  const bool tips_finite = std::isfinite(tips.displacement_m[0] + tips.displacement_m[1] + tips.velocity_m_s[0] +
-                                         tips.velocity_m_s[1]);
+  const bool tips_finite =
+      std::isfinite(tips.displacement_m[0] + tips.displacement_m[1] + tips.velocity_m_s[0] + tips.velocity_m_s[1]);
   if (!tips_finite || (angles[0].allFinite() && angles[1].allFinite() && rates[0].allFinite() && rates[1].allFinite()))
     return std::nullopt;
   std::ostringstream why;
@@ -67,8 +69,8 @@ std::optional<std::string> nonfinite_hinges(double t_s, const TipState& tips, co
   return why.str();
 }
 
-void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario& scenario,
-                     const RunSettings& settings, RunResult& result) {
+void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario& scenario, const RunSettings& settings,
+                     RunResult& result) {
   const double step_s = engine.time_step_s();
   result.time_step_s = step_s;
   const long long steps = static_cast<long long>(std::ceil(scenario.duration_s / step_s - 1e-9));

@@ -41,10 +41,10 @@ struct TipState {
 
 // The loads of the coming step, held over it, computed by the loop from the state at the step's start.
 struct StepLoads {
-  double t_s = 0;                                       // the step's start [s]
-  std::optional<double> motor_force_n;                  // on frame 1's tip along +x; absent without a motor
-  std::optional<double> injected_contact_force_n;       // the harness's law: -F on frame 1's tip, +F on
-                                                        // frame 2's; absent when the engine makes the contact
+  double t_s = 0;                                  // the step's start [s]
+  std::optional<double> motor_force_n;             // on frame 1's tip along +x; absent without a motor
+  std::optional<double> injected_contact_force_n;  // the harness's law: -F on frame 1's tip, +F on
+                                                   // frame 2's; absent when the engine makes the contact
   // The chains' modal damping (physics/link_chain.h, ChainDamping::modal) as hinge torques, K per frame in
   // hinge order from the clamp: tau = -C theta' from the rates at the step's start, each torque acting on
   // the body above its hinge and its reaction on the body below [N m]. Null when the loop applies none
@@ -101,14 +101,15 @@ double resolve_time_step_s(const RunSettings& settings, double default_step_s, c
 
 // A reason read_tips gives for a hinge angle or rate that is not finite while the tips are (non-finite tips
 // the loop reports itself): "non-finite hinge angle or rate at t = T s"; nullopt when every value is finite.
-std::optional<std::string> nonfinite_hinges(double t_s, const TipState& tips, const std::array<Eigen::VectorXd, 2>& angles,
+std::optional<std::string> nonfinite_hinges(double t_s, const TipState& tips,
+                                            const std::array<Eigen::VectorXd, 2>& angles,
                                             const std::array<Eigen::VectorXd, 2>& rates);
 
 // Runs the engine over the scenario with its fixed step (engine.time_step_s()): fills the result's
 // trajectory, impact zoom, status and reason (unstable, with the time and the bound), cost, time step and,
 // for a run that reached its end, final state. Starts from settings.initial_state when set. The
 // diagnostics are the engine's.
-void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario& scenario,
-                     const RunSettings& settings, RunResult& result);
+void run_fixed_steps(FixedStepEngine& engine, const RigSpec& rig, const Scenario& scenario, const RunSettings& settings,
+                     RunResult& result);
 
 }  // namespace ib

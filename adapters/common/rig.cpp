@@ -29,8 +29,8 @@ int links_option(const OptionReader& options, const RunSettings& settings, const
 }
 
 ChainDamping chain_damping_option(const OptionReader& options) {
-  return *chain_damping_from_string(
-      options.choice(kChainDampingOption, to_string(ChainDamping::modal), {to_string(ChainDamping::modal), to_string(ChainDamping::hinge)}));
+  return *chain_damping_from_string(options.choice(kChainDampingOption, to_string(ChainDamping::modal),
+                                                   {to_string(ChainDamping::modal), to_string(ChainDamping::hinge)}));
 }
 
 std::array<Eigen::VectorXd, 2> zero_hinge_values(const RigSpec& rig) {

@@ -14,32 +14,32 @@
 #include <string>
 #include <vector>
 
-#include "physics/contact_laws.h"
-#include "physics/link_chain.h"
-#include "physics/modal_model.h"
 #include "model/scenario.h"
 #include "model/simulator.h"
 #include "model/simulator_options.h"
+#include "physics/contact_laws.h"
+#include "physics/link_chain.h"
+#include "physics/modal_model.h"
 
 namespace ib {
 
 // One rigid body of a chain as an engine sees it: the link with, on the last one, the tip mass.
 struct RigBody {
-  double joint_z_m = 0;        // the hinge it hangs from, height above the clamp [m]
-  double length_m = 0;         // from its hinge to the next (or to the tip) [m]
-  double mass_kg = 0;          // link (+ tip mass on the last) [kg]
-  double com_z_m = 0;          // centre of mass height [m]
-  double inertia_y_kg_m2 = 0;  // about the centre of mass, around the hinge axis (y) [kg m^2]
-  double inertia_xz_kg_m2 = 0; // about the other two axes: the same slender-rod value (engines need 3) [kg m^2]
+  double joint_z_m = 0;         // the hinge it hangs from, height above the clamp [m]
+  double length_m = 0;          // from its hinge to the next (or to the tip) [m]
+  double mass_kg = 0;           // link (+ tip mass on the last) [kg]
+  double com_z_m = 0;           // centre of mass height [m]
+  double inertia_y_kg_m2 = 0;   // about the centre of mass, around the hinge axis (y) [kg m^2]
+  double inertia_xz_kg_m2 = 0;  // about the other two axes: the same slender-rod value (engines need 3) [kg m^2]
 };
 
 struct FrameRig {
-  LinkChain chain;                       // the physics (physics/link_chain.h)
-  std::vector<RigBody> bodies;           // K bodies, in hinge order from the clamp
-  double base_x_m = 0;                   // clamp position along x [m]
-  double tip_z_m = 0;                    // the tip point (= beam length) [m]
-  Eigen::VectorXd initial_angles_rad;    // relative hinge angles at t = 0 (static tip-load shape, or zero)
-  double tip_effective_mass_kg = 0;      // 1 / (g^T M^-1 g) of the linearised chain [kg]
+  LinkChain chain;                     // the physics (physics/link_chain.h)
+  std::vector<RigBody> bodies;         // K bodies, in hinge order from the clamp
+  double base_x_m = 0;                 // clamp position along x [m]
+  double tip_z_m = 0;                  // the tip point (= beam length) [m]
+  Eigen::VectorXd initial_angles_rad;  // relative hinge angles at t = 0 (static tip-load shape, or zero)
+  double tip_effective_mass_kg = 0;    // 1 / (g^T M^-1 g) of the linearised chain [kg]
 };
 
 struct RigSpec {

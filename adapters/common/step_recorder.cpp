@@ -10,12 +10,13 @@ StepRecorder::StepRecorder(double series_start_s, double end_s, double rate_hz)
     : start_s_(series_start_s), end_s_(end_s), rate_hz_(rate_hz) {
   out_.output_rate_hz = rate_hz;
   out_.start_time_s = series_start_s;
-  total_samples_ = end_s >= series_start_s ? static_cast<long long>(std::floor((end_s - series_start_s) * rate_hz + 1e-9)) + 1 : 0;
+  total_samples_ =
+      end_s >= series_start_s ? static_cast<long long>(std::floor((end_s - series_start_s) * rate_hz + 1e-9)) + 1 : 0;
   out_.reserve(static_cast<std::size_t>(total_samples_));
 }
 
 namespace {
-constexpr double kZoomMargin_s = 1e-3;       // before the onset and after the end of the zoomed impact
+constexpr double kZoomMargin_s = 1e-3;         // before the onset and after the end of the zoomed impact
 constexpr std::size_t kZoomMaxSteps = 200000;  // a sticking contact must not fill the memory
 }  // namespace
 
@@ -35,7 +36,7 @@ void StepRecorder::record(const StepState& s) {
   }
   const double h = s.t - previous_.t;
   const std::array<double, 2> acceleration = {(s.velocity_m_s[0] - previous_.velocity_m_s[0]) / h,
-                                               (s.velocity_m_s[1] - previous_.velocity_m_s[1]) / h};
+                                              (s.velocity_m_s[1] - previous_.velocity_m_s[1]) / h};
   for (int f = 0; f < 2; ++f) peak_acc_[f] = std::max(peak_acc_[f], std::abs(acceleration[f]));
   peak_force_ = std::max(peak_force_, s.contact_force_n);
   // contact episodes: maximal runs of steps with a force

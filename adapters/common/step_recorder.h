@@ -16,12 +16,12 @@ namespace ib {
 // The state after a step (or at t = 0).
 struct StepState {
   double t = 0;
-  std::array<double, 2> displacement_m{};   // tip displacement along x from rest, positive toward frame 2
+  std::array<double, 2> displacement_m{};  // tip displacement along x from rest, positive toward frame 2
   std::array<double, 2> velocity_m_s{};
-  double contact_force_n = 0;               // force between the tips during the step [N]: > 0 compressive,
-                                            // < 0 only where a law pulls (the published spring-dashpot, injected)
-  double indentation_m = 0;                 // u1 - u2 - gap at the end of the step [m]
-  double energy_j = 0;                      // mechanical energy at the end of the step [J]
+  double contact_force_n = 0;  // force between the tips during the step [N]: > 0 compressive,
+                               // < 0 only where a law pulls (the published spring-dashpot, injected)
+  double indentation_m = 0;    // u1 - u2 - gap at the end of the step [m]
+  double energy_j = 0;         // mechanical energy at the end of the step [J]
 };
 
 class StepRecorder {

@@ -49,9 +49,8 @@ void DartRig::build_frame(const FrameRig& spec, double sphere_radius_m, int f) {
     joint.mName = link + "_hinge";
     joint.mAxis = Eigen::Vector3d::UnitY();
     joint.mT_ParentBodyToJoint = Eigen::Isometry3d::Identity();
-    joint.mT_ParentBodyToJoint.translation() =
-        parent ? Eigen::Vector3d(0, 0, (b.joint_z_m - parent_joint_z_m) * s)
-               : Eigen::Vector3d(frame.base_x, 0, b.joint_z_m * s);
+    joint.mT_ParentBodyToJoint.translation() = parent ? Eigen::Vector3d(0, 0, (b.joint_z_m - parent_joint_z_m) * s)
+                                                      : Eigen::Vector3d(frame.base_x, 0, b.joint_z_m * s);
     joint.mRestPositions[0] = 0;
     joint.mSpringStiffnesses[0] = spec.chain.joint_stiffness_n_m_per_rad[j - 1] * s2;
     joint.mDampingCoefficients[0] = spec.chain.joint_damping_n_m_s_per_rad[j - 1] * s2;
@@ -67,7 +66,8 @@ void DartRig::build_frame(const FrameRig& spec, double sphere_radius_m, int f) {
   frame.tip_offset = Eigen::Vector3d(0, 0, (spec.tip_z_m - spec.bodies.back().joint_z_m) * s);
   if (settings_.collision != Collision::none) {
     auto sphere = std::make_shared<dart::dynamics::SphereShape>(sphere_radius_m * s);
-    auto* node = frame.tip_body->createShapeNodeWith<dart::dynamics::CollisionAspect, dart::dynamics::DynamicsAspect>(sphere);
+    auto* node =
+        frame.tip_body->createShapeNodeWith<dart::dynamics::CollisionAspect, dart::dynamics::DynamicsAspect>(sphere);
     node->setRelativeTranslation(frame.tip_offset);
     auto* dynamics = node->getDynamicsAspect();
     if (settings_.restitution_per_shape) dynamics->setRestitutionCoeff(*settings_.restitution_per_shape);

@@ -10,9 +10,9 @@
 
 #include <Eigen/Core>
 #include <array>
-#include <vector>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <dart/dynamics/BodyNode.hpp>
 #include <dart/dynamics/Skeleton.hpp>
@@ -31,7 +31,7 @@ enum class Collision {
 
 struct DartRigSettings {
   double time_step_s = 1e-4;
-  double length_scale = 1;          // model units per metre
+  double length_scale = 1;  // model units per metre
   Collision collision = Collision::none;
   std::optional<double> restitution_per_shape;  // set on both tip shapes (a pair uses the product); DART's default 0
   std::optional<double> friction;               // both tip shapes; DART's default 1
@@ -53,7 +53,7 @@ class DartRig {
   // Sets the torques [N m] about frame f's hinges for the coming step, from the clamp (DART's joint forces,
   // cleared after each step): the loop's modal damping torques (StepLoads).
   void set_hinge_torques(int f, const Eigen::VectorXd& torques_n_m);
-  void step();  // one step of the world's own step, time_step_s()
+  void step();                 // one step of the world's own step, time_step_s()
   double time_step_s() const;  // the world's step (World::getTimeStep) [s]
   // The force between the tips during the last step [N], > 0 compressive, from DART's contact constraints
   // (impulse / step); 0 without contact or without collision.

@@ -28,8 +28,14 @@ using dart_adapter::DartRigSettings;
 constexpr double kDefaultTimeStep_s = 1e-4;
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
-    {"contact", "matched (Newton: DART's restitution with analytic sphere collision; Hertz and spring-dashpot: the law's force from the tip states, DART has no compliant rigid contact; default), injected (the law's force from the tip states, no collision), native (DART's defaults: FCL collision, restitution 0, friction 1)"},
-    {"length_unit", "the length unit of the DART model: m (default), cm or mm; DART's contact solver has velocity constants in model units (no bounce when e v <= 0.1 unit/s, bounce capped at 100 unit/s), so cm puts them at 1 mm/s and 1 m/s; the physics is the same in any unit"},
+    {"contact",
+     "matched (Newton: DART's restitution with analytic sphere collision; Hertz and spring-dashpot: the law's force "
+     "from the tip states, DART has no compliant rigid contact; default), injected (the law's force from the tip "
+     "states, no collision), native (DART's defaults: FCL collision, restitution 0, friction 1)"},
+    {"length_unit",
+     "the length unit of the DART model: m (default), cm or mm; DART's contact solver has velocity constants in model "
+     "units (no bounce when e v <= 0.1 unit/s, bounce capped at 100 unit/s), so cm puts them at 1 mm/s and 1 m/s; the "
+     "physics is the same in any unit"},
     {"lcp", "DART's boxed LCP solver: dantzig (default) or pgs"},
     {"links", kLinksOptionHelp},
     {kChainDampingOption, kChainDampingOptionHelp},
@@ -139,7 +145,8 @@ class DartStepper final : public FixedStepEngine {
     dart_rig_.set_joint_state(state.values);
   }
   std::string state_layout() const {
-    return "dart joint positions then velocities, frame 1 then frame 2 (" + std::to_string(dart_rig_.joint_state_size()) + " values)";
+    return "dart joint positions then velocities, frame 1 then frame 2 (" +
+           std::to_string(dart_rig_.joint_state_size()) + " values)";
   }
 
   std::vector<std::pair<std::string, double>> diagnostics() const {

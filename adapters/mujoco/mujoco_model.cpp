@@ -57,11 +57,11 @@ void write_frame(std::ostringstream& out, const MujocoRunPlan& plan, int f) {
       << " m; beam length L = " << num(chain.beam_length_m) << " m as " << chain.links
       << " links of l = " << num(chain.link_length_m) << " m (hinges at segment middles, the piece below the first is "
       << "ground);\n         tip mass " << num(chain.tip_mass_kg) << " kg merged into the last link; hinge stiffness "
-      << "k_j = (EI / l) a (1 + b x_j / L) with a = " << num(chain.stiffness_scale) << ", b = "
-      << num(chain.stiffness_taper) << "\n         (the beam's first two frequencies), ";
+      << "k_j = (EI / l) a (1 + b x_j / L) with a = " << num(chain.stiffness_scale)
+      << ", b = " << num(chain.stiffness_taper) << "\n         (the beam's first two frequencies), ";
   if (chain.damping == ChainDamping::hinge)
-    out << "damping c_j = (2 zeta / omega_1) k_j\n         (zeta = " << num(chain.damping_ratio) << ", chain omega_1 = "
-        << num(chain.first_omega_rad_s) << " rad/s). -->\n";
+    out << "damping c_j = (2 zeta / omega_1) k_j\n         (zeta = " << num(chain.damping_ratio)
+        << ", chain omega_1 = " << num(chain.first_omega_rad_s) << " rad/s). -->\n";
   else
     out << "no hinge dampers:\n         modal damping (zeta = " << num(chain.damping_ratio)
         << " in every mode), the harness applies the torques -C theta' each step (MJCF has no damping matrix). -->\n";

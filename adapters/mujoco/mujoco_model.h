@@ -8,10 +8,10 @@
 #include <utility>
 #include <vector>
 
-#include "model/simulator_options.h"
-#include "adapters/mujoco/mujoco_contact_mapping.h"
 #include "adapters/common/rig.h"
+#include "adapters/mujoco/mujoco_contact_mapping.h"
 #include "model/simulator.h"
+#include "model/simulator_options.h"
 
 namespace ib {
 

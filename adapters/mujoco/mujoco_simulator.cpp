@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "adapters/common/fixed_step_loop.h"
-#include "physics/link_chain.h"
 #include "adapters/mujoco/mujoco_engine.h"
 #include "adapters/mujoco/mujoco_model.h"
+#include "physics/link_chain.h"
 
 namespace ib {
 namespace {
@@ -162,7 +162,9 @@ std::vector<std::pair<std::string, double>> plan_diagnostics(const MujocoRunPlan
 class MujocoStepper final : public FixedStepEngine {
  public:
   MujocoStepper(const MujocoRunPlan& plan, MujocoRig& rig)
-      : plan_(plan), rig_(rig), energy_(plan.rig),
+      : plan_(plan),
+        rig_(rig),
+        energy_(plan.rig),
         // a contact law's elastic energy belongs in the balance only where MuJoCo applies that law
         law_energy_(plan.law != ContactLaw::newton && !plan.native_contact) {}
 
@@ -266,15 +268,15 @@ class MujocoStepper final : public FixedStepEngine {
 
  private:
   static std::string state_layout(const mjModel* m) {
-    return "mujoco qpos[" + std::to_string(m->nq) + "] qvel[" + std::to_string(m->nv) + "] act[" + std::to_string(m->na) +
-           "] qacc_warmstart[" + std::to_string(m->nv) + "]";
+    return "mujoco qpos[" + std::to_string(m->nq) + "] qvel[" + std::to_string(m->nv) + "] act[" +
+           std::to_string(m->na) + "] qacc_warmstart[" + std::to_string(m->nv) + "]";
   }
 
   const MujocoRunPlan& plan_;
   MujocoRig& rig_;
   const RigEnergy energy_;
   const bool law_energy_;
-  double t_s_ = 0;             // the time of the state last read: the step's start
+  double t_s_ = 0;  // the time of the state last read: the step's start
   double contact_force_n_ = 0;
 };
 

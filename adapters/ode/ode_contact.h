@@ -23,8 +23,8 @@ namespace ib::ode {
 constexpr double kBounceThreshold_m_s = 1e-4;
 
 struct ContactSetup {
-  bool ode_collision = false;       // ODE collides the tip spheres and makes a contact joint
-  dSurfaceParameters surface{};     // that joint's surface
+  bool ode_collision = false;          // ODE collides the tip spheres and makes a contact joint
+  dSurfaceParameters surface{};        // that joint's surface
   bool force_from_tip_states = false;  // the law's force is computed from the tips and applied to them
 };
 

@@ -52,8 +52,7 @@ struct Library {
 void ensure_initialised() {
   static const Library library;
   // ODE wants its per-thread data on every thread that steps a world; a no-op when already there.
-  if (!dAllocateODEDataForThread(dAllocateMaskAll))
-    throw std::runtime_error("ODE: dAllocateODEDataForThread failed");
+  if (!dAllocateODEDataForThread(dAllocateMaskAll)) throw std::runtime_error("ODE: dAllocateODEDataForThread failed");
 }
 
 std::string version_text() {

@@ -80,7 +80,7 @@ void OdeRig::build_frame(const FrameRig& spec, double sphere_radius_m, Frame& fr
 // Places the bodies of a frame in the shape of the given relative hinge angles, at rest: hinge j turns
 // everything above it by angles[j] about y (toward +x for a positive angle).
 void OdeRig::pose_frame(const FrameRig& spec, const Eigen::VectorXd& angles, const Frame& frame) {
-  double absolute = 0;                        // pitch of the current body [rad]
+  double absolute = 0;  // pitch of the current body [rad]
   double hinge_x = spec.base_x_m, hinge_z = spec.bodies.front().joint_z_m;
   for (std::size_t j = 0; j < frame.bodies.size(); ++j) {
     const RigBody& b = spec.bodies[j];

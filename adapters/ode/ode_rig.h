@@ -21,7 +21,8 @@ namespace ib::ode {
 // How the hinge springs k_theta, c_theta are made.
 enum class SpringPath {
   implicit_stops,    // both hinge stops at the rest angle, softened by soft_constraint(k, c, h): backward Euler, stable
-  explicit_torques,  // dJointAddHingeTorque(-(k theta + c theta')) each step: ODE's semi-implicit Euler, needs h < 2/omega_max
+  explicit_torques,  // dJointAddHingeTorque(-(k theta + c theta')) each step: ODE's semi-implicit Euler, needs h <
+                     // 2/omega_max
 };
 
 enum class Stepper {
@@ -33,8 +34,8 @@ struct OdeModelSettings {
   double time_step_s = 1e-4;
   SpringPath springs = SpringPath::implicit_stops;
   Stepper stepper = Stepper::world;
-  int quick_step_iterations = 20;   // ODE's own default
-  bool tip_spheres = true;          // make the tip spheres (only when ODE's own contact is used)
+  int quick_step_iterations = 20;  // ODE's own default
+  bool tip_spheres = true;         // make the tip spheres (only when ODE's own contact is used)
 };
 
 // A frame's tip along x.
@@ -69,7 +70,7 @@ class OdeRig {
   // (dJointFeedback; 0 when the step had no contact joint).
   double tip_contact_force() const;
 
-  void step();  // one step of time_step_s()
+  void step();                                                  // one step of time_step_s()
   double time_step_s() const { return settings_.time_step_s; }  // the step dWorldStep is given [s]
 
   // ODE's state in maximal coordinates: every body's position, quaternion (w, x, y, z), linear and angular
@@ -91,7 +92,7 @@ class OdeRig {
     std::vector<dJointID> hinges;  // hinge j joins body j (ODE body 1) to body j-1 or the ground (body 2)
     dGeomID sphere = nullptr;
     double base_x_m = 0;
-    double tip_offset_z_m = 0;     // tip point above the last body's centre of mass, in its frame
+    double tip_offset_z_m = 0;               // tip point above the last body's centre of mass, in its frame
     std::vector<double> stiffness, damping;  // hinge j's spring [N m/rad] and damper [N m s/rad]
   };
   void build_frame(const FrameRig& spec, double sphere_radius_m, Frame& frame);

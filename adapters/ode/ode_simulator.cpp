@@ -6,12 +6,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "model/simulator_options.h"
 #include "adapters/common/fixed_step_loop.h"
+#include "adapters/common/rig.h"
 #include "adapters/ode/ode_contact.h"
 #include "adapters/ode/ode_library.h"
 #include "adapters/ode/ode_rig.h"
-#include "adapters/common/rig.h"
+#include "model/simulator_options.h"
 
 namespace ib {
 namespace {
@@ -30,8 +30,13 @@ constexpr double kDefaultTimeStep_s = 1e-4;
 constexpr int kOdeDefaultQuickStepIterations = 20;  // dWorldGetQuickStepNumIterations of a new world
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
-    {"contact", "matched (the law in ODE's own terms where it has one, default), injected (the law's force from the tip states, ODE's collision off), native (ODE's default hard contact)"},
-    {"springs", "hinge springs: implicit (both hinge stops at the rest angle with StopERP/StopCFM from k, c and the step; default) or explicit (dJointAddHingeTorque each step; stable only below the step in the diagnostic explicit_spring_step_limit_s, for K = 8 about 1.65e-4 s with chain_damping=modal, 7.5e-5 s with hinge)"},
+    {"contact",
+     "matched (the law in ODE's own terms where it has one, default), injected (the law's force from the tip states, "
+     "ODE's collision off), native (ODE's default hard contact)"},
+    {"springs",
+     "hinge springs: implicit (both hinge stops at the rest angle with StopERP/StopCFM from k, c and the step; "
+     "default) or explicit (dJointAddHingeTorque each step; stable only below the step in the diagnostic "
+     "explicit_spring_step_limit_s, for K = 8 about 1.65e-4 s with chain_damping=modal, 7.5e-5 s with hinge)"},
     {"stepper", "world (dWorldStep, direct LCP solver; default) or quick (dWorldQuickStep, iterative)"},
     {"iterations", "dWorldQuickStep iterations, 1..100000 (default 20, ODE's own default); only with stepper=quick"},
     {"links", kLinksOptionHelp},
@@ -52,7 +57,8 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   plan.model.springs = options.choice("springs", "implicit", {"implicit", "explicit"}) == "explicit"
                            ? SpringPath::explicit_torques
                            : SpringPath::implicit_stops;
-  plan.model.stepper = options.choice("stepper", "world", {"world", "quick"}) == "quick" ? Stepper::quick : Stepper::world;
+  plan.model.stepper =
+      options.choice("stepper", "world", {"world", "quick"}) == "quick" ? Stepper::quick : Stepper::world;
   plan.model.quick_step_iterations = options.integer("iterations", kOdeDefaultQuickStepIterations, 1, 100000);
   if (settings.options.count("iterations") && plan.model.stepper != Stepper::quick)
     throw std::invalid_argument("ode option iterations: only with stepper=quick");
@@ -80,7 +86,8 @@ class OdeStepper final : public FixedStepEngine {
   const RigSpec& rig() const { return rig_; }
   double time_step_s() const override { return ode_rig_.time_step_s(); }  // what dWorldStep is given
   std::string state_layout() const {
-    return "ode bodies[" + std::to_string(ode_rig_.body_count()) + "] x (position, quaternion, linear and angular velocity)";
+    return "ode bodies[" + std::to_string(ode_rig_.body_count()) +
+           "] x (position, quaternion, linear and angular velocity)";
   }
 
   bool injects_contact() const override { return contact_.force_from_tip_states; }

@@ -19,7 +19,8 @@ void TipLoads::calcForce(const State& state, Vector_<SpatialVec>& body_forces, V
   tips_[1].applyForceToBodyPoint(state, stations_m_[1], Vec3(tip_force_n_[1], 0, 0), body_forces);
 }
 
-void HingeDampingMatrix::calcForce(const State& state, Vector_<SpatialVec>&, Vector_<Vec3>&, Vector& mobility_forces) const {
+void HingeDampingMatrix::calcForce(const State& state, Vector_<SpatialVec>&, Vector_<Vec3>&,
+                                   Vector& mobility_forces) const {
   for (int f = 0; f < 2; ++f) {
     const Eigen::Index k = damping_[f].rows();
     if (k == 0) continue;
@@ -37,7 +38,8 @@ SimbodyChain::SimbodyChain(const RigSpec& rig) : rig_(rig), matter_(system_), fo
   auto* loads = new TipLoads({tip_body(0), tip_body(1)}, {tip_station_m(0), tip_station_m(1)}, rig.motor);
   loads_ = loads;
   Force::Custom(forces_, loads);  // the subsystem owns it
-  if (rig.frames[0].chain.modal_damping_n_m_s_per_rad.size() > 0 || rig.frames[1].chain.modal_damping_n_m_s_per_rad.size() > 0)
+  if (rig.frames[0].chain.modal_damping_n_m_s_per_rad.size() > 0 ||
+      rig.frames[1].chain.modal_damping_n_m_s_per_rad.size() > 0)
     Force::Custom(forces_, new HingeDampingMatrix({frames_[0].links, frames_[1].links},
                                                   {rig.frames[0].chain.modal_damping_n_m_s_per_rad,
                                                    rig.frames[1].chain.modal_damping_n_m_s_per_rad}));
@@ -54,7 +56,8 @@ void SimbodyChain::build_frame(const FrameRig& spec, Frame& frame) {
     const Vec3 com_m(0, 0, b.com_z_m - b.joint_z_m);
     const Inertia about_com(Vec3(b.inertia_xz_kg_m2, b.inertia_y_kg_m2, b.inertia_xz_kg_m2));
     const Body::Rigid body(MassProperties(b.mass_kg, com_m, about_com.shiftFromMassCenter(com_m, b.mass_kg)));
-    const Vec3 hinge_in_parent_m = j == 0 ? Vec3(spec.base_x_m, 0, b.joint_z_m) : Vec3(0, 0, b.joint_z_m - parent_joint_z_m);
+    const Vec3 hinge_in_parent_m =
+        j == 0 ? Vec3(spec.base_x_m, 0, b.joint_z_m) : Vec3(0, 0, b.joint_z_m - parent_joint_z_m);
     MobilizedBody::Pin link(parent, Transform(kZToY, hinge_in_parent_m), body, Transform(kZToY, Vec3(0)));
     // the hinge's spring (rest angle 0: the straight beam) and damper, on the pin's one coordinate
     const double k = spec.chain.joint_stiffness_n_m_per_rad[j], c = spec.chain.joint_damping_n_m_s_per_rad[j];
@@ -97,7 +100,8 @@ TipReading SimbodyChain::tip(const State& state, int f) const {
   return {tip_position_m(state, f)[0] - frames_[f].base_x_m, tip_velocity_m_s(state, f)[0]};
 }
 
-void SimbodyChain::hinge_state(const State& state, int f, Eigen::VectorXd& angles_rad, Eigen::VectorXd& rates_rad_s) const {
+void SimbodyChain::hinge_state(const State& state, int f, Eigen::VectorXd& angles_rad,
+                               Eigen::VectorXd& rates_rad_s) const {
   for (std::size_t j = 0; j < frames_[f].links.size(); ++j) {
     angles_rad[static_cast<Eigen::Index>(j)] = frames_[f].links[j].getAngle(state);
     rates_rad_s[static_cast<Eigen::Index>(j)] = frames_[f].links[j].getRate(state);

@@ -37,22 +37,23 @@ class TipLoads : public SimTK::Force::Custom::Implementation {
   void set_tip_forces_n(double frame1_n, double frame2_n) { tip_force_n_ = {frame1_n, frame2_n}; }
   double motor_force_n(double t_s) const { return motor_ ? motor_->at(t_s) : 0.0; }
 
-  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces, SimTK::Vector_<SimTK::Vec3>&,
-                 SimTK::Vector&) const override;
+  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                 SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector&) const override;
   SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
 
  private:
   std::array<SimTK::MobilizedBody, 2> tips_;
   std::array<SimTK::Vec3, 2> stations_m_;  // the tip point on each last link, in its body frame
   std::optional<MotorForce> motor_;
-  std::array<double, 2> tip_force_n_{};    // along ground x
+  std::array<double, 2> tip_force_n_{};  // along ground x
 };
 
 // The chains' modal damping matrices as mobility forces on the pins, -C theta' per frame, evaluated at every
 // stage (no potential energy: it only dissipates).
 class HingeDampingMatrix : public SimTK::Force::Custom::Implementation {
  public:
-  HingeDampingMatrix(std::array<std::vector<SimTK::MobilizedBody::Pin>, 2> links, std::array<Eigen::MatrixXd, 2> damping)
+  HingeDampingMatrix(std::array<std::vector<SimTK::MobilizedBody::Pin>, 2> links,
+                     std::array<Eigen::MatrixXd, 2> damping)
       : links_(std::move(links)), damping_(std::move(damping)) {}
   void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>&, SimTK::Vector_<SimTK::Vec3>&,
                  SimTK::Vector& mobility_forces) const override;

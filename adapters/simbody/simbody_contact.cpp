@@ -9,11 +9,13 @@ using namespace SimTK;
 
 HuntCrossleyMaterial hertz_material(const HertzLaw& law, double sphere_radius_m) {
   const double effective_radius_m = sphere_radius_m / 2;  // two equal spheres
-  return {std::pow(2.0, 1.5) * 3 * law.stiffness / (4 * std::sqrt(effective_radius_m)), law.damping / (1.5 * law.stiffness)};
+  return {std::pow(2.0, 1.5) * 3 * law.stiffness / (4 * std::sqrt(effective_radius_m)),
+          law.damping / (1.5 * law.stiffness)};
 }
 
 HuntCrossleyMaterial steel_material() {
-  return {ContactMaterial::calcPlaneStrainStiffness(kSteelYoungsModulus_pa, kSteelPoissonRatio), kSteelDissipation_s_per_m};
+  return {ContactMaterial::calcPlaneStrainStiffness(kSteelYoungsModulus_pa, kSteelPoissonRatio),
+          kSteelDissipation_s_per_m};
 }
 
 double hunt_crossley_force_n(const HuntCrossleyMaterial& m, double sphere_radius_m, double indentation_m,
@@ -60,7 +62,8 @@ double SpringDashpotContact::force_n(const State& state) const {
   return law_.clip_tension ? std::max(0.0, force) : force;
 }
 
-void SpringDashpotContact::calcForce(const State& state, Vector_<SpatialVec>& body_forces, Vector_<Vec3>&, Vector&) const {
+void SpringDashpotContact::calcForce(const State& state, Vector_<SpatialVec>& body_forces, Vector_<Vec3>&,
+                                     Vector&) const {
   const double force = force_n(state);
   if (force == 0) return;
   const Vec3 d = chain_.tip_position_m(state, 1) - chain_.tip_position_m(state, 0);
@@ -70,7 +73,8 @@ void SpringDashpotContact::calcForce(const State& state, Vector_<SpatialVec>& bo
 }
 
 Real SpringDashpotContact::calcPotentialEnergy(const State& state) const {
-  const double indentation_m = 2 * radius_m_ - (chain_.tip_position_m(state, 1) - chain_.tip_position_m(state, 0)).norm();
+  const double indentation_m =
+      2 * radius_m_ - (chain_.tip_position_m(state, 1) - chain_.tip_position_m(state, 0)).norm();
   return indentation_m > 0 ? 0.5 * law_.stiffness_n_per_m * indentation_m * indentation_m : 0.0;
 }
 
@@ -100,9 +104,9 @@ SimbodyContact::SimbodyContact(SimbodyChain& chain, const ContactSetup& setup, c
       const double e = std::get<NewtonLaw>(rig.law).restitution;
       // SphereSphereContact(body F, centre, radius, body B, centre, radius, minCOR, mu_s, mu_d, mu_v):
       // the COR is e above the stepper's minCOR speed (set small in SimbodyStepper), frictionless
-      chain.matter().adoptUnilateralContact(new SphereSphereContact(chain.tip_body(0), chain.tip_station_m(0),
-                                                                    rig.sphere_radius_m, chain.tip_body(1),
-                                                                    chain.tip_station_m(1), rig.sphere_radius_m, e, 0, 0, 0));
+      chain.matter().adoptUnilateralContact(
+          new SphereSphereContact(chain.tip_body(0), chain.tip_station_m(0), rig.sphere_radius_m, chain.tip_body(1),
+                                  chain.tip_station_m(1), rig.sphere_radius_m, e, 0, 0, 0));
       break;
     }
   }

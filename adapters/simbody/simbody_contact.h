@@ -22,10 +22,10 @@
 namespace ib::simbody {
 
 enum class ContactKind {
-  injected,       // the harness's law applied as tip forces; Simbody makes no contact
-  hunt_crossley,  // CompliantContactSubsystem, two ContactSurface spheres
-  spring_dashpot, // Force::Custom between the tip stations
-  rigid_newton,   // SphereSphereContact + SemiExplicitEulerTimeStepper
+  injected,        // the harness's law applied as tip forces; Simbody makes no contact
+  hunt_crossley,   // CompliantContactSubsystem, two ContactSurface spheres
+  spring_dashpot,  // Force::Custom between the tip stations
+  rigid_newton,    // SphereSphereContact + SemiExplicitEulerTimeStepper
 };
 
 // One surface's ContactMaterial: Simbody stores its stiffness as E^(2/3) and combines two surfaces as
@@ -73,8 +73,8 @@ class SpringDashpotContact : public SimTK::Force::Custom::Implementation {
       : chain_(chain), law_(law), radius_m_(sphere_radius_m) {}
   // The compressive force [N] (> 0 pushing the tips apart; < 0 pulling where the law is not clipped).
   double force_n(const SimTK::State& state) const;
-  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces, SimTK::Vector_<SimTK::Vec3>&,
-                 SimTK::Vector&) const override;
+  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                 SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector&) const override;
   SimTK::Real calcPotentialEnergy(const SimTK::State& state) const override;
 
  private:

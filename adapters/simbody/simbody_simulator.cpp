@@ -29,10 +29,19 @@ constexpr double kDefaultTimeStep_s = 5e-5;
 constexpr double kDefaultConstraintTolerance_m = 1e-6;
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
-    {"contact", "matched (the law in Simbody's own terms: Hunt-Crossley for Hertz n = 1.5, a force element for the spring-dashpot, rigid contact for Newton; default), injected (the law's force from the tip states), native (Hunt-Crossley contact with steel: E = 200 GPa, nu = 0.3, dissipation 0.2 s/m)"},
-    {"integrator", "euler (semi-explicit Euler, default), rk2, rk3, rkm (Runge-Kutta-Merson), verlet: fixed step = the run's step; with accuracy also cpodes (BDF); not with the rigid Newton contact (its own stepper)"},
-    {"accuracy", "error-controlled integration with this relative accuracy, 1e-10..0.1 (integrator rk3, rkm, verlet or cpodes; default rkm); the run's step is then only the recording interval"},
-    {"constraint_tolerance", "rigid Newton contact: the distance at which the spheres count as touching [m], 1e-9..1e-3 (default 1e-6; Simbody's own 1e-3 fires the impact 0.5 mm early)"},
+    {"contact",
+     "matched (the law in Simbody's own terms: Hunt-Crossley for Hertz n = 1.5, a force element for the "
+     "spring-dashpot, rigid contact for Newton; default), injected (the law's force from the tip states), native "
+     "(Hunt-Crossley contact with steel: E = 200 GPa, nu = 0.3, dissipation 0.2 s/m)"},
+    {"integrator",
+     "euler (semi-explicit Euler, default), rk2, rk3, rkm (Runge-Kutta-Merson), verlet: fixed step = the run's step; "
+     "with accuracy also cpodes (BDF); not with the rigid Newton contact (its own stepper)"},
+    {"accuracy",
+     "error-controlled integration with this relative accuracy, 1e-10..0.1 (integrator rk3, rkm, verlet or cpodes; "
+     "default rkm); the run's step is then only the recording interval"},
+    {"constraint_tolerance",
+     "rigid Newton contact: the distance at which the spheres count as touching [m], 1e-9..1e-3 (default 1e-6; "
+     "Simbody's own 1e-3 fires the impact 0.5 mm early)"},
     {"links", kLinksOptionHelp},
     {kChainDampingOption, kChainDampingOptionHelp},
 };
@@ -49,10 +58,10 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
   RunPlan plan;
   plan.contact = options.contact_path();
   const bool error_control = settings.options.count("accuracy") > 0;
-  const std::string integrator = options.choice(
-      "integrator", error_control ? "rkm" : "euler",
-      error_control ? std::vector<std::string>{"rk3", "rkm", "verlet", "cpodes"}
-                    : std::vector<std::string>{"euler", "rk2", "rk3", "rkm", "verlet"});
+  const std::string integrator =
+      options.choice("integrator", error_control ? "rkm" : "euler",
+                     error_control ? std::vector<std::string>{"rk3", "rkm", "verlet", "cpodes"}
+                                   : std::vector<std::string>{"euler", "rk2", "rk3", "rkm", "verlet"});
   for (IntegratorKind kind : {IntegratorKind::semi_explicit_euler, IntegratorKind::rk2, IntegratorKind::rk3,
                               IntegratorKind::rkm, IntegratorKind::verlet, IntegratorKind::cpodes})
     if (integrator == simbody::to_string(kind)) plan.stepping.integrator = kind;
@@ -66,7 +75,8 @@ RunPlan plan_run(const Scenario& scenario, const RunSettings& settings) {
         "simbody option integrator/accuracy: the rigid Newton contact (law newton, contact matched) steps with its "
         "own SemiExplicitEulerTimeStepper; allowed only with contact=injected or another law");
   if (settings.options.count("constraint_tolerance") && !plan.stepping.rigid_contact)
-    throw std::invalid_argument("simbody option constraint_tolerance: only with the rigid Newton contact (law newton, contact matched)");
+    throw std::invalid_argument(
+        "simbody option constraint_tolerance: only with the rigid Newton contact (law newton, contact matched)");
   plan.links = links_option(options, settings, scenario);
   plan.damping = chain_damping_option(options);
   plan.stepping.step_s = resolve_time_step_s(settings, kDefaultTimeStep_s, "simbody");
@@ -121,7 +131,8 @@ class SimbodyStepper final : public FixedStepEngine {
     const SimTK::State& s = stepping_.state();
     SavedState state{"simbody", state_layout(), {}};
     for (int f = 0; f < 2; ++f) {
-      Eigen::VectorXd angles(rig_.frames[f].chain.links), rates(rig_.frames[f].chain.links);  // hinge_state fills K entries
+      Eigen::VectorXd angles(rig_.frames[f].chain.links),
+          rates(rig_.frames[f].chain.links);  // hinge_state fills K entries
       chain_.hinge_state(s, f, angles, rates);
       state.values.insert(state.values.end(), angles.data(), angles.data() + angles.size());
       state.values.insert(state.values.end(), rates.data(), rates.data() + rates.size());
@@ -205,8 +216,8 @@ class SimbodyStepper final : public FixedStepEngine {
   const bool newton_;
   const double step_limit_s_;
   std::array<Eigen::VectorXd, 2> angles_, rates_;
-  double closing_m_s_ = 0;    // tip 1 - tip 2 velocity at the last read [m/s]
-  double separation_m_ = 0;   // surface gap at the last read [m]
+  double closing_m_s_ = 0;   // tip 1 - tip 2 velocity at the last read [m/s]
+  double separation_m_ = 0;  // surface gap at the last read [m]
   double last_step_impulse_force_n_ = 0;
   long long impacts_ = 0;
 };

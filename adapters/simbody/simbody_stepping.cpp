@@ -10,12 +10,18 @@ using namespace SimTK;
 
 const char* to_string(IntegratorKind kind) {
   switch (kind) {
-    case IntegratorKind::semi_explicit_euler: return "euler";
-    case IntegratorKind::rk2: return "rk2";
-    case IntegratorKind::rk3: return "rk3";
-    case IntegratorKind::rkm: return "rkm";
-    case IntegratorKind::verlet: return "verlet";
-    case IntegratorKind::cpodes: return "cpodes";
+    case IntegratorKind::semi_explicit_euler:
+      return "euler";
+    case IntegratorKind::rk2:
+      return "rk2";
+    case IntegratorKind::rk3:
+      return "rk3";
+    case IntegratorKind::rkm:
+      return "rkm";
+    case IntegratorKind::verlet:
+      return "verlet";
+    case IntegratorKind::cpodes:
+      return "cpodes";
   }
   return "?";
 }
@@ -30,11 +36,16 @@ std::unique_ptr<Integrator> make_integrator(const MultibodySystem& system, const
     case IntegratorKind::semi_explicit_euler:
       // error control for this method is SemiExplicitEuler2Integrator (the option refuses the pairing)
       return std::make_unique<SemiExplicitEulerIntegrator>(system, s.step_s);
-    case IntegratorKind::rk2: return std::make_unique<RungeKutta2Integrator>(system);
-    case IntegratorKind::rk3: return std::make_unique<RungeKutta3Integrator>(system);
-    case IntegratorKind::rkm: return std::make_unique<RungeKuttaMersonIntegrator>(system);
-    case IntegratorKind::verlet: return std::make_unique<VerletIntegrator>(system);
-    case IntegratorKind::cpodes: return std::make_unique<CPodesIntegrator>(system, CPodes::BDF, CPodes::Newton);
+    case IntegratorKind::rk2:
+      return std::make_unique<RungeKutta2Integrator>(system);
+    case IntegratorKind::rk3:
+      return std::make_unique<RungeKutta3Integrator>(system);
+    case IntegratorKind::rkm:
+      return std::make_unique<RungeKuttaMersonIntegrator>(system);
+    case IntegratorKind::verlet:
+      return std::make_unique<VerletIntegrator>(system);
+    case IntegratorKind::cpodes:
+      return std::make_unique<CPodesIntegrator>(system, CPodes::BDF, CPodes::Newton);
   }
   throw std::logic_error("unknown integrator");
 }
@@ -71,8 +82,10 @@ const State& SimbodyStepping::state() const {
 }
 
 void SimbodyStepping::restart(const State& state) {
-  if (rigid_) rigid_->initialize(state);
-  else integrator_->initialize(state);
+  if (rigid_)
+    rigid_->initialize(state);
+  else
+    integrator_->initialize(state);
 }
 
 void SimbodyStepping::loads_changed() {

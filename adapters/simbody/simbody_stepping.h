@@ -21,10 +21,10 @@ const char* to_string(IntegratorKind kind);
 
 struct SteppingSettings {
   IntegratorKind integrator = IntegratorKind::semi_explicit_euler;
-  bool error_control = false;  // false: fixed step = the loop's step
-  double accuracy = 0;         // error control only: Integrator::setAccuracy [-]
-  double step_s = 0;           // the loop's step [s]
-  bool rigid_contact = false;  // SemiExplicitEulerTimeStepper instead of an integrator
+  bool error_control = false;            // false: fixed step = the loop's step
+  double accuracy = 0;                   // error control only: Integrator::setAccuracy [-]
+  double step_s = 0;                     // the loop's step [s]
+  bool rigid_contact = false;            // SemiExplicitEulerTimeStepper instead of an integrator
   double constraint_tolerance_m = 1e-6;  // rigid contact: how close the spheres must be to be "in contact" [m]
 };
 
@@ -42,9 +42,9 @@ class SimbodyStepping {
   // Forces read from outside the state were changed between steps: the integrator must not reuse what it
   // computed from the old ones (Integrator::reinitialize at Stage::Dynamics).
   void loads_changed();
-  long long internal_steps() const;      // the integrator's own steps taken (rigid: one per advance)
-  long long attempted_steps() const;     // including rejected ones (error control)
-  double smallest_step_s() const;        // error control: over the run so far (0 when none)
+  long long internal_steps() const;   // the integrator's own steps taken (rigid: one per advance)
+  long long attempted_steps() const;  // including rejected ones (error control)
+  double smallest_step_s() const;     // error control: over the run so far (0 when none)
   double largest_step_s() const;
   double constraint_tolerance_in_use_m() const;
   double impact_capture_speed_m_s() const;  // rigid contact: below this closing speed an impact is plastic

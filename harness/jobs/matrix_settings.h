@@ -21,21 +21,21 @@ namespace ib {
 
 struct MatrixSettings {
   std::vector<std::string> engines = {"reference"};
-  std::vector<ContactLaw> laws = {ContactLaw::hertz};          // a suite's default: every law (SuiteSettings)
-  std::vector<double> time_steps_s;                // fixed-step engines; empty: each engine's default
-  std::vector<std::string> contact_paths;          // engines' option "contact" (matched, injected, native); empty: default
-  std::map<std::string, std::string> reference_options;  // options of every reference run
+  std::vector<ContactLaw> laws = {ContactLaw::hertz};  // a suite's default: every law (SuiteSettings)
+  std::vector<double> time_steps_s;                    // fixed-step engines; empty: each engine's default
+  std::vector<std::string> contact_paths;  // engines' option "contact" (matched, injected, native); empty: default
+  std::map<std::string, std::string> reference_options;                      // options of every reference run
   std::map<std::string, std::map<std::string, std::string>> engine_options;  // per engine
   double output_rate_hz = 4096;
-  int jobs = 1;                                    // worker processes
-  double time_limit_s = 600;                       // per job (a sweep: per ratio); then it is stopped and recorded
-  std::string out;                                 // output folder
+  int jobs = 1;               // worker processes
+  double time_limit_s = 600;  // per job (a sweep: per ratio); then it is stopped and recorded
+  std::string out;            // output folder
   bool resume = false;
   // Set: runs only this shard (shard_plan.h); --resume then continues the same shard.
   std::optional<Shard> shard;
-  std::string resume_command;  // the command that continues this run, kept in a shard's plan for merge's messages
-  Measurement measurement;                         // sensor rate, merge window, verdicts, series kept
-  SimulatorCatalog simulators;                     // what runs the jobs (simulators/catalog.h: this binary's)
+  std::string resume_command;   // the command that continues this run, kept in a shard's plan for merge's messages
+  Measurement measurement;      // sensor rate, merge window, verdicts, series kept
+  SimulatorCatalog simulators;  // what runs the jobs (simulators/catalog.h: this binary's)
 };
 
 // The configurations into a settings record, in this order: engines, laws (by name), time_steps_s,

@@ -26,10 +26,10 @@ struct ProcessEnd {
 };
 
 struct ProcessStart {
-  std::string unit;           // unique among the running units
-  double time_limit_s = 0;    // > 0: killed when it has run this long since its start or its last restart_clock
-  std::string log_path;       // its stdout and stderr; "": the parent's
-  bool append_log = false;    // a chain's log grows with each process that continues it
+  std::string unit;         // unique among the running units
+  double time_limit_s = 0;  // > 0: killed when it has run this long since its start or its last restart_clock
+  std::string log_path;     // its stdout and stderr; "": the parent's
+  bool append_log = false;  // a chain's log grows with each process that continues it
 };
 
 // What runs in the unit's process: it never returns (it _exits); a write error goes through message_pipe

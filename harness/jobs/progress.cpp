@@ -1,8 +1,8 @@
 #include "harness/jobs/progress.h"
 
+#include <unistd.h>
 #include <algorithm>
 #include <cstdio>
-#include <unistd.h>
 #include <vector>
 
 namespace ib {
@@ -56,8 +56,10 @@ double RemainingTime::cost_per_unit(const JobWork& work) const {
 }
 
 void RemainingTime::expect(const std::string& key, const JobWork& work, int count) {
-  if (count > 0) expected_[key] = {work, count};
-  else expected_.erase(key);
+  if (count > 0)
+    expected_[key] = {work, count};
+  else
+    expected_.erase(key);
 }
 
 bool RemainingTime::measured(const std::string& kind) const {
@@ -65,9 +67,7 @@ bool RemainingTime::measured(const std::string& kind) const {
   return sum != by_kind_.end() && sum->second.units > 0;
 }
 
-bool RemainingTime::started_kind(const std::string& kind) const {
-  return started_kinds_.count(kind) > 0;
-}
+bool RemainingTime::started_kind(const std::string& kind) const { return started_kinds_.count(kind) > 0; }
 
 double RemainingTime::cost_s(const JobWork& work) const {
   const double per_unit = cost_per_unit(work);

@@ -17,9 +17,9 @@ namespace ib {
 
 // What a job is for the estimate: its kind (runs of one kind cost the same per unit) and its work.
 struct JobWork {
-  std::string kind;    // e.g. "mujoco/contact=native"; the engine alone is the kind's fallback
+  std::string kind;  // e.g. "mujoco/contact=native"; the engine alone is the kind's fallback
   std::string engine;
-  double units = 0;    // steps, or simulated seconds for an adaptive simulator
+  double units = 0;      // steps, or simulated seconds for an adaptive simulator
   bool in_steps = true;  // units are steps (false: simulated seconds)
   // Jobs that tend to run the same share of their steps (an engine, options and step: Bullet's hinge
   // springs diverge at 1e-4 s within the first second, whatever the case); "": the kind.
@@ -29,8 +29,8 @@ struct JobWork {
 // The estimate alone, without a clock or a screen, so that it can be tested on a synthetic job list.
 class RemainingTime {
  public:
-  void plan(const std::string& id, const JobWork& work);                      // a job to run
-  void start(const std::string& id, double now_s);                            // it started at now_s
+  void plan(const std::string& id, const JobWork& work);  // a job to run
+  void start(const std::string& id, double now_s);        // it started at now_s
   // It ended at now_s after units_done of its work (< 0: all of it; fewer when it stopped early), of
   // which the simulator itself took compute_s (< 0: unknown); the rest is the job's overhead (its
   // process, references, files), the same for every job, so that a run that stopped early does not
@@ -62,8 +62,8 @@ class RemainingTime {
     double seconds = 0, units = 0;
   };
   std::map<std::string, Sum> by_kind_, by_engine_;
-  Sum by_unit_[2];  // [in_steps]
-  Sum overhead_;    // seconds of a job beyond its simulator's own, over jobs (units: jobs)
+  Sum by_unit_[2];                        // [in_steps]
+  Sum overhead_;                          // seconds of a job beyond its simulator's own, over jobs (units: jobs)
   std::map<std::string, Sum> share_run_;  // by stop key: steps run (seconds) over steps planned (units)
   // The units a job will likely run: its planned ones times the share its stop key's jobs ran.
   double likely_units(const JobWork& work) const;

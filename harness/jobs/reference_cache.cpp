@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/records/run_files.h"
 #include "harness/jobs/shard_plan.h"
+#include "harness/records/run_files.h"
 
 namespace ib {
 
@@ -39,7 +39,8 @@ const char* series_name(SeriesOutput series) {
 void copy_files(const fs::path& from, const fs::path& to) {
   fs::create_directories(to);
   for (const fs::directory_entry& entry : fs::directory_iterator(from))
-    if (entry.is_regular_file()) fs::copy_file(entry.path(), to / entry.path().filename(), fs::copy_options::overwrite_existing);
+    if (entry.is_regular_file())
+      fs::copy_file(entry.path(), to / entry.path().filename(), fs::copy_options::overwrite_existing);
 }
 
 }  // namespace
@@ -63,10 +64,11 @@ nlohmann::ordered_json reference_cache_key(const Scenario& scenario, const JobSp
   key["series"] = series_name(m.series);
   key["timed_repeats"] = m.timed_repeats;
   key["verdict_tolerances"] = {m.verdicts.accuracy.sensor_peak_relative, m.verdicts.accuracy.contact_duration_relative,
-                               m.verdicts.accuracy.impacts_per_cycle_difference, m.verdicts.accuracy.log_decrement_relative};
-  key["stability_bounds"] = {m.verdicts.stability.displacement_bound_fraction_of_length,
-                             m.verdicts.stability.penetration_bound_gaps, m.verdicts.stability.penetration_bound_floor_m,
-                             m.verdicts.stability.energy_growth_tolerance};
+                               m.verdicts.accuracy.impacts_per_cycle_difference,
+                               m.verdicts.accuracy.log_decrement_relative};
+  key["stability_bounds"] = {
+      m.verdicts.stability.displacement_bound_fraction_of_length, m.verdicts.stability.penetration_bound_gaps,
+      m.verdicts.stability.penetration_bound_floor_m, m.verdicts.stability.energy_growth_tolerance};
   key["executable"] = executable_digest();
   return key;
 }
@@ -78,7 +80,8 @@ bool restore_cached_reference(const std::string& cache_folder, const nlohmann::o
   if (held.empty()) return false;
   const auto held_key = nlohmann::ordered_json::parse(held, nullptr, /*allow_exceptions=*/false);
   // (a discarded value compares unequal to nothing: ask for it first)
-  if (held_key.is_discarded() || !(held_key == key) || !fs::exists(entry / "row.jsonl") || !fs::exists(entry / "row.csv"))
+  if (held_key.is_discarded() || !(held_key == key) || !fs::exists(entry / "row.jsonl") ||
+      !fs::exists(entry / "row.csv"))
     return false;
   std::error_code error;
   clear_run_folder(run_folder);  // its own files only: the runs below its id (ensemble starts, chain) are others'
@@ -88,7 +91,8 @@ bool restore_cached_reference(const std::string& cache_folder, const nlohmann::o
     std::ofstream(fs::path(run_folder) / "log.txt", std::ios::app)
         << "restored from the reference cache " << entry.string() << " (its costs are the cached run's)\n";
   } catch (const fs::filesystem_error& e) {
-    std::fprintf(stderr, "suite: the reference cache %s could not be read (%s); the reference runs\n", entry.c_str(), e.what());
+    std::fprintf(stderr, "suite: the reference cache %s could not be read (%s); the reference runs\n", entry.c_str(),
+                 e.what());
     clear_run_folder(run_folder);
     return false;
   }
@@ -99,20 +103,22 @@ void store_cached_reference(const std::string& cache_folder, const nlohmann::ord
                             const std::string& run_folder) {
   const fs::path entry = fs::path(cache_folder) / plan_digest({key.dump()});
   std::error_code error;
-  if (nlohmann::ordered_json::parse(read_text_file((entry / "key.json").string()), nullptr, /*allow_exceptions=*/false) == key)
+  if (nlohmann::ordered_json::parse(read_text_file((entry / "key.json").string()), nullptr,
+                                    /*allow_exceptions=*/false) == key)
     return;
   // written beside and renamed into place, so that a reader never sees half an entry
-  const fs::path partial = fs::path(cache_folder) / (".partial-" + std::to_string(::getpid()) + "-" + entry.filename().string());
+  const fs::path partial =
+      fs::path(cache_folder) / (".partial-" + std::to_string(::getpid()) + "-" + entry.filename().string());
   try {
     fs::remove_all(partial);
     copy_files(run_folder, partial);
     std::ofstream(partial / "key.json") << key.dump(2) << "\n";
-    fs::remove_all(entry, error);         // a damaged entry (a miss above) is replaced
+    fs::remove_all(entry, error);       // a damaged entry (a miss above) is replaced
     fs::rename(partial, entry, error);  // another process may have stored it first: theirs is kept
     if (error) fs::remove_all(partial);
   } catch (const fs::filesystem_error& e) {
-    std::fprintf(stderr, "suite: the reference cache %s cannot be written (%s); going on without it\n", cache_folder.c_str(),
-                 e.what());
+    std::fprintf(stderr, "suite: the reference cache %s cannot be written (%s); going on without it\n",
+                 cache_folder.c_str(), e.what());
     fs::remove_all(partial, error);
   }
 }

@@ -18,7 +18,8 @@
 namespace ib {
 
 // The key of a reference job: what decides its result, as above.
-nlohmann::ordered_json reference_cache_key(const Scenario& scenario, const JobSpec& spec, const Measurement& measurement);
+nlohmann::ordered_json reference_cache_key(const Scenario& scenario, const JobSpec& spec,
+                                           const Measurement& measurement);
 
 // Copies the cached run into run_folder (emptied first) and returns true when DIR holds this key; false
 // (nothing copied) otherwise, also when the entry is damaged.

@@ -10,10 +10,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "physics/modal_model.h"
 #include "harness/records/number_text.h"
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
+#include "physics/modal_model.h"
 
 namespace ib {
 
@@ -124,7 +124,8 @@ void compare_with_references(RunRecord& record, const Metrics& metrics, const Tr
   record.errors_vs_reference.reset();
   record.errors_vs_chain_reference.reset();
   if (beam_reference)
-    record.errors_vs_reference = compare_metrics(metrics, trajectory, beam_reference->metrics, beam_reference->trajectory, settings);
+    record.errors_vs_reference =
+        compare_metrics(metrics, trajectory, beam_reference->metrics, beam_reference->trajectory, settings);
   if (chain_reference)
     record.errors_vs_chain_reference =
         compare_metrics(metrics, trajectory, chain_reference->metrics, chain_reference->trajectory, settings);
@@ -150,9 +151,9 @@ void check_scoring_window(const Scenario& scenario, const Measurement& measureme
   const double shortest_s = std::max(sensor_period_s, motor_period_s);
   if (length_s >= shortest_s) return;
   const std::string where = scenario.source_path.empty() ? scenario.name : scenario.source_path;
-  const std::string given = measurement.window_s ? "--window " + number_text(*measurement.window_s)
-                                                 : where + ": [scenario] scoring_window_s = " +
-                                                       number_text(scenario.scoring_window_s);
+  const std::string given = measurement.window_s
+                                ? "--window " + number_text(*measurement.window_s)
+                                : where + ": [scenario] scoring_window_s = " + number_text(scenario.scoring_window_s);
   const std::string what = motor_period_s > sensor_period_s
                                ? "one motor period of " + where + " (" + number_text(motor_period_s) +
                                      " s): impacts per cycle are not measured over less"
@@ -285,8 +286,8 @@ ReferenceData load_reference(const std::string& run_folder, const Scenario& scen
   if (window.start_s < t.time_s.front() - slack_s || window.end_s > t.time_s.back() + slack_s)
     throw std::runtime_error(series_file(run_folder) + ": holds " + exact_number_text(t.time_s.front()) + " to " +
                              exact_number_text(t.time_s.back()) + " s, but the scoring window is " +
-                             exact_number_text(window.start_s) + " to " + exact_number_text(window.end_s) +
-                             " s (" + scenario.source_path + " and --window); allowed: a window inside the series");
+                             exact_number_text(window.start_s) + " to " + exact_number_text(window.end_s) + " s (" +
+                             scenario.source_path + " and --window); allowed: a window inside the series");
   data.metrics = compute_metrics(data.trajectory, settings);
   return data;
 }

@@ -7,18 +7,18 @@
 #include <string>
 #include <vector>
 
-#include "harness/scoring/metrics.h"
 #include "harness/records/run_record.h"
+#include "harness/scoring/metrics.h"
+#include "harness/scoring/verdict.h"
 #include "model/scenario.h"
 #include "model/simulator.h"
-#include "harness/scoring/verdict.h"
 
 namespace ib {
 
 struct JobSpec {
   std::string scenario_path;
   std::string engine;
-  RunSettings settings;                 // law, output rate, time step, options
+  RunSettings settings;  // law, output rate, time step, options
   // Why a reference this job is compared with is not there (it failed, or a signal stopped it); "" when
   // every one is. A stable run is then "ok" for stability with its accuracy "not available: <why>" in its
   // reason: never a silent ok.
@@ -38,7 +38,8 @@ enum class SeriesOutput { window, all, none };
 
 // How runs are measured and judged, the same for all of a suite's runs.
 struct Measurement {
-  std::optional<double> window_s;       // --window: the last window_s of the run is scored (scoring_window()); default: the scenario's
+  std::optional<double>
+      window_s;  // --window: the last window_s of the run is scored (scoring_window()); default: the scenario's
   double sensor_rate_hz = 2048;
   double merge_window_s = 0.002;
   VerdictSettings verdicts;

@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "harness/records/run_files.h"
@@ -64,8 +64,7 @@ std::string plan_digest(const std::vector<std::string>& planned) {
 
 void record_shard_plan(const std::string& folder, const ShardPlan& plan) {
   for (const ShardPlan& recorded : read_shard_plans(folder))
-    if (recorded.suite == plan.suite && recorded.shard == plan.shard)
-      return;
+    if (recorded.suite == plan.suite && recorded.shard == plan.shard) return;
   Json j;
   j["shard"] = plan.shard.index;
   j["shards"] = plan.shard.count;
@@ -88,9 +87,10 @@ std::vector<ShardPlan> read_shard_plans(const std::string& folder) {
   for (std::string line; std::getline(in, line);) {
     ++line_number;
     const Json j = Json::parse(line, nullptr, /*allow_exceptions=*/false);
-    const bool plan_like = j.is_object() && j.contains("shard") && j["shard"].is_number_integer() && j.contains("shards") &&
-                           j["shards"].is_number_integer() && j.contains("suite") && j["suite"].is_string() &&
-                           j.contains("jobs") && j["jobs"].is_array() && j.contains("resume_command");
+    const bool plan_like = j.is_object() && j.contains("shard") && j["shard"].is_number_integer() &&
+                           j.contains("shards") && j["shards"].is_number_integer() && j.contains("suite") &&
+                           j["suite"].is_string() && j.contains("jobs") && j["jobs"].is_array() &&
+                           j.contains("resume_command");
     if (!plan_like || j["shard"].get<int>() < 1 || j["shard"].get<int>() > j["shards"].get<int>())
       throw std::runtime_error(folder + kPlanFile + " line " + std::to_string(line_number) +
                                ": not a shard's plan (expected shard K <= shards N, suite, jobs, resume_command); the "

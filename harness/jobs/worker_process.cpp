@@ -11,15 +11,18 @@
 #include <fstream>
 #include <sstream>
 
-
 namespace ib {
 
 std::string describe_exit(int status, double time_limit_s, bool timed_out, const std::string& log_tail) {
   std::ostringstream why;
-  if (timed_out) why << kTimeLimitReason << " of " << time_limit_s << " s";
-  else if (WIFSIGNALED(status)) why << "the job's process died of signal " << WTERMSIG(status) << " (" << strsignal(WTERMSIG(status)) << ")";
-  else if (WIFEXITED(status)) why << "the job's process exited with code " << WEXITSTATUS(status) << " without a result";
-  else why << "the job's process ended abnormally";
+  if (timed_out)
+    why << kTimeLimitReason << " of " << time_limit_s << " s";
+  else if (WIFSIGNALED(status))
+    why << "the job's process died of signal " << WTERMSIG(status) << " (" << strsignal(WTERMSIG(status)) << ")";
+  else if (WIFEXITED(status))
+    why << "the job's process exited with code " << WEXITSTATUS(status) << " without a result";
+  else
+    why << "the job's process ended abnormally";
   if (!log_tail.empty()) why << "; its last output: " << log_tail;
   return why.str();
 }

@@ -39,7 +39,8 @@ class InterruptionHandler {
   InterruptionHandler& operator=(const InterruptionHandler&) = delete;
 
  private:
-  struct sigaction previous_int_ {}, previous_term_ {};
+  struct sigaction previous_int_ {
+  }, previous_term_{};
 };
 
 bool interrupted();

@@ -21,9 +21,9 @@ nlohmann::ordered_json descriptor_json(const SimulatorDescriptor& d, const std::
     if (!k.values.empty()) key["values"] = pairs_object(k.values);
     keys.push_back(std::move(key));
   }
-  nlohmann::ordered_json record = {{"name", d.name},          {"display_name", d.display_name}, {"summary", d.summary},
-                                   {"version", version},      {"packages", d.packages},         {"colours", pairs_object(d.colours)},
-                                   {"diagnostics", keys}};
+  nlohmann::ordered_json record = {
+      {"name", d.name},         {"display_name", d.display_name},     {"summary", d.summary}, {"version", version},
+      {"packages", d.packages}, {"colours", pairs_object(d.colours)}, {"diagnostics", keys}};
   // the authors' recommended configuration with each setting's source, for the report to cite
   if (!d.recommended_json.empty()) record["recommended"] = nlohmann::ordered_json::parse(d.recommended_json);
   return record;

@@ -33,8 +33,10 @@ std::string csv_row_line(const std::vector<Field>& row) {
   for (const Field& f : row) {
     line += first ? "" : ",";
     first = false;
-    if (const auto* text = std::get_if<std::string>(&f.value)) line += csv_escape(*text);
-    else line += f.exact ? exact_number_text(std::get<double>(f.value)) : number_text(std::get<double>(f.value));
+    if (const auto* text = std::get_if<std::string>(&f.value))
+      line += csv_escape(*text);
+    else
+      line += f.exact ? exact_number_text(std::get<double>(f.value)) : number_text(std::get<double>(f.value));
   }
   return line + "\n";
 }
@@ -42,8 +44,10 @@ std::string csv_row_line(const std::vector<Field>& row) {
 nlohmann::ordered_json json_object(const std::vector<Field>& row) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const Field& f : row) {
-    if (const auto* text = std::get_if<std::string>(&f.value)) j[f.name] = *text;
-    else j[f.name] = json_number(std::get<double>(f.value), f.exact);
+    if (const auto* text = std::get_if<std::string>(&f.value))
+      j[f.name] = *text;
+    else
+      j[f.name] = json_number(std::get<double>(f.value), f.exact);
   }
   return j;
 }
@@ -78,8 +82,10 @@ JsonlTable scan_jsonl_table(const std::string& jsonl_path, const std::string& cs
     std::ifstream csv(csv_path);
     std::string header, row;
     if (std::getline(csv, header) && std::getline(csv, row) && !row.empty())
-      throw std::runtime_error(jsonl_path + ": missing, but " + csv_path + " holds results: the record of these results "
-                               "(which every reader and --resume trusts) is gone; restore it, or choose another folder");
+      throw std::runtime_error(
+          jsonl_path + ": missing, but " + csv_path +
+          " holds results: the record of these results "
+          "(which every reader and --resume trusts) is gone; restore it, or choose another folder");
     return table;
   }
   std::map<std::string, std::size_t> at;  // key -> index in records
@@ -118,8 +124,9 @@ std::set<std::string> repair_jsonl_table(const std::string& jsonl_path, const st
                                          const std::vector<std::string>& columns, const KeyOf& key_of,
                                          std::vector<std::string>* repairs) {
   std::set<std::string> keys;
-  const JsonlTable table = scan_jsonl_table(jsonl_path, csv_path, key_of);  // throws: unreadable, or CSV rows without record
-  if (!std::filesystem::exists(jsonl_path)) return keys;                     // no table yet
+  const JsonlTable table =
+      scan_jsonl_table(jsonl_path, csv_path, key_of);     // throws: unreadable, or CSV rows without record
+  if (!std::filesystem::exists(jsonl_path)) return keys;  // no table yet
   if (repairs) repairs->insert(repairs->end(), table.problems.begin(), table.problems.end());
   std::string jsonl, csv;
   for (const std::string& name : columns) csv += (csv.empty() ? "" : ",") + name;
@@ -133,8 +140,10 @@ std::set<std::string> repair_jsonl_table(const std::string& jsonl_path, const st
       if (c) row += ",";
       const auto value = j.find(columns[c]);
       if (value == j.end()) continue;
-      if (value->is_string()) row += csv_escape(value->get<std::string>());
-      else if (value->is_number()) row += exact_number_text(value->get<double>());
+      if (value->is_string())
+        row += csv_escape(value->get<std::string>());
+      else if (value->is_number())
+        row += exact_number_text(value->get<double>());
     }
     csv += row + "\n";
   }

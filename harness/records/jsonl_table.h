@@ -16,9 +16,9 @@ namespace ib {
 
 // One cell of a row: every row of a table yields the same names in the same order.
 struct Field {
-  std::string name;                    // with its unit, e.g. "frame1_sensor_peak_acceleration_g"
+  std::string name;                         // with its unit, e.g. "frame1_sensor_peak_acceleration_g"
   std::variant<std::string, double> value;  // NaN: not applicable or not measured
-  bool exact = false;                  // a setting (a time step, a window): written with every digit it has
+  bool exact = false;                       // a setting (a time step, a window): written with every digit it has
 };
 
 std::vector<std::string> column_names(const std::vector<Field>& row);

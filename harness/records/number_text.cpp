@@ -35,9 +35,12 @@ std::string nine_digit_text(double value) {
     const int shift = 8 - exponent;
     if (shift < -22 || shift > 22) return general_text(value, 9);
     scaled = shift >= 0 ? magnitude * kPowers[shift] : magnitude / kPowers[-shift];
-    if (scaled >= 1e9) ++exponent;
-    else if (scaled < 1e8) --exponent;
-    else break;
+    if (scaled >= 1e9)
+      ++exponent;
+    else if (scaled < 1e8)
+      --exponent;
+    else
+      break;
   }
   const double whole = std::floor(scaled);
   if (!(scaled >= 1e8 && scaled < 1e9) || std::abs(scaled - whole - 0.5) < 1e-6) return general_text(value, 9);

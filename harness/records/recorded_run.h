@@ -14,20 +14,20 @@ namespace ib {
 // The headline errors of a run against one reference (runs.csv's vs_reference_* or vs_chain_reference_*).
 struct HeadlineErrors {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  double frame1_sensor_peak_relative = kNaN;   // NaN: not measured
+  double frame1_sensor_peak_relative = kNaN;  // NaN: not measured
   double contact_duration_relative = kNaN;
   double impacts_per_cycle_difference = kNaN;
 };
 
 struct RecordedRun {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  bool readable = false;           // false: not a run's record (a line a kill cut short); nothing else is set
+  bool readable = false;  // false: not a run's record (a line a kill cut short); nothing else is set
   std::string job_id;
   Verdict verdict = Verdict::failed;
   std::string reason;
-  bool timed_out = false;          // stopped at the suite's time limit: it decided nothing about the engine
-  double steps = kNaN;             // the simulator's steps (fewer than planned when it stopped unstable)
-  double wall_time_s = kNaN;       // the simulator's own time [s]
+  bool timed_out = false;     // stopped at the suite's time limit: it decided nothing about the engine
+  double steps = kNaN;        // the simulator's steps (fewer than planned when it stopped unstable)
+  double wall_time_s = kNaN;  // the simulator's own time [s]
   double frame1_sensor_peak_g = kNaN, contact_duration_mean_s = kNaN, impacts_per_cycle = kNaN;
   HeadlineErrors vs_reference;        // against the continuous-beam reference
   HeadlineErrors vs_chain_reference;  // against the reference on the engine's own chain

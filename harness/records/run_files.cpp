@@ -1,5 +1,7 @@
 #include "harness/records/run_files.h"
 
+#include <libdeflate.h>
+#include <zlib.h>
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -14,8 +16,6 @@
 #include <stdexcept>
 #include <string_view>
 #include <vector>
-#include <libdeflate.h>
-#include <zlib.h>
 
 #include "harness/records/number_text.h"
 
@@ -203,10 +203,16 @@ void write_series_csv(const std::string& path, const Trajectory& t) {
   text.reserve(t.size() * 130);
   const bool energy = t.mechanical_energy_j.size() == t.size();
   for (std::size_t k = 0; k < t.size(); ++k) {
-    const double values[] = {t.displacement_m[0][k], t.velocity_m_s[0][k], t.acceleration_m_s2[0][k],
-                             t.displacement_m[1][k], t.velocity_m_s[1][k], t.acceleration_m_s2[1][k],
-                             t.contact_force_n[k], t.peak_abs_acceleration_m_s2[0][k],
-                             t.peak_abs_acceleration_m_s2[1][k], t.peak_contact_force_n[k]};
+    const double values[] = {t.displacement_m[0][k],
+                             t.velocity_m_s[0][k],
+                             t.acceleration_m_s2[0][k],
+                             t.displacement_m[1][k],
+                             t.velocity_m_s[1][k],
+                             t.acceleration_m_s2[1][k],
+                             t.contact_force_n[k],
+                             t.peak_abs_acceleration_m_s2[0][k],
+                             t.peak_abs_acceleration_m_s2[1][k],
+                             t.peak_contact_force_n[k]};
     // The time exactly, so that a series read back lies on its sample grid (the sensor reading takes
     // samples as exact, metrics.cpp); the values with 9 digits.
     text += exact_number_text(t.time_s[k]);
@@ -239,10 +245,12 @@ Trajectory series_at_rate(const Trajectory& t, double rate_hz) {
       kept.velocity_m_s[f].push_back(t.velocity_m_s[f][j]);
       kept.acceleration_m_s2[f].push_back(t.acceleration_m_s2[f][j]);
       double peak = t.peak_abs_acceleration_m_s2[f][j];
-      for (std::size_t i = j >= k ? j - k + 1 : j; i < j; ++i) peak = std::max(peak, t.peak_abs_acceleration_m_s2[f][i]);
+      for (std::size_t i = j >= k ? j - k + 1 : j; i < j; ++i)
+        peak = std::max(peak, t.peak_abs_acceleration_m_s2[f][i]);
       kept.peak_abs_acceleration_m_s2[f].push_back(peak);
     }
-    for (std::size_t i = j >= k ? j - k + 1 : j; i < j; ++i) peak_force = std::max(peak_force, t.peak_contact_force_n[i]);
+    for (std::size_t i = j >= k ? j - k + 1 : j; i < j; ++i)
+      peak_force = std::max(peak_force, t.peak_contact_force_n[i]);
     kept.peak_contact_force_n.push_back(peak_force);
   }
   return kept;
@@ -265,8 +273,13 @@ void write_events_csv(const std::string& path, const Trajectory& t) {
     // Onsets and ends exactly (they decide which impacts lie in a window); the rest with 9 digits.
     text += exact_number_text(e.onset_time_s);
     add_cell(text, exact_number_text(e.end_time_s), false);
-    const double values[] = {e.end_time_s - e.onset_time_s, e.approach_velocity_m_s, e.rebound_velocity_m_s,
-                             e.restitution, e.peak_force_n, e.impulse_n_s, e.max_indentation_m};
+    const double values[] = {e.end_time_s - e.onset_time_s,
+                             e.approach_velocity_m_s,
+                             e.rebound_velocity_m_s,
+                             e.restitution,
+                             e.peak_force_n,
+                             e.impulse_n_s,
+                             e.max_indentation_m};
     for (double v : values) add_cell(text, number_text(v), false);
     text += '\n';
   }
@@ -288,11 +301,13 @@ void read_series_csv(std::istream& in, const std::string& path, Trajectory& t) {
   // The metrics assume a series sampled at one rate (the sensor's windows, the peaks between samples):
   // times finite, increasing, evenly spaced (within 1e-6 of the spacing, what 17-digit times keep).
   // Line numbers count the header as line 1.
-  if (rows.size() < 2) throw std::runtime_error(path + ": " + std::to_string(rows.size()) + " samples; allowed: at least 2");
+  if (rows.size() < 2)
+    throw std::runtime_error(path + ": " + std::to_string(rows.size()) + " samples; allowed: at least 2");
   for (std::size_t i = 0; i < rows.size(); ++i) {  // first the order, then the spacing: the plainer fault first
     const double time = rows[i][0];
     const std::string where = path + ":" + std::to_string(i + 2) + ": time_s = ";
-    if (!std::isfinite(time)) throw std::runtime_error(where + "'" + std::to_string(time) + "'; allowed: a finite time");
+    if (!std::isfinite(time))
+      throw std::runtime_error(where + "'" + std::to_string(time) + "'; allowed: a finite time");
     if (i > 0 && !(time > rows[i - 1][0]))
       throw std::runtime_error(where + exact_number_text(time) + " after " + exact_number_text(rows[i - 1][0]) +
                                "; allowed: increasing times");
@@ -304,7 +319,8 @@ void read_series_csv(std::istream& in, const std::string& path, Trajectory& t) {
     const double expected = rows.front()[0] + spacing * static_cast<double>(i);
     if (std::abs(time - expected) > 1e-6 * spacing + 1e-12 * std::abs(time))
       throw std::runtime_error(where + exact_number_text(time) + ", expected " + exact_number_text(expected) +
-                               "; allowed: samples evenly spaced (one output rate, here " + number_text(1 / spacing) + " Hz)");
+                               "; allowed: samples evenly spaced (one output rate, here " + number_text(1 / spacing) +
+                               " Hz)");
   }
   t = Trajectory{};
   t.reserve(rows.size());

@@ -83,10 +83,10 @@ std::vector<Field> fields(const RunRecord& r) {
 }
 
 const std::vector<std::string>& timing_field_names() {
-  static const std::vector<std::string> names = {"wall_time_s",        "cpu_time_s",      "wall_time_per_simulated_s",
-                                                 "cpu_time_per_simulated_s", "load_average",  "wall_time_min_s",
-                                                 "wall_time_max_s",    "cpu_time_min_s",  "cpu_time_max_s",
-                                                 "logged_wall_time_s", "logged_cpu_time_s"};
+  static const std::vector<std::string> names = {
+      "wall_time_s",    "cpu_time_s",         "wall_time_per_simulated_s", "cpu_time_per_simulated_s",
+      "load_average",   "wall_time_min_s",    "wall_time_max_s",           "cpu_time_min_s",
+      "cpu_time_max_s", "logged_wall_time_s", "logged_cpu_time_s"};
   return names;
 }
 

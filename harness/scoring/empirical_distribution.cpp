@@ -12,8 +12,7 @@ namespace {
 constexpr double kNoDistribution = std::numeric_limits<double>::quiet_NaN();
 
 std::vector<double> sorted_finite(std::vector<double> sample) {
-  sample.erase(std::remove_if(sample.begin(), sample.end(), [](double v) { return !std::isfinite(v); }),
-               sample.end());
+  sample.erase(std::remove_if(sample.begin(), sample.end(), [](double v) { return !std::isfinite(v); }), sample.end());
   std::sort(sample.begin(), sample.end());
   return sample;
 }

@@ -39,8 +39,8 @@ double true_peak_near(const Trajectory& t, int frame, std::size_t first, std::si
   double peak = kNoImpactFigure;
   for (std::size_t k = from; k <= to && k < last; ++k) {
     // the window's first sample's peak column covers time before the window: its own value only
-    double here = peak_columns && k > first ? t.peak_abs_acceleration_m_s2[frame][k]
-                                            : std::abs(t.acceleration_m_s2[frame][k]);
+    double here =
+        peak_columns && k > first ? t.peak_abs_acceleration_m_s2[frame][k] : std::abs(t.acceleration_m_s2[frame][k]);
     if (!peak_columns && k > first) here = std::max(here, std::abs(t.acceleration_m_s2[frame][k - 1]));
     peak = std::isnan(peak) ? here : std::max(peak, here);
   }
@@ -83,8 +83,10 @@ ImpactSamples impact_samples(const Trajectory& trajectory, const std::vector<Imp
   // the window's samples, with the tolerance of a window edge that lands a rounding error off a sample
   const double tolerance_s = trajectory.output_rate_hz > 0 ? 1e-6 / trajectory.output_rate_hz : 0;
   const auto& time = trajectory.time_s;
-  const auto first = static_cast<std::size_t>(std::lower_bound(time.begin(), time.end(), start_s - tolerance_s) - time.begin());
-  const auto last = static_cast<std::size_t>(std::upper_bound(time.begin(), time.end(), end_s + tolerance_s) - time.begin());
+  const auto first =
+      static_cast<std::size_t>(std::lower_bound(time.begin(), time.end(), start_s - tolerance_s) - time.begin());
+  const auto last =
+      static_cast<std::size_t>(std::upper_bound(time.begin(), time.end(), end_s + tolerance_s) - time.begin());
   for (const Impact& impact : impacts) {
     for (int f = 0; f < 2; ++f) {
       s.sensor_peak_g[f].push_back(sensor_peak_near(sensor[f], half_window_s, impact.onset_time_s, impact.end_time_s) /
@@ -101,8 +103,9 @@ ImpactSamples impact_samples(const Trajectory& trajectory, const std::vector<Imp
 
 GridPhaseSpread sensor_peak_over_grid_phases(const Trajectory& trajectory, int frame, double start_s, double end_s,
                                              double sensor_rate_hz, int phases) {
-  return sensor_peak_over_grid_phases(trajectory, frame, sensor_acceleration(trajectory, frame, start_s, end_s, sensor_rate_hz),
-                                      start_s, end_s, sensor_rate_hz, phases);
+  return sensor_peak_over_grid_phases(trajectory, frame,
+                                      sensor_acceleration(trajectory, frame, start_s, end_s, sensor_rate_hz), start_s,
+                                      end_s, sensor_rate_hz, phases);
 }
 
 GridPhaseSpread sensor_peak_over_grid_phases(const Trajectory& trajectory, int frame, const SensorSeries& on_grid,
@@ -138,7 +141,8 @@ DistributionDistances distribution_distances(const ImpactSamples& run, const Imp
     out[i].kolmogorov_smirnov = kolmogorov_smirnov_statistic(a, b);
     const double reference_median = quantile(b, 0.5);
     out[i].wasserstein1_relative = std::isnan(reference_median) || reference_median == 0
-                                       ? kNoImpactFigure : out[i].wasserstein1 / std::abs(reference_median);
+                                       ? kNoImpactFigure
+                                       : out[i].wasserstein1 / std::abs(reference_median);
   }
   return out;
 }

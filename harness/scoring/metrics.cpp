@@ -146,16 +146,15 @@ void join_impact(Impact& impact, const ContactEvent& e) {
 }
 
 void finish_impact(Impact& impact) {
-  impact.restitution = impact.approach_velocity_m_s != 0
-                           ? impact.rebound_velocity_m_s / impact.approach_velocity_m_s : 0;
+  impact.restitution =
+      impact.approach_velocity_m_s != 0 ? impact.rebound_velocity_m_s / impact.approach_velocity_m_s : 0;
 }
 
 bool in_window(double t, double start_s, double end_s) { return t >= start_s && t <= end_s; }
 
 int onsets_in(const std::vector<ContactEvent>& events, double start_s, double end_s) {
-  return static_cast<int>(std::count_if(events.begin(), events.end(), [&](const ContactEvent& e) {
-    return in_window(e.onset_time_s, start_s, end_s);
-  }));
+  return static_cast<int>(std::count_if(
+      events.begin(), events.end(), [&](const ContactEvent& e) { return in_window(e.onset_time_s, start_s, end_s); }));
 }
 
 double mean_of(const std::vector<Impact>& impacts, double (*field)(const Impact&)) {
@@ -231,9 +230,8 @@ double displacement_relative_rms_error(const Trajectory& run, const Trajectory& 
 std::vector<Impact> merge_impacts(const std::vector<ContactEvent>& events, double start_s, double end_s,
                                   double merge_window_s) {
   std::vector<ContactEvent> sorted = events;
-  std::stable_sort(sorted.begin(), sorted.end(), [](const ContactEvent& a, const ContactEvent& b) {
-    return a.onset_time_s < b.onset_time_s;
-  });
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const ContactEvent& a, const ContactEvent& b) { return a.onset_time_s < b.onset_time_s; });
   // Merge over the whole run, then select: an episode just inside the window that belongs to an impact
   // begun before it is part of that impact, not a new one.
   std::vector<Impact> all;
@@ -305,12 +303,12 @@ Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& sett
       sensor_acceleration(trajectory, 1, start_s, end_s, settings.sensor_rate_hz)};
   for (int f = 0; f < 2; ++f) {
     m.frames[f] = frame_metrics(trajectory, f, settings, sensor[f]);
-    m.sensor_peak_over_grid_phases[f] = sensor_peak_over_grid_phases(trajectory, f, sensor[f], start_s, end_s,
-                                                                     settings.sensor_rate_hz, settings.sensor_grid_phases);
-    m.frames[f].log_decrement =
-        settings.excitation_frequency_hz > 0
-            ? kNaN
-            : log_decrement(trajectory.time_s, trajectory.displacement_m[f], settings.window.start_s, settings.window.end_s);
+    m.sensor_peak_over_grid_phases[f] = sensor_peak_over_grid_phases(
+        trajectory, f, sensor[f], start_s, end_s, settings.sensor_rate_hz, settings.sensor_grid_phases);
+    m.frames[f].log_decrement = settings.excitation_frequency_hz > 0
+                                    ? kNaN
+                                    : log_decrement(trajectory.time_s, trajectory.displacement_m[f],
+                                                    settings.window.start_s, settings.window.end_s);
   }
   const std::vector<Impact> impacts = merge_impacts(trajectory.events, start_s, end_s, settings.merge_window_s);
   add_impact_metrics(m, impacts);
@@ -325,19 +323,19 @@ MetricErrors compare_metrics(const Metrics& run, const Trajectory& run_trajector
                              const Trajectory& reference_trajectory, const MetricSettings& settings) {
   MetricErrors e;
   for (int f = 0; f < 2; ++f) {
-    e.sensor_peak_relative_error[f] = relative_error(run.frames[f].sensor_peak_acceleration_g,
-                                                     reference.frames[f].sensor_peak_acceleration_g);
+    e.sensor_peak_relative_error[f] =
+        relative_error(run.frames[f].sensor_peak_acceleration_g, reference.frames[f].sensor_peak_acceleration_g);
     e.displacement_relative_rms_error[f] =
         displacement_relative_rms_error(run_trajectory, reference_trajectory, f, settings);
     e.log_decrement_relative_error[f] = relative_error(run.frames[f].log_decrement, reference.frames[f].log_decrement);
-    e.sensor_peak_phase_mean_relative_error[f] = relative_error(run.sensor_peak_over_grid_phases[f].mean_g,
-                                                                reference.sensor_peak_over_grid_phases[f].mean_g);
+    e.sensor_peak_phase_mean_relative_error[f] =
+        relative_error(run.sensor_peak_over_grid_phases[f].mean_g, reference.sensor_peak_over_grid_phases[f].mean_g);
   }
   e.impact_distribution_distances = distribution_distances(run.impact_samples, reference.impact_samples);
-  e.contact_duration_relative_error =
-      relative_error(run.contact_duration_mean_s, reference.contact_duration_mean_s);
+  e.contact_duration_relative_error = relative_error(run.contact_duration_mean_s, reference.contact_duration_mean_s);
   e.impacts_per_cycle_difference = std::isnan(run.impacts_per_cycle) || std::isnan(reference.impacts_per_cycle)
-                                       ? kNaN : run.impacts_per_cycle - reference.impacts_per_cycle;
+                                       ? kNaN
+                                       : run.impacts_per_cycle - reference.impacts_per_cycle;
   return e;
 }
 

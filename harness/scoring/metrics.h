@@ -17,11 +17,11 @@ namespace ib {
 constexpr double kStandardGravity_m_s2 = 9.80665;
 
 struct MetricSettings {
-  ScoringWindow window;                 // where the metrics are taken (scoring_window(), model/scenario.h)
-  double excitation_frequency_hz = 0;   // the motor's; 0: no excitation, no per-cycle metrics
-  double natural_frequency_hz = 0;      // frame 1's f_1; with the excitation, defines the beat period
-  double sensor_rate_hz = 2048;         // accelerometer sample rate f_s [Hz]
-  double merge_window_s = 0.002;        // onsets closer than this belong to one impact [s]
+  ScoringWindow window;                // where the metrics are taken (scoring_window(), model/scenario.h)
+  double excitation_frequency_hz = 0;  // the motor's; 0: no excitation, no per-cycle metrics
+  double natural_frequency_hz = 0;     // frame 1's f_1; with the excitation, defines the beat period
+  double sensor_rate_hz = 2048;        // accelerometer sample rate f_s [Hz]
+  double merge_window_s = 0.002;       // onsets closer than this belong to one impact [s]
   // the sensor peak is also read on grids shifted by j / P of 1/f_s, j = 0 .. P-1, those whose edges are
   // samples of the series (impact_statistics.h)
   int sensor_grid_phases = 8;
@@ -29,15 +29,15 @@ struct MetricSettings {
 
 // One impact: contact episodes whose onsets follow each other within the merge window.
 struct Impact {
-  double onset_time_s = 0;              // first onset
-  double end_time_s = 0;                // last separation
-  double approach_velocity_m_s = 0;     // at the first onset
-  double rebound_velocity_m_s = 0;      // at the last separation
-  double restitution = 0;               // rebound / approach
-  double peak_force_n = 0;              // largest of the episodes (NaN for instantaneous impacts)
-  double impulse_n_s = 0;               // sum over the episodes
-  double max_indentation_m = 0;         // largest of the episodes
-  int onsets = 0;                       // raw contact episodes merged into this impact
+  double onset_time_s = 0;           // first onset
+  double end_time_s = 0;             // last separation
+  double approach_velocity_m_s = 0;  // at the first onset
+  double rebound_velocity_m_s = 0;   // at the last separation
+  double restitution = 0;            // rebound / approach
+  double peak_force_n = 0;           // largest of the episodes (NaN for instantaneous impacts)
+  double impulse_n_s = 0;            // sum over the episodes
+  double max_indentation_m = 0;      // largest of the episodes
+  int onsets = 0;                    // raw contact episodes merged into this impact
 };
 
 // Impacts whose first onset lies in [start, end], merging onsets closer than merge_window_s.
@@ -69,9 +69,9 @@ struct FrameMetrics {
 
 struct Metrics {
   std::array<FrameMetrics, 2> frames;
-  int impacts = 0;                        // after merging
-  int raw_onsets = 0;                     // contact episodes before merging (exposes flicker)
-  double contact_duration_mean_s = 0;     // per impact, first onset to last separation; NaN without impacts
+  int impacts = 0;                     // after merging
+  int raw_onsets = 0;                  // contact episodes before merging (exposes flicker)
+  double contact_duration_mean_s = 0;  // per impact, first onset to last separation; NaN without impacts
   double contact_duration_min_s = 0;
   double contact_duration_max_s = 0;
   double excitation_cycles = 0;           // window x excitation frequency
@@ -95,11 +95,11 @@ Metrics compute_metrics(const Trajectory& trajectory, const MetricSettings& sett
 
 // A run against the reference run of the same scenario and law.
 struct MetricErrors {
-  std::array<double, 2> sensor_peak_relative_error{};       // (run - ref) / ref [-]
-  double contact_duration_relative_error = 0;               // mean contact duration [-]
-  double impacts_per_cycle_difference = 0;                  // run - ref [-]
-  std::array<double, 2> displacement_relative_rms_error{};  // RMS(u - u_ref) / RMS(u_ref) over the window [-]
-  std::array<double, 2> log_decrement_relative_error{};     // free decay [-]; NaN with a motor
+  std::array<double, 2> sensor_peak_relative_error{};             // (run - ref) / ref [-]
+  double contact_duration_relative_error = 0;                     // mean contact duration [-]
+  double impacts_per_cycle_difference = 0;                        // run - ref [-]
+  std::array<double, 2> displacement_relative_rms_error{};        // RMS(u - u_ref) / RMS(u_ref) over the window [-]
+  std::array<double, 2> log_decrement_relative_error{};           // free decay [-]; NaN with a motor
   std::array<double, 2> sensor_peak_phase_mean_relative_error{};  // of the mean over grid phases [-]
   DistributionDistances impact_distribution_distances{};          // per-impact distributions (W1, KS)
 };

@@ -13,13 +13,13 @@
 namespace ib {
 
 struct Plausible {
-  static constexpr double kMinTimeStep_s = 1e-9, kMaxTimeStep_s = 1e-2;    // an engine's fixed step
-  static constexpr double kMaxSteps = 1e10;                               // steps of one run (hours of CPU)
-  static constexpr double kMinRate_hz = 1, kMaxRate_hz = 1e6;              // output and sensor rates
-  static constexpr double kMaxSamples = 2e7;                              // samples of one series (about 1.6 GB)
-  static constexpr double kMaxDuration_s = 3600;                          // run lengths, windows (an hour of rig time)
-  static constexpr double kMaxMergeWindow_s = 1;                          // onsets merged into one impact
-  static constexpr double kMaxTimeLimit_s = 7 * 24 * 3600;                // a job's time limit
+  static constexpr double kMinTimeStep_s = 1e-9, kMaxTimeStep_s = 1e-2;  // an engine's fixed step
+  static constexpr double kMaxSteps = 1e10;                              // steps of one run (hours of CPU)
+  static constexpr double kMinRate_hz = 1, kMaxRate_hz = 1e6;            // output and sensor rates
+  static constexpr double kMaxSamples = 2e7;                             // samples of one series (about 1.6 GB)
+  static constexpr double kMaxDuration_s = 3600;                         // run lengths, windows (an hour of rig time)
+  static constexpr double kMaxMergeWindow_s = 1;                         // onsets merged into one impact
+  static constexpr double kMaxTimeLimit_s = 7 * 24 * 3600;               // a job's time limit
 };
 
 // lo < value <= hi (lo <= value with lo_included), finite; else "OPTION VALUE: allowed: ...".

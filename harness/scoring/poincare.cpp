@@ -18,9 +18,12 @@ double hermite(double y0, double slope0, double y1, double slope1, double h, dou
 
 const char* to_string(RegimeKind kind) {
   switch (kind) {
-    case RegimeKind::no_impact: return "no impact";
-    case RegimeKind::periodic: return "periodic";
-    case RegimeKind::irregular: return "irregular";
+    case RegimeKind::no_impact:
+      return "no impact";
+    case RegimeKind::periodic:
+      return "periodic";
+    case RegimeKind::irregular:
+      return "irregular";
   }
   return "?";
 }
@@ -30,7 +33,8 @@ std::string Regime::label() const {
   return to_string(kind);
 }
 
-std::vector<PoincareSample> poincare_samples(const Trajectory& trajectory, double frequency_hz, double start_s, double end_s) {
+std::vector<PoincareSample> poincare_samples(const Trajectory& trajectory, double frequency_hz, double start_s,
+                                             double end_s) {
   std::vector<PoincareSample> samples;
   const std::size_t n = trajectory.size();
   if (n < 2 || !(frequency_hz > 0) || trajectory.output_rate_hz <= 0) return samples;
@@ -99,8 +103,8 @@ Regime classify_regime(const std::vector<PoincareSample>& samples, const std::ar
     if (repeats) {
       regime.kind = RegimeKind::periodic;
       regime.period = n;
-      regime.impacts_per_period = periods_in_window > 0 ? impacts_in_window * n / periods_in_window
-                                                        : std::numeric_limits<double>::quiet_NaN();
+      regime.impacts_per_period =
+          periods_in_window > 0 ? impacts_in_window * n / periods_in_window : std::numeric_limits<double>::quiet_NaN();
       return regime;
     }
   }

@@ -8,10 +8,14 @@ namespace ib {
 
 const char* to_string(Verdict verdict) {
   switch (verdict) {
-    case Verdict::ok: return "ok";
-    case Verdict::inaccurate: return "inaccurate";
-    case Verdict::unstable: return "unstable";
-    case Verdict::failed: return "failed";
+    case Verdict::ok:
+      return "ok";
+    case Verdict::inaccurate:
+      return "inaccurate";
+    case Verdict::unstable:
+      return "unstable";
+    case Verdict::failed:
+      return "failed";
   }
   return "unknown";
 }
@@ -34,7 +38,8 @@ std::string describe(const char* what, double value, const char* unit, double t)
 }  // namespace
 
 double penetration_bound_m(const Scenario& scenario, const VerdictSettings& settings) {
-  return std::max(settings.stability.penetration_bound_gaps * scenario.gap_m, settings.stability.penetration_bound_floor_m);
+  return std::max(settings.stability.penetration_bound_gaps * scenario.gap_m,
+                  settings.stability.penetration_bound_floor_m);
 }
 
 Judgement judge_stability(const Scenario& scenario, const RunResult& result, const VerdictSettings& settings) {
@@ -73,8 +78,8 @@ Judgement judge_stability(const Scenario& scenario, const RunResult& result, con
   // Compared with the energy at t = 0 where the simulator gives it: the series may start long after the
   // run did, and a run that lost most of its energy must not be judged by its swings late in the run.
   if (!scenario.motor && t.mechanical_energy_j.size() == t.size() && t.size() > 0) {
-    const double initial = std::isfinite(t.initial_mechanical_energy_j) ? t.initial_mechanical_energy_j
-                                                                         : t.mechanical_energy_j.front();
+    const double initial =
+        std::isfinite(t.initial_mechanical_energy_j) ? t.initial_mechanical_energy_j : t.mechanical_energy_j.front();
     for (std::size_t k = 0; k < t.mechanical_energy_j.size(); ++k) {
       const double e = t.mechanical_energy_j[k];
       const bool apart = t.contact_force_n[k] == 0 && t.displacement_m[0][k] - t.displacement_m[1][k] < scenario.gap_m;

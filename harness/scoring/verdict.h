@@ -34,7 +34,7 @@ struct AccuracyTolerances {
 };
 
 struct VerdictSettings {
-  StabilityBounds stability;     // model/simulator.h: the engines' divergence guard reads the same record
+  StabilityBounds stability;  // model/simulator.h: the engines' divergence guard reads the same record
   AccuracyTolerances accuracy;
 };
 

@@ -116,10 +116,11 @@ void join(std::map<std::string, Kept>& kept, const std::string& key, const std::
   }
   const std::string field = first_difference(found->second.record, record, timing);
   if (!field.empty())
-    throw std::runtime_error(found->second.folder + " and " + folder + " disagree on " + what + ": field " + field +
-                             " is " + value_text(found->second.record, field) + " in " + found->second.folder + "/" + file +
-                             " and " + value_text(record, field) + " in " + folder + "/" + file +
-                             "; every shard must give a job the same result (made by other builds, options or machines?)");
+    throw std::runtime_error(
+        found->second.folder + " and " + folder + " disagree on " + what + ": field " + field + " is " +
+        value_text(found->second.record, field) + " in " + found->second.folder + "/" + file + " and " +
+        value_text(record, field) + " in " + folder + "/" + file +
+        "; every shard must give a job the same result (made by other builds, options or machines?)");
   ++found->second.folders;
 }
 
@@ -140,15 +141,18 @@ void join_run_folder(const std::string& from, const std::string& to) {
 }
 
 void check_inputs(const MergeSettings& settings) {
-  if (settings.inputs.empty()) throw std::runtime_error("merge: no shard folder given; expected: merge OUT SHARD_FOLDER ...");
+  if (settings.inputs.empty())
+    throw std::runtime_error("merge: no shard folder given; expected: merge OUT SHARD_FOLDER ...");
   std::map<std::string, std::string> seen;  // canonical path -> as given
   for (const std::string& folder : settings.inputs) {
     std::error_code error;
     if (!fs::is_directory(folder, error))
       throw std::runtime_error(folder + ": " + (fs::exists(folder, error) ? "not a folder" : "no such folder") +
                                "; expected a shard's folder (suite --shard K/N --out FOLDER)");
-    if (!fs::exists(folder + "/runs.jsonl") && !fs::exists(folder + "/shard.jsonl") && !fs::exists(folder + "/sweep.json"))
-      throw std::runtime_error(folder + ": holds no suite's results (no runs.jsonl); expected a shard's folder "
+    if (!fs::exists(folder + "/runs.jsonl") && !fs::exists(folder + "/shard.jsonl") &&
+        !fs::exists(folder + "/sweep.json"))
+      throw std::runtime_error(folder +
+                               ": holds no suite's results (no runs.jsonl); expected a shard's folder "
                                "(suite --shard K/N --out FOLDER)");
     const std::string canonical = fs::canonical(folder).string();
     if (seen.count(canonical)) throw std::runtime_error(folder + ": given twice (also as " + seen[canonical] + ")");
@@ -157,11 +161,13 @@ void check_inputs(const MergeSettings& settings) {
   std::error_code error;
   if (fs::exists(settings.out, error)) {
     if (!fs::is_directory(settings.out, error))
-      throw std::runtime_error(settings.out + ": exists and is not a folder; merge writes a new suite folder: choose another OUT");
+      throw std::runtime_error(settings.out +
+                               ": exists and is not a folder; merge writes a new suite folder: choose another OUT");
     if (!fs::is_empty(settings.out, error))
-      throw std::runtime_error(settings.out + ": not empty (" +
-                               (fs::exists(settings.out + "/runs.jsonl") ? "it holds a suite's results" : "it holds files") +
-                               "); merge writes a new suite folder: choose another OUT, or empty this one first");
+      throw std::runtime_error(
+          settings.out + ": not empty (" +
+          (fs::exists(settings.out + "/runs.jsonl") ? "it holds a suite's results" : "it holds files") +
+          "); merge writes a new suite folder: choose another OUT, or empty this one first");
   }
 }
 
@@ -179,7 +185,8 @@ void check_same_suites(const MergeSettings& settings) {
   std::map<std::pair<std::string, int>, std::string> first;  // (digest, N) -> the command that made it
   for (const std::string& folder : settings.inputs) {
     std::map<std::pair<std::string, int>, std::string> suites;
-    for (const ShardPlan& plan : read_shard_plans(folder)) suites.emplace(std::pair{plan.suite, plan.shard.count}, plan.resume_command);
+    for (const ShardPlan& plan : read_shard_plans(folder))
+      suites.emplace(std::pair{plan.suite, plan.shard.count}, plan.resume_command);
     if (suites.empty()) continue;  // a whole suite's folder: its records are joined as they are
     if (first_folder.empty()) {
       first_folder = folder;
@@ -206,11 +213,17 @@ void check_completeness(const MergeSettings& settings, const std::map<std::strin
     const std::vector<ShardPlan> plans = read_shard_plans(folder);
     if (plans.empty()) outcome.without_plan.push_back(folder);
     for (const ShardPlan& plan : plans) {
-      IncompleteShard gap{folder, plan.shard, static_cast<int>(plan.jobs.size()), 0,
-                          static_cast<int>(plan.step_searches.size()), 0, plan.resume_command};
+      IncompleteShard gap{folder,
+                          plan.shard,
+                          static_cast<int>(plan.jobs.size()),
+                          0,
+                          static_cast<int>(plan.step_searches.size()),
+                          0,
+                          plan.resume_command};
       const Recorded& in_folder = recorded.at(folder);
       for (const std::string& id : plan.jobs) gap.jobs_missing += in_folder.jobs.count(id) ? 0 : 1;
-      for (const std::string& key : plan.step_searches) gap.step_searches_missing += in_folder.step_searches.count(key) ? 0 : 1;
+      for (const std::string& key : plan.step_searches)
+        gap.step_searches_missing += in_folder.step_searches.count(key) ? 0 : 1;
       if (gap.jobs_missing > 0 || gap.step_searches_missing > 0) outcome.incomplete.push_back(gap);
       shards_of_suite[{plan.suite, plan.shard.count}].insert(plan.shard.index);
       command_of_suite.emplace(std::pair{plan.suite, plan.shard.count}, plan.resume_command);
@@ -222,7 +235,8 @@ void check_completeness(const MergeSettings& settings, const std::map<std::strin
       if (k > next) outcome.absent.push_back(AbsentShards{next, k - 1, suite.second, command_of_suite[suite]});
       next = k + 1;
     }
-    if (next <= suite.second) outcome.absent.push_back(AbsentShards{next, suite.second, suite.second, command_of_suite[suite]});
+    if (next <= suite.second)
+      outcome.absent.push_back(AbsentShards{next, suite.second, suite.second, command_of_suite[suite]});
   }
 }
 
@@ -245,7 +259,8 @@ static MergeOutcome merge_sweep_shards(const MergeSettings& settings) {
     if (!fs::exists(folder + "/sweep.json"))
       throw std::runtime_error(folder + ": holds no sweep (no sweep.json), unlike " + settings.inputs.front() +
                                "; merge joins shards of one sweep or of one suite");
-    if (read_whole_file(folder + "/sweep.json") != settings_text || read_whole_file(folder + "/sweep_plan.txt") != plan_text)
+    if (read_whole_file(folder + "/sweep.json") != settings_text ||
+        read_whole_file(folder + "/sweep_plan.txt") != plan_text)
       throw std::runtime_error(folder + ": holds another sweep than " + settings.inputs.front() +
                                " (their sweep.json or sweep_plan.txt differ); merge joins the shards of one sweep");
     Recorded& in_folder = recorded[folder];
@@ -281,7 +296,7 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
   if (fs::exists(settings.inputs.front() + "/sweep.json")) return merge_sweep_shards(settings);
   // Read and check everything before writing anything.
   MergeOutcome outcome;
-  std::map<std::string, Kept> runs, steps;  // by job id; by step_row_key
+  std::map<std::string, Kept> runs, steps;   // by job id; by step_row_key
   std::map<std::string, Recorded> recorded;  // by folder
   bool any_steps = false;
   const std::set<std::string> run_timing = run_timing_fields();
@@ -292,7 +307,8 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
       std::string text;
       for (std::size_t i = 0; i < problems.size() && i < 5; ++i) text += (i ? "; " : "") + problems[i];
       if (problems.size() > 5) text += "; and " + std::to_string(problems.size() - 5) + " more";
-      throw std::runtime_error(folder + ": its results are damaged (" + text + "); continue that shard with --resume, "
+      throw std::runtime_error(folder + ": its results are damaged (" + text +
+                               "); continue that shard with --resume, "
                                "which repairs its records and runs again what they lack, then merge");
     }
     check_header(folder + "/steps.csv", steps_csv_header());
@@ -323,7 +339,8 @@ MergeOutcome merge_suites(const MergeSettings& settings) {
     outcome.runs_in_several += kept.folders > 1 ? 1 : 0;
   }
   write_text_file(settings.out + "/runs.jsonl", jsonl);
-  outcome.runs = static_cast<int>(repair_and_list_runs(settings.out).size());  // runs.csv from runs.jsonl, as --resume makes it
+  outcome.runs =
+      static_cast<int>(repair_and_list_runs(settings.out).size());  // runs.csv from runs.jsonl, as --resume makes it
   if (any_steps) {
     std::string step_jsonl;
     for (const auto& [key, kept] : steps) step_jsonl += kept.line + "\n";
@@ -357,9 +374,9 @@ std::vector<std::string> merge_messages(const MergeOutcome& outcome) {
     if (gap.step_searches_missing > 0)
       what += (what.empty() ? "" : " and ") + std::to_string(gap.step_searches_missing) + " of its " +
               std::to_string(gap.step_searches_planned) + " step searches";
-    lines.push_back("shard " + to_string(gap.shard) + " in " + gap.folder + " is missing " + what +
-                    " (its task failed or was stopped); finish it, then merge again into an empty folder: " +
-                    gap.resume_command);
+    lines.push_back(
+        "shard " + to_string(gap.shard) + " in " + gap.folder + " is missing " + what +
+        " (its task failed or was stopped); finish it, then merge again into an empty folder: " + gap.resume_command);
   }
   for (const AbsentShards& absent : outcome.absent) {
     const std::string n = std::to_string(absent.count), first = std::to_string(absent.first);
@@ -368,11 +385,13 @@ std::vector<std::string> merge_messages(const MergeOutcome& outcome) {
                                   : "shards " + first + " to " + std::to_string(absent.last) + " of " + n + " are";
     const std::string shard = absent.first == absent.last ? first + "/" + n : "K/" + n;
     lines.push_back(which + " in none of the folders given (a task failed before it began?); run " +
-                    (absent.first == absent.last ? "it" : "each") + " as the other shards ran, with --shard " + shard + " and its own --out, then merge again into an empty folder; " +
+                    (absent.first == absent.last ? "it" : "each") + " as the other shards ran, with --shard " + shard +
+                    " and its own --out, then merge again into an empty folder; " +
                     "another shard ran as: " + absent.sibling_command);
   }
   for (const std::string& folder : outcome.without_plan)
-    lines.push_back("note: " + folder + " was not made with --shard (no shard.jsonl): joined as it is, its completeness not checked");
+    lines.push_back("note: " + folder +
+                    " was not made with --shard (no shard.jsonl): joined as it is, its completeness not checked");
   return lines;
 }
 

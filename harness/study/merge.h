@@ -37,9 +37,9 @@ struct AbsentShards {
 };
 
 struct MergeOutcome {
-  int runs = 0;                 // records in OUT/runs.jsonl
-  int runs_in_several = 0;      // of which recorded in more than one folder (and equal there)
-  int step_rows = 0;            // rows in OUT/steps.jsonl
+  int runs = 0;             // records in OUT/runs.jsonl
+  int runs_in_several = 0;  // of which recorded in more than one folder (and equal there)
+  int step_rows = 0;        // rows in OUT/steps.jsonl
   std::vector<IncompleteShard> incomplete;
   std::vector<AbsentShards> absent;
   std::vector<std::string> without_plan;  // folders not made with --shard: joined, completeness not checked
@@ -47,10 +47,11 @@ struct MergeOutcome {
 };
 
 // Joins the folders into settings.out. Shards of a sweep (sweep --shard K/N, sweep.h) are joined as a sweep:
-// their row folders, then sweep.jsonl, sweep.csv and poincare.csv in the plan's order (runs: its rows). Throws std::runtime_error before writing anything for bad input,
-// naming the folder or file: a folder that does not exist or holds no suite, one given twice, an OUT
-// that is not empty, a runs.csv or steps.csv header other than this build's, two records of one job
-// that differ in a field other than timing. Throws OutputError (run_files.h) when OUT cannot be written.
+// their row folders, then sweep.jsonl, sweep.csv and poincare.csv in the plan's order (runs: its rows). Throws
+// std::runtime_error before writing anything for bad input, naming the folder or file: a folder that does not exist or
+// holds no suite, one given twice, an OUT that is not empty, a runs.csv or steps.csv header other than this build's,
+// two records of one job that differ in a field other than timing. Throws OutputError (run_files.h) when OUT cannot be
+// written.
 MergeOutcome merge_suites(const MergeSettings& settings);
 
 // One line per incomplete shard, per range of absent shards and per folder without a plan, saying what to do.

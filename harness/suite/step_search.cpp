@@ -23,26 +23,32 @@ std::string step_text(double dt) {
 
 double tolerance_of(const AccuracyTolerances& tolerances, HeadlineMetric metric) {
   switch (metric) {
-    case HeadlineMetric::frame1_sensor_peak: return tolerances.sensor_peak_relative;
-    case HeadlineMetric::contact_duration: return tolerances.contact_duration_relative;
-    case HeadlineMetric::impacts_per_cycle: return tolerances.impacts_per_cycle_difference;
+    case HeadlineMetric::frame1_sensor_peak:
+      return tolerances.sensor_peak_relative;
+    case HeadlineMetric::contact_duration:
+      return tolerances.contact_duration_relative;
+    case HeadlineMetric::impacts_per_cycle:
+      return tolerances.impacts_per_cycle_difference;
   }
   return kNaN;
 }
 
 const char* to_string(HeadlineMetric metric) {
   switch (metric) {
-    case HeadlineMetric::frame1_sensor_peak: return "frame1_sensor_peak";
-    case HeadlineMetric::contact_duration: return "contact_duration";
-    case HeadlineMetric::impacts_per_cycle: return "impacts_per_cycle";
+    case HeadlineMetric::frame1_sensor_peak:
+      return "frame1_sensor_peak";
+    case HeadlineMetric::contact_duration:
+      return "contact_duration";
+    case HeadlineMetric::impacts_per_cycle:
+      return "impacts_per_cycle";
   }
   return "";
 }
 
 std::vector<double> step_grid(const StepSearchSettings& s) {
   if (!(s.min_step_s > 0) || !(s.max_step_s >= s.min_step_s) || !std::isfinite(s.max_step_s))
-    throw std::invalid_argument("step range " + exact_number_text(s.min_step_s) + "," + exact_number_text(s.max_step_s) +
-                                ": allowed: 0 < MIN <= MAX [s]");
+    throw std::invalid_argument("step range " + exact_number_text(s.min_step_s) + "," +
+                                exact_number_text(s.max_step_s) + ": allowed: 0 < MIN <= MAX [s]");
   if (s.points_per_octave < 1)
     throw std::invalid_argument("grid points per octave " + std::to_string(s.points_per_octave) + ": allowed: >= 1");
   std::vector<double> grid;
@@ -59,9 +65,12 @@ std::vector<double> step_grid(const StepSearchSettings& s) {
 namespace {
 double error_of(const HeadlineErrors& e, HeadlineMetric m) {
   switch (m) {
-    case HeadlineMetric::frame1_sensor_peak: return e.frame1_sensor_peak_relative;
-    case HeadlineMetric::contact_duration: return e.contact_duration_relative;
-    case HeadlineMetric::impacts_per_cycle: return e.impacts_per_cycle_difference;
+    case HeadlineMetric::frame1_sensor_peak:
+      return e.frame1_sensor_peak_relative;
+    case HeadlineMetric::contact_duration:
+      return e.contact_duration_relative;
+    case HeadlineMetric::impacts_per_cycle:
+      return e.impacts_per_cycle_difference;
   }
   return kNaN;
 }
@@ -108,13 +117,14 @@ StepSearch::StepSearch(const StepSearchSettings& settings, const ReferenceFacts&
       continue;
     }
     // A relative error needs a non-zero reference value (metrics.cpp relative_error()).
-    const double value = m == HeadlineMetric::frame1_sensor_peak  ? reference.frame1_sensor_peak_g
+    const double value = m == HeadlineMetric::frame1_sensor_peak ? reference.frame1_sensor_peak_g
                          : m == HeadlineMetric::contact_duration ? reference.contact_duration_mean_s
                                                                  : reference.impacts_per_cycle;
     if (std::isnan(value) || (m != HeadlineMetric::impacts_per_cycle && value == 0))
-      not_applicable_[p] = m == HeadlineMetric::frame1_sensor_peak  ? "the " + reference_name + " has no sensor peak"
-                           : m == HeadlineMetric::contact_duration ? "the " + reference_name + " has no impacts in the window"
-                                                                   : "the scenario has no excitation";
+      not_applicable_[p] = m == HeadlineMetric::frame1_sensor_peak ? "the " + reference_name + " has no sensor peak"
+                           : m == HeadlineMetric::contact_duration
+                               ? "the " + reference_name + " has no impacts in the window"
+                               : "the scenario has no excitation";
   }
 }
 
@@ -273,7 +283,8 @@ std::optional<int> StepSearch::next_probe() const {
 }
 
 void StepSearch::add(int index, const ProbeResult& result) {
-  if (index < 0 || index >= static_cast<int>(grid_.size())) throw std::out_of_range("step search: grid index out of range");
+  if (index < 0 || index >= static_cast<int>(grid_.size()))
+    throw std::out_of_range("step search: grid index out of range");
   results_[index] = result;
 }
 
@@ -294,12 +305,18 @@ StepSearch::Outcome StepSearch::outcome(int predicate) const {
     o.beam_error_at_largest_pass = r.beam_error.count(m) ? r.beam_error.at(m) : kNaN;
   }
   // A walk probes every grid step down to where it stopped: a bracket still open there never passed.
-  if (settings_.walk && unprobed_inside(b) && !next_walk_probe()) o.status = "fails down to the walk's smallest step";
-  else if (unprobed_inside(b)) o.status = "search not finished";
-  else if (b.pass && *b.pass == 0) o.status = "holds at the largest step";
-  else if (!b.pass && b.fail && *b.fail == last) o.status = "fails at the smallest step";
-  else if (b.pass && b.fail && *b.pass - *b.fail == 1) o.status = "bracketed to one grid step";
-  else o.status = "not decided: probes reached the time limit";
+  if (settings_.walk && unprobed_inside(b) && !next_walk_probe())
+    o.status = "fails down to the walk's smallest step";
+  else if (unprobed_inside(b))
+    o.status = "search not finished";
+  else if (b.pass && *b.pass == 0)
+    o.status = "holds at the largest step";
+  else if (!b.pass && b.fail && *b.fail == last)
+    o.status = "fails at the smallest step";
+  else if (b.pass && b.fail && *b.pass - *b.fail == 1)
+    o.status = "bracketed to one grid step";
+  else
+    o.status = "not decided: probes reached the time limit";
   return o;
 }
 
@@ -315,14 +332,18 @@ std::vector<std::string> StepSearch::notes() const {
     if (!b.fail) continue;
     std::string above;
     for (const auto& [index, result] : results_)
-      if (index < *b.fail && judge(p, result) == Outcome3::pass) above += (above.empty() ? "" : ", ") + step_text(grid_[index]);
+      if (index < *b.fail && judge(p, result) == Outcome3::pass)
+        above += (above.empty() ? "" : ", ") + step_text(grid_[index]);
     if (above.empty()) continue;
-    const std::string what = p == kStability ? "stable" : std::string(to_string(static_cast<HeadlineMetric>(p))) + " within tolerance";
-    notes.push_back("non-monotone: " + what + " at the larger " + above + " s but not at " + step_text(grid_[*b.fail]) + " s");
+    const std::string what =
+        p == kStability ? "stable" : std::string(to_string(static_cast<HeadlineMetric>(p))) + " within tolerance";
+    notes.push_back("non-monotone: " + what + " at the larger " + above + " s but not at " + step_text(grid_[*b.fail]) +
+                    " s");
   }
   for (const auto& [index, result] : results_) {
     if (result.timed_out)
-      notes.push_back("not decided at " + step_text(grid_[index]) + " s: the probe reached the time limit (smaller steps not tried)");
+      notes.push_back("not decided at " + step_text(grid_[index]) +
+                      " s: the probe reached the time limit (smaller steps not tried)");
     else if (result.verdict == Verdict::failed) {
       const std::string reason = result.reason.size() > 160 ? result.reason.substr(0, 160) + "..." : result.reason;
       notes.push_back("failed at " + step_text(grid_[index]) + " s (counted as not stable): " + reason);
@@ -341,7 +362,8 @@ double StepSearch::probes_wall_time_s() const {
 std::string StepSearch::probe_list() const {
   std::string list;
   for (const auto& [index, result] : results_)
-    list += (list.empty() ? "" : ";") + step_text(grid_[index]) + ":" + (result.timed_out ? "timed_out" : to_string(result.verdict));
+    list += (list.empty() ? "" : ";") + step_text(grid_[index]) + ":" +
+            (result.timed_out ? "timed_out" : to_string(result.verdict));
   return list;
 }
 

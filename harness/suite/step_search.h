@@ -16,17 +16,16 @@
 #include <string>
 #include <vector>
 
+#include "harness/jobs/worker_process.h"   // kTimeLimitReason
 #include "harness/records/recorded_run.h"  // recorded_run_lines: the probes and references recorded
-#include "harness/jobs/worker_process.h"  // kTimeLimitReason
 #include "harness/scoring/verdict.h"
 
 namespace ib {
 
 // The headline metrics whose largest accurate step is searched, in column order.
 enum class HeadlineMetric { frame1_sensor_peak, contact_duration, impacts_per_cycle };
-constexpr std::array<HeadlineMetric, 3> kHeadlineMetrics = {HeadlineMetric::frame1_sensor_peak,
-                                                            HeadlineMetric::contact_duration,
-                                                            HeadlineMetric::impacts_per_cycle};
+constexpr std::array<HeadlineMetric, 3> kHeadlineMetrics = {
+    HeadlineMetric::frame1_sensor_peak, HeadlineMetric::contact_duration, HeadlineMetric::impacts_per_cycle};
 const char* to_string(HeadlineMetric metric);  // "frame1_sensor_peak", "contact_duration", "impacts_per_cycle"
 
 struct StepSearchSettings {
@@ -58,8 +57,8 @@ std::vector<double> step_grid(const StepSearchSettings& settings);
 struct ProbeResult {
   Verdict verdict = Verdict::failed;
   std::string reason;
-  bool timed_out = false;               // stopped at the time limit: not decided
-  double wall_time_s = 0;               // the simulator's cost [s]
+  bool timed_out = false;  // stopped at the time limit: not decided
+  double wall_time_s = 0;  // the simulator's cost [s]
   // errors against the accuracy reference (the engine's own chain, else the beam), and the beam's
   std::map<HeadlineMetric, double> error, beam_error;  // NaN: not measured
 };
@@ -70,10 +69,10 @@ double beam_score(const ProbeResult& result, const AccuracyTolerances& tolerance
 
 // The facts of a reference run that decide whether a metric can be judged at all.
 struct ReferenceFacts {
-  bool finished = false;                // a record with verdict ok
-  double frame1_sensor_peak_g = 0;      // NaN when absent
-  double contact_duration_mean_s = 0;   // NaN without impacts in the window
-  double impacts_per_cycle = 0;         // NaN without excitation
+  bool finished = false;               // a record with verdict ok
+  double frame1_sensor_peak_g = 0;     // NaN when absent
+  double contact_duration_mean_s = 0;  // NaN without impacts in the window
+  double impacts_per_cycle = 0;        // NaN without excitation
 };
 
 // Reads a probe from its runs.jsonl line. with_chain: judge against vs_chain_reference_* (the engine
@@ -114,21 +113,21 @@ class StepSearch {
 
   // What the search found, with the notes (non-monotone outcomes, probes not decided).
   struct Outcome {
-    std::string status;                 // see predicate_status()
-    double largest_pass_step_s;         // NaN: none in range
-    double smallest_fail_step_s;        // NaN: none in range
-    double error_at_largest_pass = 0;   // metrics: the error there (accuracy reference), and vs the beam
+    std::string status;                // see predicate_status()
+    double largest_pass_step_s;        // NaN: none in range
+    double smallest_fail_step_s;       // NaN: none in range
+    double error_at_largest_pass = 0;  // metrics: the error there (accuracy reference), and vs the beam
     double beam_error_at_largest_pass = 0;
   };
   Outcome stability() const;
   Outcome accuracy(HeadlineMetric metric) const;
   std::vector<std::string> notes() const;
   double probes_wall_time_s() const;
-  std::string probe_list() const;       // "step [s]:verdict;...", largest step first (column probe_outcomes)
+  std::string probe_list() const;  // "step [s]:verdict;...", largest step first (column probe_outcomes)
 
  private:
   enum class Outcome3 { pass, fail, undecided };
-  static constexpr int kStability = -1;   // predicate keys: -1 stability, else the metric's index
+  static constexpr int kStability = -1;  // predicate keys: -1 stability, else the metric's index
   Outcome3 judge(int predicate, const ProbeResult& r) const;
   std::optional<int> next_walk_probe() const;
   bool walk_stopped_falling() const;  // the last walk_flat_probes stable probes did not lower the best score
@@ -146,7 +145,7 @@ class StepSearch {
 
 // steps.csv / steps.jsonl: one row per group.
 struct StepGroup {
-  std::string group_id;                 // scenario/engine/law[/options]: the probes' job ids without dt
+  std::string group_id;  // scenario/engine/law[/options]: the probes' job ids without dt
   std::string scenario, law, engine, options, accuracy_reference;
   int chain_links = 0;
 };
@@ -158,15 +157,16 @@ struct StepRow {
 std::string steps_csv_header();
 std::string steps_csv_row(const StepRow& row);
 std::string steps_json_line(const StepRow& row);
-// Appends one row to DIR/steps.csv and DIR/steps.jsonl, flushed at once. Throws OutputError (run_files.h) naming the file.
+// Appends one row to DIR/steps.csv and DIR/steps.jsonl, flushed at once. Throws OutputError (run_files.h) naming the
+// file.
 void append_step_row(const std::string& folder, const StepRow& row);
 // The key a group's row is found by on --resume: its id, range, grid and tolerances.
 std::string step_row_key(const StepGroup& group, const StepSearchSettings& settings);
 // A steps.jsonl line read back as a struct: the one decoder of a row (--resume, merge).
 struct RecordedStepRow {
-  bool readable = false;                // false: not a row (a line a kill cut short); nothing else is set
+  bool readable = false;  // false: not a row (a line a kill cut short); nothing else is set
   std::string group_id;
-  std::string key;                      // step_row_key of the row's group and settings
+  std::string key;  // step_row_key of the row's group and settings
 };
 RecordedStepRow read_step_row(const std::string& json_line);
 // For --resume: drops a steps.jsonl line a kill cut short, rewrites steps.csv from steps.jsonl, and

@@ -49,7 +49,8 @@ SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
       }
       const std::string& reference_id = g.with_chain ? g.job->chain_reference : g.job->beam_reference;
       const auto found = recorded_lines_.find(reference_id);
-      const ReferenceFacts facts = found != recorded_lines_.end() ? reference_from_json(found->second) : ReferenceFacts{};
+      const ReferenceFacts facts =
+          found != recorded_lines_.end() ? reference_from_json(found->second) : ReferenceFacts{};
       g.search = std::make_unique<StepSearch>(*g.settings, facts, g.info.accuracy_reference);
     }
     std::optional<int> next;
@@ -70,7 +71,7 @@ SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
       if (!planned_ids_.count(probe.id)) ++outcome_.jobs_skipped;
     }
     if (next && unfinished_.count(probe.id)) {  // a job of the plan is this probe: its record, once it ends
-      awaited_by_searches_.insert(probe.id);      // (next_cost starts it before other jobs)
+      awaited_by_searches_.insert(probe.id);    // (next_cost starts it before other jobs)
       continue;
     }
     if (!next) {
@@ -86,9 +87,10 @@ SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
     // that ended needed, where they needed more; each costing on average what a probe at the bracket's
     // unprobed steps costs (their steps differ from this probe's: what share of this step's runs ended early
     // says nothing of them).
-    const int measured_left = finished_searches_ > 0
-                                  ? (finished_search_probes_ + finished_searches_ - 1) / finished_searches_ - g.search->probes()
-                                  : 0;
+    const int measured_left =
+        finished_searches_ > 0
+            ? (finished_search_probes_ + finished_searches_ - 1) / finished_searches_ - g.search->probes()
+            : 0;
     const int probes_left = std::max(g.search->probes_left_estimate(), measured_left);
     JobWork later = work_of(probe);
     later.units = scenarios_[probe.scenario].duration_s * g.search->mean_unprobed_steps_per_second();

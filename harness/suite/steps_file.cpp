@@ -21,9 +21,12 @@ using Json = nlohmann::ordered_json;
 // The runs.csv name of each metric's error against a reference (metrics.cpp flatten()).
 const char* error_name(HeadlineMetric m) {
   switch (m) {
-    case HeadlineMetric::frame1_sensor_peak: return "frame1_sensor_peak_relative_error";
-    case HeadlineMetric::contact_duration: return "contact_duration_relative_error";
-    case HeadlineMetric::impacts_per_cycle: return "impacts_per_cycle_difference";
+    case HeadlineMetric::frame1_sensor_peak:
+      return "frame1_sensor_peak_relative_error";
+    case HeadlineMetric::contact_duration:
+      return "contact_duration_relative_error";
+    case HeadlineMetric::impacts_per_cycle:
+      return "impacts_per_cycle_difference";
   }
   return "";
 }
@@ -82,7 +85,8 @@ std::vector<Field> step_fields(const StepRow& row) {
 // The key's numbers exactly: a row is found again only under the same range and tolerances.
 std::string key_text(const std::string& group_id, double min_s, double max_s, double points, bool walk,
                      const std::vector<double>& tolerances) {
-  std::string key = group_id + "|" + exact_number_text(min_s) + "|" + exact_number_text(max_s) + "|" + exact_number_text(points);
+  std::string key =
+      group_id + "|" + exact_number_text(min_s) + "|" + exact_number_text(max_s) + "|" + exact_number_text(points);
   if (walk) key += "|walk";
   for (double t : tolerances) key += "|" + exact_number_text(t);
   return key;
@@ -92,7 +96,9 @@ std::string key_text(const std::string& group_id, double min_s, double max_s, do
 
 // ---- steps.csv and steps.jsonl ----------------------------------------------------------------------
 
-std::string steps_csv_header() { return csv_header_line(step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr})); }
+std::string steps_csv_header() {
+  return csv_header_line(step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}));
+}
 
 std::string steps_csv_row(const StepRow& row) { return csv_row_line(step_fields(row)); }
 
@@ -114,7 +120,8 @@ RecordedStepRow read_step_row(const std::string& json_line) {
   RecordedStepRow row;
   if (!j.is_object() || !j.contains("notes")) return row;  // "notes" is the last column: a whole row
   std::vector<double> tolerances;
-  for (HeadlineMetric m : kHeadlineMetrics) tolerances.push_back(number_or_nan(j, std::string(error_name(m)) + "_tolerance"));
+  for (HeadlineMetric m : kHeadlineMetrics)
+    tolerances.push_back(number_or_nan(j, std::string(error_name(m)) + "_tolerance"));
   row.readable = true;
   row.group_id = text_or_empty(j, "group_id");
   row.key = key_text(row.group_id, number_or_nan(j, "step_range_min_s"), number_or_nan(j, "step_range_max_s"),
@@ -123,7 +130,8 @@ RecordedStepRow read_step_row(const std::string& json_line) {
 }
 
 std::set<std::string> repair_and_list_step_rows(const std::string& folder) {
-  const std::vector<std::string> columns = column_names(step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}));
+  const std::vector<std::string> columns =
+      column_names(step_fields(StepRow{StepGroup{}, StepSearchSettings{}, nullptr}));
   const auto key_of = [](const std::string& line, std::string&) { return read_step_row(line).key; };
   return repair_jsonl_table(folder + "/steps.jsonl", folder + "/steps.csv", columns, key_of);
 }

@@ -56,9 +56,10 @@ void SuiteRunner::begin() {
     std::vector<std::string> repairs;
     recorded_ = repair_and_list_runs(settings_.out, &repairs);
     for (const std::string& repair : repairs) std::fprintf(stderr, "suite: repaired %s\n", repair.c_str());
-  }
-  else if (fs::exists(settings_.out + "/runs.jsonl"))
-    throw std::runtime_error(settings_.out + " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
+  } else if (fs::exists(settings_.out + "/runs.jsonl"))
+    throw std::runtime_error(
+        settings_.out +
+        " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
   plan();
   std::string suite;  // a shard's suite: its whole plan and its settings, equal in every shard of one suite
   if (settings_.shard) {
@@ -122,8 +123,8 @@ std::vector<const PlannedJob*> SuiteRunner::ready_jobs() {
 // the other jobs, a kind not measured yet, then the costliest (next_to_start).
 std::optional<double> SuiteRunner::next_cost() {
   const std::vector<const PlannedJob*> ready = ready_jobs();
-  const auto reference = std::find_if(ready.begin(), ready.end(),
-                                      [](const PlannedJob* job) { return job->kind != JobKind::engine; });
+  const auto reference =
+      std::find_if(ready.begin(), ready.end(), [](const PlannedJob* job) { return job->kind != JobKind::engine; });
   next_ = reference != ready.end() ? *reference : nullptr;
   next_search_ = next_ ? nullptr : ready_search();
   if (next_ || next_search_) return kUnknownCost;

@@ -12,10 +12,10 @@
 
 #include "harness/jobs/matrix_settings.h"
 #include "harness/jobs/run_job.h"
-#include "harness/jobs/unit_source.h"
 #include "harness/jobs/shard_plan.h"
-#include "model/simulator.h"
+#include "harness/jobs/unit_source.h"
 #include "harness/suite/step_search.h"
+#include "model/simulator.h"
 
 namespace ib {
 
@@ -23,14 +23,14 @@ namespace ib {
 // suite, with what a suite adds.
 struct SuiteSettings : MatrixSettings {
   SuiteSettings() { laws = {ContactLaw::hertz, ContactLaw::viscoelastic, ContactLaw::newton}; }
-  std::vector<std::string> inputs;                 // scenario files or folders (searched recursively)
-  double max_duration_s = 0;                       // > 0: runs longer scenarios for this long only (window kept)
-  bool extend = false;   // --extend: add a suite with other settings to a folder that holds one (DIR/suite.jsonl)
+  std::vector<std::string> inputs;  // scenario files or folders (searched recursively)
+  double max_duration_s = 0;        // > 0: runs longer scenarios for this long only (window kept)
+  bool extend = false;  // --extend: add a suite with other settings to a folder that holds one (DIR/suite.jsonl)
   // Set: instead of fixed time steps, each (scenario, law, engine, options) group searches its largest
   // stable and accurate steps by bisection (step_search.h) and appends a row to DIR/steps.csv and
   // DIR/steps.jsonl when its search ends. time_steps_s is then ignored for the engines.
   std::optional<StepSearchSettings> step_search;
-  bool keep_probe_series = false;                  // the probes' series.csv.gz (default: summary and events only)
+  bool keep_probe_series = false;  // the probes' series.csv.gz (default: summary and events only)
   // Set: each engine runs in its authors' recommended configuration for each law (its descriptor.json's
   // "recommended": options and time step) instead of contact_paths x time_steps_s; an engine without one
   // runs nothing in this suite. The per-engine options (engine_options) still apply beneath it.
@@ -55,16 +55,17 @@ struct SuiteSettings : MatrixSettings {
 };
 
 struct SuiteOutcome {
-  int jobs_run = 0;         // in this invocation
-  int jobs_skipped = 0;     // already recorded (--resume)
-  int not_ok = 0;           // unstable or failed among those run
-  int not_ok_recorded = 0;  // unstable or failed among every result in the folder: a resumed suite's exit code covers them all
-  int recorded = 0;         // every result in the folder
-  int step_searches = 0;    // groups whose step search ended (a row in steps.csv) in this invocation
-  int jobs_total = 0;       // the whole matrix, recorded or not
-  int interrupted_by = 0;   // the signal (SIGINT, SIGTERM) that stopped the suite early; 0: it ran to the end
-  int jobs_stopped = 0;     // jobs whose process a signal from outside stopped (not recorded: --resume runs them)
-  int stopped_by = 0;       // that signal (the last one seen)
+  int jobs_run = 0;      // in this invocation
+  int jobs_skipped = 0;  // already recorded (--resume)
+  int not_ok = 0;        // unstable or failed among those run
+  int not_ok_recorded =
+      0;             // unstable or failed among every result in the folder: a resumed suite's exit code covers them all
+  int recorded = 0;  // every result in the folder
+  int step_searches = 0;          // groups whose step search ended (a row in steps.csv) in this invocation
+  int jobs_total = 0;             // the whole matrix, recorded or not
+  int interrupted_by = 0;         // the signal (SIGINT, SIGTERM) that stopped the suite early; 0: it ran to the end
+  int jobs_stopped = 0;           // jobs whose process a signal from outside stopped (not recorded: --resume runs them)
+  int stopped_by = 0;             // that signal (the last one seen)
   int references_from_cache = 0;  // recorded from --reference-cache, not solved
 };
 

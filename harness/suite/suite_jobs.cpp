@@ -20,10 +20,10 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
-#include "harness/records/number_text.h"
 #include "harness/jobs/progress.h"
-#include "harness/records/recorded_run.h"
 #include "harness/jobs/reference_cache.h"
+#include "harness/records/number_text.h"
+#include "harness/records/recorded_run.h"
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
 #include "model/scenario_toml.h"
@@ -39,8 +39,8 @@ const ReferenceData* SuiteRunner::reference(const std::string& id, const Planned
   if (found == references_.end()) {
     std::unique_ptr<ReferenceData> data;
     try {
-      data = std::make_unique<ReferenceData>(load_reference(settings_.out + "/runs/" + id, scenarios_[job.scenario],
-                                                             part_of(job).measurement));
+      data = std::make_unique<ReferenceData>(
+          load_reference(settings_.out + "/runs/" + id, scenarios_[job.scenario], part_of(job).measurement));
     } catch (const std::exception&) {
       data = nullptr;  // the reference failed: the job is recorded without errors against it
     }
@@ -103,16 +103,18 @@ Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
 static std::string missing_reference(const PlannedJob& job, const ReferenceData* beam, const ReferenceData* chain) {
   std::string missing;
   if (job.kind != JobKind::engine) return missing;
-  if (!job.beam_reference.empty() && !beam) missing = "its reference " + job.beam_reference + " did not finish (see its row)";
+  if (!job.beam_reference.empty() && !beam)
+    missing = "its reference " + job.beam_reference + " did not finish (see its row)";
   if (!job.chain_reference.empty() && !chain)
-    missing += (missing.empty() ? "its reference " : "; its reference ") + job.chain_reference + " did not finish (see its row)";
+    missing += (missing.empty() ? "its reference " : "; its reference ") + job.chain_reference +
+               " did not finish (see its row)";
   return missing;
 }
 
 // The job's process: its output goes to log.txt; its record to row.csv and row.jsonl for the parent.
 [[noreturn]] void SuiteRunner::run_in_child(const PlannedJob& job, const std::string& folder, const Scenario& scenario,
-                               const ReferenceData* beam, const ReferenceData* chain,
-                               const std::vector<ScoredFrom>& scored, int message_pipe) {
+                                            const ReferenceData* beam, const ReferenceData* chain,
+                                            const std::vector<ScoredFrom>& scored, int message_pipe) {
   RunRecord record;
   ReferenceData run_data;  // the run's metrics and trajectory, for the jobs scored from it
   bool ran = false;
@@ -193,8 +195,9 @@ std::string SuiteRunner::collect(const PlannedJob& job, const ProcessEnd& end) {
     return "";
   }
   const Scenario& s = scenarios_[job.scenario];
-  RunRecord record = unrunnable(job.id, s.name, s.source_path, job.spec.engine, to_string(job.spec.settings.law),
-                                describe_exit(status, settings_.time_limit_s, timed_out, last_line(folder + "/log.txt")));
+  RunRecord record =
+      unrunnable(job.id, s.name, s.source_path, job.spec.engine, to_string(job.spec.settings.law),
+                 describe_exit(status, settings_.time_limit_s, timed_out, last_line(folder + "/log.txt")));
   record.time_step_s = job.spec.settings.time_step_s;
   record.options = options_text(job.spec.settings.options);
   record.warnings = job.spec.warnings;

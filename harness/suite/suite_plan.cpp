@@ -24,8 +24,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
-#include "harness/records/number_text.h"
 #include "harness/jobs/progress.h"
+#include "harness/records/number_text.h"
 #include "harness/records/recorded_run.h"
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
@@ -42,19 +42,22 @@ void SuiteRunner::check_same_shard() const {
   if (!settings_.shard) {
     if (!plans.empty())
       throw std::invalid_argument(settings_.out + " holds shard " + to_string(plans.front().shard) +
-                                  " of a suite (shard.jsonl): resume it with --shard " + to_string(plans.front().shard));
+                                  " of a suite (shard.jsonl): resume it with --shard " +
+                                  to_string(plans.front().shard));
     return;
   }
   if (plans.empty()) {
     if (!recorded_run_lines(settings_.out).empty())
-      throw std::invalid_argument(settings_.out + " holds a whole suite's results, not a shard's: resume it without --shard " +
+      throw std::invalid_argument(settings_.out +
+                                  " holds a whole suite's results, not a shard's: resume it without --shard " +
                                   to_string(*settings_.shard) + ", or choose another --out for the shard");
     return;
   }
   for (const ShardPlan& p : plans)
     if (p.shard != *settings_.shard)
-      throw std::invalid_argument(settings_.out + " holds shard " + to_string(p.shard) + " of a suite (shard.jsonl), not --shard " +
-                                  to_string(*settings_.shard) + ": resume it with --shard " + to_string(p.shard) +
+      throw std::invalid_argument(settings_.out + " holds shard " + to_string(p.shard) +
+                                  " of a suite (shard.jsonl), not --shard " + to_string(*settings_.shard) +
+                                  ": resume it with --shard " + to_string(p.shard) +
                                   ", or choose another --out for this shard");
 }
 
@@ -68,7 +71,8 @@ std::vector<std::string> SuiteRunner::planned_job_ids() const {
 
 std::vector<std::string> SuiteRunner::planned_step_keys() const {
   std::vector<std::string> keys;
-  for (const PlannedJob& group : step_groups_) keys.push_back(step_row_key(step_group(group), *part_of(group).step_search));
+  for (const PlannedJob& group : step_groups_)
+    keys.push_back(step_row_key(step_group(group), *part_of(group).step_search));
   return keys;
 }
 
@@ -77,9 +81,9 @@ std::vector<std::string> SuiteRunner::planned_step_keys() const {
 // units are compared with.
 void SuiteRunner::keep_only_this_shard() {
   const Shard& shard = *settings_.shard;
-  const bool references_alone = step_groups_.empty() && std::none_of(jobs_.begin(), jobs_.end(), [](const PlannedJob& j) {
-                                  return j.kind == JobKind::engine;
-                                });
+  const bool references_alone =
+      step_groups_.empty() &&
+      std::none_of(jobs_.begin(), jobs_.end(), [](const PlannedJob& j) { return j.kind == JobKind::engine; });
   std::size_t unit = 0;
   std::vector<RunRecord> unrunnable;
   for (RunRecord& r : unrunnable_)
@@ -131,10 +135,14 @@ void SuiteRunner::record_plan(const std::string& suite) const {
 // The row a step-search group writes to steps.csv (its probes' job ids are the group's id with /dt=...).
 StepGroup SuiteRunner::step_group(const PlannedJob& job) const {
   const bool with_chain = !job.chain_reference.empty();
-  return StepGroup{job.id, scenarios_[job.scenario].name, to_string(job.spec.settings.law), job.spec.engine,
-                   options_text(job.spec.settings.options),
-                   with_chain ? "reference on the " + std::to_string(job.chain_links) + "-link chain" : "beam reference",
-                   job.chain_links};
+  return StepGroup{
+      job.id,
+      scenarios_[job.scenario].name,
+      to_string(job.spec.settings.law),
+      job.spec.engine,
+      options_text(job.spec.settings.options),
+      with_chain ? "reference on the " + std::to_string(job.chain_links) + "-link chain" : "beam reference",
+      job.chain_links};
 }
 
 // The job id of a scenario file that cannot be read: its stem, made unique by a digest of its path when
@@ -189,11 +197,13 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
     if (fs::is_directory(input, error)) {
       const std::vector<std::string> found = find_scenario_files(input);
       if (found.empty())
-        throw std::invalid_argument(input + ": holds no scenario file (*.toml, searched recursively); expected scenario "
+        throw std::invalid_argument(input +
+                                    ": holds no scenario file (*.toml, searched recursively); expected scenario "
                                     "files or folders of them");
       files.insert(files.end(), found.begin(), found.end());
     } else if (!fs::exists(input, error)) {
-      throw std::invalid_argument(input + ": no such file or folder; expected scenario files (*.toml) or folders of them");
+      throw std::invalid_argument(input +
+                                  ": no such file or folder; expected scenario files (*.toml) or folders of them");
     } else {
       files.push_back(input);  // a file that cannot be read as a scenario is recorded as such: the others run
     }
@@ -233,7 +243,8 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
     const auto [named, fresh] = file_of_name.emplace(scenarios_.back().name, file);
     if (!fresh)
       throw std::invalid_argument(file + ": [scenario] name = \"" + scenarios_.back().name + "\" is also the name of " +
-                                  named->second + "; allowed: a name no other scenario of the suite has (its job ids "
+                                  named->second +
+                                  "; allowed: a name no other scenario of the suite has (its job ids "
                                   "and run folders are named after it)");
     const std::size_t index = scenarios_.size() - 1;
     Scenario& s = scenarios_.back();
@@ -258,12 +269,14 @@ void SuiteRunner::plan_part(std::size_t part_index, std::set<std::string>& plann
         PlannedJob beam = make_job(index, JobKind::beam_reference, "reference", law, 0, part.reference_options, start);
         beam.spec.warnings = warnings;
         add_job(beam);
-        for (int links : part.reference_chain_links) add_job(chain_reference_job(index, law, start, links, part, beam, warnings));
+        for (int links : part.reference_chain_links)
+          add_job(chain_reference_job(index, law, start, links, part, beam, warnings));
         for (const std::string& engine : part.engines) {
           if (engine == "reference" || start >= part.ensemble.engine_starts) continue;
-          const auto engine_options = part.engine_options.count(engine) ? part.engine_options.at(engine)
-                                                                        : std::map<std::string, std::string>{};
-          for (const auto& [options, dt] : engine_configurations(part, settings_.simulators, engine, law, engine_options)) {
+          const auto engine_options =
+              part.engine_options.count(engine) ? part.engine_options.at(engine) : std::map<std::string, std::string>{};
+          for (const auto& [options, dt] :
+               engine_configurations(part, settings_.simulators, engine, law, engine_options)) {
             PlannedJob job = make_job(index, JobKind::engine, engine, law, dt, options, start);
             job.spec.warnings = warnings;
             job.beam_reference = beam.id;
@@ -310,8 +323,8 @@ PlannedJob SuiteRunner::chain_reference_job(std::size_t scenario, ContactLaw law
   return chain;
 }
 
-PlannedJob SuiteRunner::make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,
-                    const std::map<std::string, std::string>& options, int start) const {
+PlannedJob SuiteRunner::make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law,
+                                 double dt, const std::map<std::string, std::string>& options, int start) const {
   PlannedJob job;
   const SuiteSettings::Ensemble& ensemble = parts_[scenario_part_[scenario]].ensemble;
   if (start > 0 || ensemble.reference_starts > 1)
@@ -395,10 +408,10 @@ void SuiteRunner::describe_plan(int to_run) const {
                settings_.out.c_str(),
                step_groups_.empty() ? ""
                                     : (", and " + std::to_string(step_groups_.size()) +
-                                       " step searches (their probes planned as they go)").c_str());
+                                       " step searches (their probes planned as they go)")
+                                          .c_str());
   std::fprintf(stderr, "  scenarios: %s\n  laws: %s; runs (or step searches) per simulator: %s; steps: %s\n",
-               joined(names).c_str(),
-               joined(laws).c_str(), joined(engines).c_str(), joined(steps).c_str());
+               joined(names).c_str(), joined(laws).c_str(), joined(engines).c_str(), joined(steps).c_str());
   const auto scored = std::count_if(jobs_.begin(), jobs_.end(), [&](const PlannedJob& job) {
     return !job.same_run_as.empty() && !recorded_.count(job.id);
   });

@@ -13,21 +13,21 @@
 #include <csignal>
 #include <deque>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "harness/records/folder_lock.h"
+#include "harness/jobs/process_pool.h"
 #include "harness/jobs/progress.h"
 #include "harness/jobs/run_job.h"
+#include "harness/jobs/worker_process.h"
+#include "harness/records/folder_lock.h"
 #include "harness/suite/step_search.h"
 #include "harness/suite/suite.h"
-#include "harness/jobs/process_pool.h"
-#include "harness/jobs/worker_process.h"
 
 namespace ib::suite_internal {
 
@@ -38,12 +38,12 @@ enum class JobKind { beam_reference, chain_reference, engine };
 struct PlannedJob {
   std::string id;
   JobKind kind = JobKind::engine;
-  std::size_t scenario = 0;     // index into the loaded scenarios
+  std::size_t scenario = 0;  // index into the loaded scenarios
   JobSpec spec;
-  std::string beam_reference;   // job ids of the references this job is compared with ("" if none)
+  std::string beam_reference;  // job ids of the references this job is compared with ("" if none)
   std::string chain_reference;
   int chain_links = 0;
-  bool step_probe = false;      // a probe of a step search (its series is kept only on request)
+  bool step_probe = false;  // a probe of a step search (its series is kept only on request)
   // The job whose run this one scores against its own law's references (native contact ignores the
   // law): it is recorded by that job's process, never run itself. "" for a job that runs.
   std::string same_run_as;
@@ -53,7 +53,6 @@ struct PlannedJob {
 // is recorded as failed with the reason, and the suite goes on.
 RunRecord unrunnable(const std::string& id, const std::string& scenario, const std::string& file,
                      const std::string& engine, const std::string& law, const std::string& reason);
-
 
 // A job scored from another's run, with the references of its own law (loaded before the fork).
 struct ScoredFrom {
@@ -228,35 +227,35 @@ class SuiteRunner : public SuiteSource {
 
   void count_and_show(const std::string& id, Verdict verdict, double units_done = -1, double compute_s = -1);
 
-
   const std::vector<SuiteSettings> parts_;  // copies: the tolerance record is set in them (with_one_tolerance_record)
   const SuiteSettings& settings_ = parts_.front();  // what the parts share
   std::vector<Scenario> scenarios_;
-  std::vector<std::size_t> scenario_part_;               // the part each scenario was loaded (and cut) for
-  std::vector<std::vector<std::string>> part_jobs_;       // each part's job ids, also those an earlier part planned
-  std::vector<std::vector<std::string>> part_files_;      // each part's scenario files, readable or not
+  std::vector<std::size_t> scenario_part_;            // the part each scenario was loaded (and cut) for
+  std::vector<std::vector<std::string>> part_jobs_;   // each part's job ids, also those an earlier part planned
+  std::vector<std::vector<std::string>> part_files_;  // each part's scenario files, readable or not
   std::vector<PlannedJob> jobs_;
   std::vector<PlannedJob> step_groups_;  // --find-steps: one job (dt = 0) per group, not run itself
   // The references some run of the whole plan is compared with: a reference's series is kept only then (an
   // ensemble's reference starts beyond its engines' measure the references' spread by their metrics alone).
   std::set<std::string> compared_references_;
-  std::deque<PlannedJob> probe_jobs_;    // the searches' probes (a deque keeps their addresses)
+  std::deque<PlannedJob> probe_jobs_;  // the searches' probes (a deque keeps their addresses)
   std::vector<RunRecord> unrunnable_;
   std::set<std::string> recorded_;
-  std::set<std::string> stopped_;  // jobs stopped from outside: neither they nor the jobs compared with them are recorded
+  std::set<std::string>
+      stopped_;  // jobs stopped from outside: neither they nor the jobs compared with them are recorded
   std::multimap<std::string, const PlannedJob*> scored_from_;  // a run's job id -> the jobs scored from its run
   std::map<std::string, std::unique_ptr<ReferenceData>> references_;
-  std::vector<const PlannedJob*> pending_;     // jobs to run, not started
-  std::set<std::string> unfinished_;           // jobs pending or running: those compared with them wait
+  std::vector<const PlannedJob*> pending_;            // jobs to run, not started
+  std::set<std::string> unfinished_;                  // jobs pending or running: those compared with them wait
   std::map<std::string, const PlannedJob*> running_;  // by unit id
-  const PlannedJob* next_ = nullptr;           // what next_cost chose and start_next starts
+  const PlannedJob* next_ = nullptr;                  // what next_cost chose and start_next starts
   SearchGroup* next_search_ = nullptr;
   std::vector<SearchGroup> searches_;
   std::map<std::string, std::size_t> search_of_probe_;
-  std::map<std::string, std::string> recorded_lines_;  // references and probes, for the searches
-  std::set<std::string> planned_ids_;                  // the plan's job ids, for the searches (a probe may be one)
-  std::set<std::string> awaited_by_searches_;          // planned jobs a walk waits for as its next probe
-  std::set<std::string> step_rows_done_;               // --resume: the searches recorded before
+  std::map<std::string, std::string> recorded_lines_;       // references and probes, for the searches
+  std::set<std::string> planned_ids_;                       // the plan's job ids, for the searches (a probe may be one)
+  std::set<std::string> awaited_by_searches_;               // planned jobs a walk waits for as its next probe
+  std::set<std::string> step_rows_done_;                    // --resume: the searches recorded before
   int finished_searches_ = 0, finished_search_probes_ = 0;  // how many probes a search takes, measured here
   std::unique_ptr<Progress> progress_;
   std::unique_ptr<FolderLock> lock_;  // the output folder's, held while the suite writes into it

@@ -32,16 +32,26 @@ constexpr const char* kSettingsFile = "/suite.jsonl";
 // probes it shares), or which files a run keeps (the series: a reference keeps its window whatever it says,
 // and a study's 1e-4 s runs keep none), or how many starts an ensemble has (a start is the same run in any
 // ensemble of the same step), as opposed to how every job is run and measured (the result-deciding ones).
-const std::set<std::string> kMatrixKeys = {"scenario_files", "engines",     "laws",               "time_steps_s",
-                                           "contact_paths",  "engine_options", "step_search", "verdict_tolerances",
-                                           "series", "series_rate_hz", "ensemble", "recommended",
+const std::set<std::string> kMatrixKeys = {"scenario_files",
+                                           "engines",
+                                           "laws",
+                                           "time_steps_s",
+                                           "contact_paths",
+                                           "engine_options",
+                                           "step_search",
+                                           "verdict_tolerances",
+                                           "series",
+                                           "series_rate_hz",
+                                           "ensemble",
+                                           "recommended",
                                            "reference_chain_links"};
 
 // An ensemble's starts K >= 1 are the same runs in two parts only with the same displacement step (their job ids
 // name K, not the step); start 0, the scenario as written, is the same run whatever the ensemble.
 std::string differing_ensemble_step(const nlohmann::ordered_json& a, const nlohmann::ordered_json& b) {
   if (!a.contains("ensemble") || !b.contains("ensemble")) return "";
-  return a["ensemble"]["displacement_step_m"] == b["ensemble"]["displacement_step_m"] ? "" : "ensemble displacement_step_m";
+  return a["ensemble"]["displacement_step_m"] == b["ensemble"]["displacement_step_m"] ? ""
+                                                                                      : "ensemble displacement_step_m";
 }
 
 std::string file_digest(const std::string& path) {
@@ -111,7 +121,8 @@ nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
   s["series"] = m.series == SeriesOutput::all ? "all" : m.series == SeriesOutput::none ? "none" : "window";
   if (m.series_rate_hz > 0) s["series_rate_hz"] = m.series_rate_hz;  // absent when unused: older folders resume
   s["verdict_tolerances"] = {m.verdicts.accuracy.sensor_peak_relative, m.verdicts.accuracy.contact_duration_relative,
-                             m.verdicts.accuracy.impacts_per_cycle_difference, m.verdicts.accuracy.log_decrement_relative};
+                             m.verdicts.accuracy.impacts_per_cycle_difference,
+                             m.verdicts.accuracy.log_decrement_relative};
   s["stability_bounds"] = {m.verdicts.stability.displacement_bound_fraction_of_length,
                            m.verdicts.stability.penetration_bound_gaps, m.verdicts.stability.penetration_bound_floor_m,
                            m.verdicts.stability.energy_growth_tolerance};
@@ -197,7 +208,8 @@ void SuiteRunner::check_and_record_settings(std::size_t this_part) {
     part.jobs = std::set<std::string>(planned.begin(), planned.end());
     part.command = settings_.resume_command;
     std::string text;
-    for (const SuitePart& p : parts) text += line_of(p.settings, std::vector<std::string>(p.jobs.begin(), p.jobs.end()), p.command);
+    for (const SuitePart& p : parts)
+      text += line_of(p.settings, std::vector<std::string>(p.jobs.begin(), p.jobs.end()), p.command);
     replace_text_file(settings_.out + kSettingsFile, text);
     return;
   }
@@ -209,10 +221,11 @@ void SuiteRunner::check_and_record_settings(std::size_t this_part) {
       if (keys.empty() || std::count(k.begin(), k.end(), ',') < std::count(keys.begin(), keys.end(), ','))
         keys = k, command = part.command;
     }
-    throw std::invalid_argument(settings_.out + " holds a suite with other settings (" + keys + " differ" +
-                                (command.empty() ? "" : " from: " + command) + ", see " + settings_.out + kSettingsFile +
-                                "): --resume continues the same suite only; add --extend to add this suite to the folder, "
-                                "or choose another --out");
+    throw std::invalid_argument(
+        settings_.out + " holds a suite with other settings (" + keys + " differ" +
+        (command.empty() ? "" : " from: " + command) + ", see " + settings_.out + kSettingsFile +
+        "): --resume continues the same suite only; add --extend to add this suite to the folder, "
+        "or choose another --out");
   }
   // --extend: a job this suite shares with the folder must have been recorded under the same
   // result-deciding settings and from the same scenario file, or the folder would mix them.

@@ -18,8 +18,8 @@
 
 #include "harness/jobs/matrix_settings.h"
 #include "harness/jobs/run_job.h"
-#include "harness/jobs/unit_source.h"
 #include "harness/jobs/shard_plan.h"
+#include "harness/jobs/unit_source.h"
 #include "model/simulator.h"
 
 namespace ib {
@@ -34,15 +34,15 @@ std::vector<double> parse_ratios(const std::string& text);
 // The matrix (matrix_settings.h: engines, laws, paths, steps, options, rate, workers, folder, measurement) of a
 // sweep, with what a sweep adds; a sweep's default law is hertz alone, its time limit per ratio.
 struct SweepSettings : MatrixSettings {
-  std::string scenario_path;                       // a scenario with a motor
-  std::vector<double> ratios;                      // ascending
+  std::string scenario_path;   // a scenario with a motor
+  std::vector<double> ratios;  // ascending
   std::vector<SweepStart> starts = {SweepStart::rest};
   // Each ratio's run length [s], rounded to whole motor periods: a continuation's ratios after its first
   // (default 60 s: docs/sweeps.md); a start from rest, and a continuation's first ratio (from rest), run the scenario's
   // own duration unless rest_duration_s is set.
   double continuation_duration_s = 60;
   std::optional<double> rest_duration_s;
-  double window_s = 10;                            // the last window_s of each run is scored [s] (whole periods)
+  double window_s = 10;  // the last window_s of each run is scored [s] (whole periods)
   // An ensemble of the reference's starts from rest (docs/sweeps.md, "Multistable ratios"): at each of `ratios`
   // (empty: every ratio of the sweep) the reference also runs from starts K = 1 .. reference_starts - 1, frame 1's
   // tip displaced by K x displacement_step_m beyond the scenario's initial displacement (start 0 is the row from
@@ -50,18 +50,18 @@ struct SweepSettings : MatrixSettings {
   // one start reaches is chance: the fraction of starts reaching each regime is the fact, and a ratio whose
   // starts reach more than one regime is multistable. Engines run from one start (their cost is the budget's).
   struct StartEnsemble {
-    int reference_starts = 1;             // 1: no ensemble
+    int reference_starts = 1;  // 1: no ensemble
     double displacement_step_m = 1e-7;
-    std::vector<double> ratios;           // each one of the sweep's ratios
+    std::vector<double> ratios;  // each one of the sweep's ratios
   } ensemble;
 };
 
 struct SweepOutcome {
   int rows_run = 0, rows_skipped = 0, rows_total = 0;
-  int not_ok = 0;            // rows whose verdict is not ok among all recorded
-  int interrupted_by = 0;    // SIGINT or SIGTERM that stopped the sweep; 0: it ran to its end
-  int chains_stopped = 0;    // chains whose process a signal from outside stopped (--resume runs the rest)
-  int stopped_by = 0;        // that signal (the last one seen)
+  int not_ok = 0;          // rows whose verdict is not ok among all recorded
+  int interrupted_by = 0;  // SIGINT or SIGTERM that stopped the sweep; 0: it ran to its end
+  int chains_stopped = 0;  // chains whose process a signal from outside stopped (--resume runs the rest)
+  int stopped_by = 0;      // that signal (the last one seen)
 };
 
 // Runs the sweep (or its shard); progress on stderr. Throws std::invalid_argument for bad input (a
@@ -80,9 +80,9 @@ std::unique_ptr<SweepSource> prepare_sweep(const SweepSettings& settings);
 
 // ---- The plan, shared by the runner, the merge and the tests.
 struct SweepRow {
-  std::string id;            // "<configuration id>/<start>/r=<ratio>": its folder below runs/
-  std::string chain;         // "<configuration id>/<start>" (rest: with /r=<ratio>)
-  JobSpec job;               // scenario file, engine, law, step, options
+  std::string id;                       // "<configuration id>/<start>/r=<ratio>": its folder below runs/
+  std::string chain;                    // "<configuration id>/<start>" (rest: with /r=<ratio>)
+  JobSpec job;                          // scenario file, engine, law, step, options
   SweepStart start = SweepStart::rest;  // an ensemble's start K >= 1 (job.start) is from rest; its id ends in /start=K
   double ratio = 0;
   bool first_of_chain = true;

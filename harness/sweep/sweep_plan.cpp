@@ -13,9 +13,12 @@ namespace ib {
 
 const char* to_string(SweepStart start) {
   switch (start) {
-    case SweepStart::rest: return "rest";
-    case SweepStart::up: return "up";
-    case SweepStart::down: return "down";
+    case SweepStart::rest:
+      return "rest";
+    case SweepStart::up:
+      return "up";
+    case SweepStart::down:
+      return "down";
   }
   return "?";
 }
@@ -27,7 +30,8 @@ double parse_ratio_part(const std::string& part, const std::string& text) {
   char* end = nullptr;
   const double value = std::strtod(part.c_str(), &end);
   if (part.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value))
-    throw std::invalid_argument("--ratios " + text + ": '" + part + "' is not a number; allowed: FROM:TO:STEP, e.g. 0.85:1.20:0.01");
+    throw std::invalid_argument("--ratios " + text + ": '" + part +
+                                "' is not a number; allowed: FROM:TO:STEP, e.g. 0.85:1.20:0.01");
   return value;
 }
 
@@ -46,8 +50,9 @@ std::vector<double> parse_ratios(const std::string& text) {
     throw std::invalid_argument("--ratios " + text + ": allowed: 0.05 <= FROM <= TO <= 20");
   if (!(step > 0) && from != to) throw std::invalid_argument("--ratios " + text + ": allowed: STEP > 0");
   const double count = from == to ? 1 : std::floor((to - from) / step + 1e-3) + 1;
-  if (count > 10000) throw std::invalid_argument("--ratios " + text + ": " + std::to_string(static_cast<long long>(count)) +
-                                                 " ratios; allowed: at most 10000");
+  if (count > 10000)
+    throw std::invalid_argument("--ratios " + text + ": " + std::to_string(static_cast<long long>(count)) +
+                                " ratios; allowed: at most 10000");
   std::vector<double> ratios;
   for (int k = 0; k < static_cast<int>(count); ++k) ratios.push_back(std::round((from + k * step) * 1e9) / 1e9);
   return ratios;

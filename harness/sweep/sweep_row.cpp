@@ -7,8 +7,8 @@
 
 #include "harness/records/jsonl_table.h"
 #include "harness/records/number_text.h"
-#include "harness/scoring/poincare.h"
 #include "harness/records/run_files.h"
+#include "harness/scoring/poincare.h"
 #include "harness/sweep/sweep_internal.h"
 #include "physics/modal_model.h"
 
@@ -81,7 +81,8 @@ void write_row(const std::string& folder, const std::vector<Field>& fields, cons
   row["timed_out"] = f.timed_out;  // a boolean, as runs.jsonl's (in its place among the fields)
   row["warnings"] = f.warnings;    // a list, as runs.jsonl's
   // row.json last and by rename: its presence marks the row done, never half-written
-  replace_text_file(folder + "/row.json", row.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
+  replace_text_file(folder + "/row.json",
+                    row.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
 }
 
 std::string poincare_text(const SweepRow& row, const std::vector<PoincareSample>& samples) {
@@ -105,7 +106,8 @@ RowScenario row_scenario(const Scenario& base, const SweepRow& row, const SweepS
   at.scenario.motor->speed_ratio_to_f1 = row.ratio;
   at.scenario.motor->frequency_hz.reset();
   at.motor_frequency_hz = motor_frequency_hz(at.scenario);
-  const double run_s = row.first_of_chain ? settings.rest_duration_s.value_or(base.duration_s) : settings.continuation_duration_s;
+  const double run_s =
+      row.first_of_chain ? settings.rest_duration_s.value_or(base.duration_s) : settings.continuation_duration_s;
   const double periods = std::max(1.0, std::round(run_s * at.motor_frequency_hz));
   at.scenario.duration_s = periods / at.motor_frequency_hz;
   const double window_periods = std::clamp(std::round(settings.window_s * at.motor_frequency_hz), 1.0, periods);

@@ -9,19 +9,19 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <set>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
+#include "harness/jobs/shard_plan.h"
+#include "harness/jobs/unit_source.h"
+#include "harness/jobs/worker_process.h"
 #include "harness/records/engines_file.h"
 #include "harness/records/folder_lock.h"
 #include "harness/records/jsonl_table.h"
 #include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
 #include "harness/sweep/sweep_internal.h"
-#include "harness/jobs/shard_plan.h"
-#include "harness/jobs/unit_source.h"
-#include "harness/jobs/worker_process.h"
 #include "model/scenario_toml.h"
 #include "physics/modal_model.h"
 
@@ -87,7 +87,9 @@ class SweepRunner : public SweepSource {
   }
   // The simulated seconds of a chain's rows not done yet.
   double simulated_s_left(const SweepChain& chain) const;
-  static std::string kind_of(const SweepChain& chain) { return chain.rows.front().job.engine + " " + options_text(chain.rows.front().job.settings.options); }
+  static std::string kind_of(const SweepChain& chain) {
+    return chain.rows.front().job.engine + " " + options_text(chain.rows.front().job.settings.options);
+  }
   void prepare_folder();
   [[noreturn]] void run_chain_in_child(const SweepChain& chain, int message_pipe);
   // Rows from..end of a chain that will not run: row `from` with first_reason (and timed_out), the rest
@@ -101,11 +103,11 @@ class SweepRunner : public SweepSource {
   std::vector<SweepChain> all_, mine_;
   std::vector<std::string> my_row_ids_;
   std::vector<Pending> pending_;
-  std::size_t next_ = 0;  // the pending chain next_cost chose, which start_next starts
+  std::size_t next_ = 0;                    // the pending chain next_cost chose, which start_next starts
   std::map<std::string, Running> running_;  // by unit id
   std::set<std::string> started_kinds_;
   std::map<std::string, std::pair<double, double>> cost_of_kind_;  // seconds, simulated seconds of the chains ended
-  int recorded_ = -1;  // rows in the tables when last written
+  int recorded_ = -1;                                              // rows in the tables when last written
   SweepOutcome outcome_;
   std::unique_ptr<FolderLock> lock_;  // the output folder's, held while the sweep writes into it
 };
@@ -118,9 +120,12 @@ void SweepRunner::prepare_folder() {
   const nlohmann::ordered_json record = settings_record(s_, scenario_);
   const std::string path = s_.out + "/sweep.json";
   if (std::filesystem::exists(path)) {
-    if (!s_.resume) throw std::invalid_argument(s_.out + " holds a sweep already (sweep.json); continue it with --resume or choose another --out");
+    if (!s_.resume)
+      throw std::invalid_argument(
+          s_.out + " holds a sweep already (sweep.json); continue it with --resume or choose another --out");
     const auto held = nlohmann::ordered_json::parse(read_text_file(path), nullptr, false);
-    if (held.is_discarded()) throw std::invalid_argument(path + ": not a sweep's settings (not JSON); remove the folder to start again");
+    if (held.is_discarded())
+      throw std::invalid_argument(path + ": not a sweep's settings (not JSON); remove the folder to start again");
     // a sweep recorded before the scenario's digest was kept is resumed on its other settings
     nlohmann::ordered_json now = record;
     if (!held.contains("scenario_digest")) now.erase("scenario_digest");
@@ -129,7 +134,8 @@ void SweepRunner::prepare_folder() {
       throw std::invalid_argument(s_.out + " holds a sweep with other settings (" + keys + " differ, see " + path +
                                   "): --resume continues the same sweep only; choose another --out");
   } else {
-    if (std::filesystem::exists(s_.out + "/runs.jsonl")) throw std::invalid_argument(s_.out + " holds a suite; choose another --out for a sweep");
+    if (std::filesystem::exists(s_.out + "/runs.jsonl"))
+      throw std::invalid_argument(s_.out + " holds a suite; choose another --out for a sweep");
     replace_text_file(path, record.dump(2) + "\n");
   }
   std::vector<std::string> all_ids;
@@ -244,9 +250,10 @@ void SweepRunner::ended(const ProcessEnd& end) {
     return;
   }
   const std::string why = describe_exit(status, s_.time_limit_s, end.timed_out, last_line(log_of(chain)));
-  record_rest_not_run(chain, first_missing, why,
-                      "the chain's process ended at r = " + ratio_text(chain.rows[first_missing].ratio) + " (see that row)",
-                      end.timed_out);
+  record_rest_not_run(
+      chain, first_missing, why,
+      "the chain's process ended at r = " + ratio_text(chain.rows[first_missing].ratio) + " (see that row)",
+      end.timed_out);
 }
 
 // The time limit is per ratio: a chain's clock restarts with each row it finishes.
@@ -271,7 +278,8 @@ void SweepRunner::refresh_tables() {
 void SweepRunner::begin() {
   scenario_ = load_scenario(s_.scenario_path);
   if (!scenario_.motor)
-    throw std::invalid_argument(s_.scenario_path + ": a sweep needs a motor ([motor] in the scenario); this one has none");
+    throw std::invalid_argument(s_.scenario_path +
+                                ": a sweep needs a motor ([motor] in the scenario); this one has none");
   if (s_.ratios.empty()) throw std::invalid_argument("--ratios: no ratio to run");
   for (ContactLaw law : s_.laws)
     if (!scenario_.contact.has(law))
@@ -291,8 +299,8 @@ void SweepRunner::begin() {
   }
   std::fprintf(stderr, "sweep: %s, %zu ratios x %zu chains%s: %d rows to run (%d recorded already)\n",
                scenario_.name.c_str(), s_.ratios.size(), mine_.size(),
-               s_.shard ? (" (shard " + to_string(*s_.shard) + ")").c_str() : "", outcome_.rows_total - outcome_.rows_skipped,
-               outcome_.rows_skipped);
+               s_.shard ? (" (shard " + to_string(*s_.shard) + ")").c_str() : "",
+               outcome_.rows_total - outcome_.rows_skipped, outcome_.rows_skipped);
 }
 
 SweepOutcome SweepRunner::finish() {

@@ -12,7 +12,6 @@ namespace ib {
 
 namespace {
 
-
 std::string csv_cell(const nlohmann::ordered_json& value) {
   if (value.is_null()) return "";
   if (value.is_string()) return csv_escape(value.get<std::string>());
@@ -29,7 +28,8 @@ int write_sweep_tables(const std::string& folder, const std::vector<std::string>
     const std::string text = read_text_file(row_folder + "/row.json");
     if (text.empty()) continue;
     const auto row = nlohmann::ordered_json::parse(text, nullptr, /*allow_exceptions=*/false);
-    if (!row.is_object()) throw std::runtime_error(row_folder + "/row.json: not a JSON object; remove the folder and run with --resume");
+    if (!row.is_object())
+      throw std::runtime_error(row_folder + "/row.json: not a JSON object; remove the folder and run with --resume");
     // A list (the row's warnings) is in sweep.jsonl alone: a CSV cell holds one value (runs.csv does the same).
     if (csv.empty()) {
       bool first = true;

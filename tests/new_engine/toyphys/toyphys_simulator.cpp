@@ -56,7 +56,8 @@ class ToyStepper final : public FixedStepEngine {
 
   void apply_loads(const StepLoads& loads) override {
     tip_force_n_ = {0, 0};
-    if (loads.injected_contact_force_n) tip_force_n_ = {-*loads.injected_contact_force_n, *loads.injected_contact_force_n};
+    if (loads.injected_contact_force_n)
+      tip_force_n_ = {-*loads.injected_contact_force_n, *loads.injected_contact_force_n};
     if (loads.motor_force_n) tip_force_n_[0] += *loads.motor_force_n;
   }
 
