@@ -24,7 +24,30 @@ std::string list_text(const std::vector<std::string>& items) {
   return text;
 }
 
-// One line per part: what it runs, "all" spelled out as this build has it.
+// What decides a part's runs beyond its matrix, for its plan line: the window, the rates, what is kept, the
+// options and the time limit, so that two study files with the same plan lines run the same runs.
+// (A sweep's window is its own: with_window false.)
+std::string measured_text(const ib::MatrixSettings& s, bool with_window = true) {
+  const ib::Measurement& m = s.measurement;
+  std::string text = "; rate " + ib::number_text(s.output_rate_hz) + " Hz, sensor " +
+                     ib::number_text(m.sensor_rate_hz) + " Hz" +
+                     (!with_window ? ""
+                      : m.window_s ? "; window " + ib::number_text(*m.window_s) + " s"
+                                   : std::string("; window the scenario's")) +
+                     "; series " +
+                     (m.series == ib::SeriesOutput::none  ? "none"
+                      : m.series == ib::SeriesOutput::all ? "all"
+                                                          : "window");
+  if (m.series_rate_hz > 0) text += " at " + ib::number_text(m.series_rate_hz) + " Hz";
+  std::vector<std::string> options;
+  for (const auto& [name, value] : s.reference_options) options.push_back("reference." + name + "=" + value);
+  for (const auto& [engine, set] : s.engine_options)
+    for (const auto& [name, value] : set) options.push_back(engine + "." + name + "=" + value);
+  if (!options.empty()) text += "; options " + list_text(options);
+  return text + "; time limit " + ib::number_text(s.time_limit_s) + " s";
+}
+
+// One line per part: what it runs, "all" spelled out as this build has it, and what decides its runs beyond that.
 void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<std::string>& suite_names,
                 const std::vector<ib::SweepSettings>& sweeps, const std::vector<std::string>& sweep_names) {
   const auto laws = [](const std::vector<ib::ContactLaw>& list) {
@@ -46,7 +69,16 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
     std::vector<std::string> links;
     for (int k : s.reference_chain_links) links.push_back(std::to_string(k));
     const std::string chains = links.empty() ? "" : "; the reference on chains of " + list_text(links) + " links";
-    std::printf("%s \"%s\": %s; engines %s; laws %s; paths %s; dt_s %s%s%s\n", s.step_search ? "search" : "suite",
+    std::string more =
+        (s.max_duration_s > 0 ? "; cut to " + ib::number_text(s.max_duration_s) + " s" : "") + measured_text(s);
+    if (s.ensemble.reference_starts > 1)
+      more += "; start step " + ib::number_text(s.ensemble.displacement_step_m) + " m";
+    if (s.step_search)
+      more += "; " + std::string(s.step_search->walk ? "walk" : "bisection") + " over " +
+              ib::number_text(s.step_search->min_step_s) + " to " + ib::number_text(s.step_search->max_step_s) +
+              " s, " + std::to_string(s.step_search->points_per_octave) + " per octave" +
+              (s.keep_probe_series ? ", probes' series kept" : "");
+    std::printf("%s \"%s\": %s; engines %s; laws %s; paths %s; dt_s %s%s%s%s\n", s.step_search ? "search" : "suite",
                 suite_names[i].c_str(), list_text(s.inputs).c_str(), list_text(s.engines).c_str(), laws(s.laws).c_str(),
                 s.recommended             ? "recommended"
                 : s.contact_paths.empty() ? "default"
@@ -54,14 +86,27 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
                 s.step_search   ? "searched"
                 : s.recommended ? "recommended"
                                 : steps(s.time_steps_s).c_str(),
-                starts.c_str(), chains.c_str());
+                starts.c_str(), chains.c_str(), more.c_str());
   }
   for (std::size_t i = 0; i < sweeps.size(); ++i) {
     const ib::SweepSettings& s = sweeps[i];
-    std::printf("sweep \"%s\": %s; %zu ratios; engines %s; laws %s; paths %s; dt_s %s -> %s\n", sweep_names[i].c_str(),
-                s.scenario_path.c_str(), s.ratios.size(), list_text(s.engines).c_str(), laws(s.laws).c_str(),
-                s.contact_paths.empty() ? "default" : list_text(s.contact_paths).c_str(), steps(s.time_steps_s).c_str(),
-                s.out.c_str());
+    std::vector<std::string> starts, ratios;
+    for (ib::SweepStart start : s.starts) starts.push_back(ib::to_string(start));
+    for (double ratio : s.ensemble.ratios) ratios.push_back(ib::number_text(ratio));
+    std::string more =
+        "; starts " + list_text(starts) + "; from rest " +
+        (s.rest_duration_s ? ib::number_text(*s.rest_duration_s) + " s" : std::string("the scenario's")) +
+        ", continued " + ib::number_text(s.continuation_duration_s) + " s, window " + ib::number_text(s.window_s) +
+        " s";
+    if (s.ensemble.reference_starts > 1)
+      more += "; the reference from " + std::to_string(s.ensemble.reference_starts) + " starts " +
+              ib::number_text(s.ensemble.displacement_step_m) + " m apart at " +
+              (ratios.empty() ? std::string("every ratio") : list_text(ratios));
+    more += measured_text(s, false);
+    std::printf("sweep \"%s\": %s; %zu ratios; engines %s; laws %s; paths %s; dt_s %s%s -> %s\n",
+                sweep_names[i].c_str(), s.scenario_path.c_str(), s.ratios.size(), list_text(s.engines).c_str(),
+                laws(s.laws).c_str(), s.contact_paths.empty() ? "default" : list_text(s.contact_paths).c_str(),
+                steps(s.time_steps_s).c_str(), more.c_str(), s.out.c_str());
   }
 }
 

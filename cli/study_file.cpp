@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "cli/option_rules.h"
+#include "cli/study_keys.h"
 #include "model/scenario_toml.h"
 #include "model/toml_schema.h"
 
@@ -20,88 +21,6 @@ namespace fs = std::filesystem;
 using ib::toml_schema::Checker;
 using ib::toml_schema::line_of;
 using ib::toml_schema::type_name;
-
-const char* kind_name(StudyPart::Kind kind) {
-  switch (kind) {
-    case StudyPart::Kind::suite:
-      return "suite";
-    case StudyPart::Kind::search:
-      return "search";
-    case StudyPart::Kind::sweep:
-      return "sweep";
-  }
-  return "";
-}
-
-// What a key takes; the option it stands for (its messages start with that option) and what it means.
-enum class Type { text, number, integer, boolean, texts, numbers, texts_or_all };
-struct KeySpec {
-  const char* key;
-  Type type;
-  const char* option;  // the command's option the value is checked as ("" for a key of the study alone)
-  const char* meaning;
-  const char* also = "";  // another start of the messages about it ("engine 'x': not in this build")
-};
-
-// The keys of each kind of part. Every key is optional but `scenarios` (suite, search) and `name`,
-// `scenario` (sweep): a part left to its defaults is the command's defaults.
-const std::vector<KeySpec> kCommonKeys = {
-    {"name", Type::text, "", "the part's name, in messages (a sweep's: its folder below OUT/sweeps/)"},
-    {"engines", Type::texts_or_all, "--engines", "\"all\" (every simulator of the build) or a list of simulators",
-     "engine"},
-    {"skip_engines", Type::texts, "--engines", "simulators left out of `engines`"},
-    {"laws", Type::texts_or_all, "--laws", "\"all\" or a list of contact laws: hertz, viscoelastic, newton", "law"},
-    {"paths", Type::texts_or_all, "--paths", "\"all\" or a list of contact paths: matched, injected, native"},
-    {"dt_s", Type::numbers, "--dt", "time steps of the fixed-step engines [s]"},
-    {"options", Type::texts, "--option", "engine.name=value settings", "engine"},
-    {"rate_hz", Type::number, "--rate", "output series sample rate [Hz]"},
-    {"sensor_rate_hz", Type::number, "--sensor-rate", "accelerometer sample rate [Hz]"},
-    {"series", Type::text, "--series", "what a run keeps of its series: window, all or none"},
-    {"series_rate_hz", Type::number, "--series-rate", "the rate an engine run's series file keeps [Hz]; 0: rate_hz"},
-    {"time_limit_s", Type::number, "--time-limit", "per job (a sweep: per ratio) [s]"},
-    {"window_s", Type::number, "--window", "the last S seconds of each run are scored [s]"},
-    {"duration_s", Type::number, "--duration",
-     "suite: runs cut to this length [s]; sweep: each continued ratio's run [s]"},
-};
-const std::vector<KeySpec> kSuiteKeys = {
-    {"scenarios", Type::texts, "scenarios", "scenario files or folders"},
-    {"ensemble_starts", Type::integer, "--ensemble", "every configuration from N starts (1: single runs)"},
-    {"reference_ensemble_starts", Type::integer, "--reference-ensemble",
-     "the references' starts (at least ensemble_starts)"},
-    {"ensemble_step_m", Type::number, "--ensemble-step", "frame 1's initial tip displacement between two starts [m]"},
-    {"recommended", Type::boolean, "--recommended",
-     "each engine in its authors' recommended configuration per law (not with paths or dt_s)"},
-    {"reference_chains", Type::numbers, "--reference-chains",
-     "links K per frame: the reference alone on each K-link chain, every start"},
-};
-const std::vector<KeySpec> kSearchKeys = {
-    {"scenarios", Type::texts, "scenarios", "scenario files or folders"},
-    {"steps_per_octave", Type::integer, "--steps-per-octave", "grid steps per halving of the step"},
-    {"step_range_s", Type::numbers, "--step-range", "[MIN, MAX] step searched [s]"},
-    {"keep_series", Type::boolean, "--keep-series", "keep every probe's series"},
-    {"walk", Type::boolean, "--step-walk",
-     "walk down the grid until the error stops falling (a front's ladder), not bisect"},
-};
-const std::vector<KeySpec> kSweepKeys = {
-    {"scenario", Type::text, "scenario", "a scenario file with a motor"},
-    {"ratios", Type::text, "--ratios", "FROM:TO:STEP, the motor speed over f_1"},
-    {"starts", Type::texts, "--start", "rest, up, down or both"},
-    {"rest_duration_s", Type::number, "--rest-duration", "a start from rest's run [s]"},
-    {"reference_ensemble_starts", Type::integer, "--reference-ensemble",
-     "the reference's starts from rest at each ensemble ratio (1: one)"},
-    {"ensemble_step_m", Type::number, "--ensemble-step", "frame 1's initial tip displacement between two starts [m]"},
-    {"ensemble_ratios", Type::texts, "--ensemble-ratios",
-     "FROM:TO:STEP ranges or single ratios where the reference's ensemble runs"},
-};
-
-std::vector<KeySpec> keys_of(StudyPart::Kind kind) {
-  std::vector<KeySpec> keys = kCommonKeys;
-  const auto& own = kind == StudyPart::Kind::suite    ? kSuiteKeys
-                    : kind == StudyPart::Kind::search ? kSearchKeys
-                                                      : kSweepKeys;
-  keys.insert(keys.end(), own.begin(), own.end());
-  return keys;
-}
 
 std::string number_text(double x) {
   char text[32];
@@ -117,13 +36,27 @@ std::string joined(const std::vector<std::string>& items) {
 
 class PartReader {
  public:
-  PartReader(const Checker& checker, const toml::table& table, std::string dotted)
-      : checker_(checker), table_(table), dotted_(std::move(dotted)) {}
+  // defaults: the study's [defaults] table (null: none), read for a key the part's own table does not hold.
+  PartReader(const Checker& checker, const toml::table& table, std::string dotted,
+             const toml::table* defaults = nullptr)
+      : checker_(checker), table_(table), dotted_(std::move(dotted)), defaults_(defaults) {}
 
-  // The key's value as the command's option text; nullopt when absent. Wrong types fail here.
+  // The key's value as the command's option text, from the part's table, else from [defaults]; nullopt when
+  // neither holds it. Wrong types fail here, named where the value is written.
   std::optional<std::string> text(const KeySpec& spec, StudyPart& part) const {
     const toml::node* node = table_.get(spec.key);
+    const std::string& dotted = node || !defaults_ ? dotted_ : kDefaults;
+    if (!node && defaults_) node = defaults_->get(spec.key);
     if (!node) return std::nullopt;
+    return value_text(spec, *node, dotted, part);
+  }
+
+ private:
+  static inline const std::string kDefaults = "defaults";
+
+  std::string value_text(const KeySpec& spec, const toml::node& value, const std::string& dotted,
+                         StudyPart& part) const {
+    const toml::node* node = &value;
     part.key_lines[spec.key] = line_of(*node);
     switch (spec.type) {
       case Type::text:
@@ -141,7 +74,7 @@ class PartReader {
       case Type::texts_or_all:
         if (const auto* s = node->as_string()) {
           if (s->get() == "all") return std::string("all");
-          wrong(spec, *node, "\"all\" or an array of strings");
+          wrong(spec, *node, dotted, "\"all\" or an array of strings");
         }
         [[fallthrough]];
       case Type::texts:
@@ -154,7 +87,7 @@ class PartReader {
             else if (spec.type != Type::numbers && item.is_string())
               items.push_back(item.as_string()->get());
             else
-              wrong(spec, *node, spec.type == Type::numbers ? "an array of numbers" : "an array of strings");
+              wrong(spec, *node, dotted, spec.type == Type::numbers ? "an array of numbers" : "an array of strings");
           }
           part.key_items[spec.key] = items;
           return joined(items);
@@ -169,20 +102,21 @@ class PartReader {
                                      "an array of strings",
                                      "an array of numbers",
                                      "\"all\" or an array of strings"};
-    wrong(spec, *node, expected[static_cast<int>(spec.type)]);
+    wrong(spec, *node, dotted, expected[static_cast<int>(spec.type)]);
   }
 
-  [[noreturn]] void wrong(const KeySpec& spec, const toml::node& node, const std::string& expected) const {
-    const std::string dotted = dotted_ + "." + spec.key;
+  [[noreturn]] void wrong(const KeySpec& spec, const toml::node& node, const std::string& table,
+                          const std::string& expected) const {
+    const std::string dotted = table + "." + spec.key;
     checker_.fail(line_of(node), dotted,
                   checker_.show(dotted, node) + ": wrong type (" + type_name(node) + "); expected " + expected + " (" +
                       spec.meaning + ")");
   }
 
- private:
   const Checker& checker_;
   const toml::table& table_;
   std::string dotted_;
+  const toml::table* defaults_;
 };
 
 // "all" spelled out: every simulator of the build (less skip_engines), every law, every path.
@@ -214,8 +148,8 @@ std::string scenario_path(const std::string& study_file, const std::string& path
   return !error && !relative.empty() && *relative.begin() != ".." ? relative.string() : in_project.string();
 }
 
-StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart::Kind kind, int index,
-                    const std::string& file, const std::vector<std::string>& engines) {
+StudyPart read_part(const Checker& checker, const toml::table& table, const toml::table* defaults, StudyPart::Kind kind,
+                    int index, const std::string& file, const std::vector<std::string>& engines) {
   StudyPart part;
   part.kind = kind;
   part.file = file;
@@ -226,7 +160,7 @@ StudyPart read_part(const Checker& checker, const toml::table& table, StudyPart:
   for (const KeySpec& k : keys) names.push_back(k.key);
   checker.reject_unknown(ib::toml_schema::Section{&table, dotted, part.line}, names,
                          "allowed keys in [[" + std::string(kind_name(kind)) + "]]: " + ib::toml_schema::join(names));
-  const PartReader reader(checker, table, dotted);
+  const PartReader reader(checker, table, dotted, defaults);
   std::map<std::string, std::string> given;
   for (const KeySpec& k : keys)
     if (auto value = reader.text(k, part)) given[k.key] = *value;
@@ -350,6 +284,26 @@ Settings checked(const StudyPart& part, Make make) {
   }
 }
 
+// The study's [defaults] (null: none): its keys checked by name and type here, once, whether or not a part
+// takes them; their values then by each part that does, as its own.
+const toml::table* read_defaults(const Checker& checker, const toml::table& document) {
+  const toml::node* node = document.get("defaults");
+  if (!node) return nullptr;
+  if (!node->is_table())
+    checker.fail(line_of(*node), "defaults",
+                 "defaults: wrong type (" + std::string(type_name(*node)) + "); expected a table [defaults]");
+  const std::vector<KeySpec> keys = default_keys();
+  std::vector<std::string> names;
+  for (const KeySpec& k : keys) names.push_back(k.key);
+  checker.reject_unknown(
+      ib::toml_schema::Section{node->as_table(), "defaults", line_of(*node)}, names,
+      "allowed keys in [defaults]: " + ib::toml_schema::join(names) + " (a part's name and scenarios are its own)");
+  const PartReader reader(checker, *node->as_table(), "defaults");
+  StudyPart scratch;
+  for (const KeySpec& k : keys) reader.text(k, scratch);
+  return node->as_table();
+}
+
 }  // namespace
 
 Study read_study(const std::string& path, const std::vector<std::string>& engines) {
@@ -357,8 +311,9 @@ Study read_study(const std::string& path, const std::vector<std::string>& engine
   const Checker checker(path, text);
   const toml::table document = checker.parse();
   const ib::toml_schema::Section top{&document, "", 1};
-  checker.reject_unknown(top, {"study", "suite", "search", "sweep"},
-                         "allowed: [study], [[suite]], [[search]], [[sweep]] (docs/studies.md, \"Study files\")");
+  checker.reject_unknown(
+      top, {"study", "defaults", "suite", "search", "sweep"},
+      "allowed: [study], [defaults], [[suite]], [[search]], [[sweep]] (docs/studies.md, \"Study files\")");
   Study study;
   study.file = path;
   if (const toml::node* node = document.get("study")) {
@@ -374,6 +329,7 @@ Study read_study(const std::string& path, const std::vector<std::string>& engine
       study.description = d->as_string()->get();
     }
   }
+  const toml::table* defaults = read_defaults(checker, document);
   for (StudyPart::Kind kind : {StudyPart::Kind::suite, StudyPart::Kind::search, StudyPart::Kind::sweep}) {
     const toml::node* node = document.get(kind_name(kind));
     if (!node) continue;
@@ -384,7 +340,7 @@ Study read_study(const std::string& path, const std::vector<std::string>& engine
                        kind_name(kind) + "]]");
     int index = 0;
     for (const toml::node& table : *tables)
-      study.parts.push_back(read_part(checker, *table.as_table(), kind, index++, path, engines));
+      study.parts.push_back(read_part(checker, *table.as_table(), defaults, kind, index++, path, engines));
   }
   if (study.parts.empty())
     throw ib::ScenarioError(path, 1, "", "a study needs at least one [[suite]], [[search]] or [[sweep]]");

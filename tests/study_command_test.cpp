@@ -70,6 +70,73 @@ skip_engines = ["reference"]
   if (names.size() > 1) EXPECT_NE(out.text.find("engines " + names[1]), std::string::npos) << out.text;
 }
 
+// [defaults] holds what every part runs unless it says otherwise: a study written with it plans exactly what the
+// same study with every value in its parts plans (the plan's lines name every setting that decides a run), and a
+// key a part's kind does not have (a suite's reference_chains, for a sweep) is not applied to that part.
+TEST(StudyFile, DefaultsApplyWhereAPartIsSilent) {
+  const fs::path with = study_file("defaults", R"([defaults]
+engines = ["reference"]
+duration_s = 12
+reference_ensemble_starts = 3
+reference_chains = [4]
+series = "none"
+
+[[suite]]
+name = "takes them all"
+scenarios = ["scenarios/paper/free_vibration.toml"]
+
+[[suite]]
+name = "overrides two"
+scenarios = ["scenarios/paper/free_vibration.toml"]
+duration_s = 0.25
+reference_ensemble_starts = 1
+
+[[sweep]]
+name = "sweep"
+scenario = "scenarios/paper/resonance.toml"
+ratios = "0.95:1.0:0.05"
+starts = ["rest"]
+)");
+  const fs::path without = study_file("without-defaults", R"([[suite]]
+name = "takes them all"
+scenarios = ["scenarios/paper/free_vibration.toml"]
+engines = ["reference"]
+duration_s = 12
+reference_ensemble_starts = 3
+reference_chains = [4]
+series = "none"
+
+[[suite]]
+name = "overrides two"
+scenarios = ["scenarios/paper/free_vibration.toml"]
+engines = ["reference"]
+duration_s = 0.25
+reference_ensemble_starts = 1
+reference_chains = [4]
+series = "none"
+
+[[sweep]]
+name = "sweep"
+scenario = "scenarios/paper/resonance.toml"
+ratios = "0.95:1.0:0.05"
+starts = ["rest"]
+engines = ["reference"]
+duration_s = 12
+reference_ensemble_starts = 3
+series = "none"
+)");
+  const auto planned_with = study(with.string() + " --plan");
+  const auto planned_without = study(without.string() + " --plan");
+  fs::remove(with);
+  fs::remove(without);
+  ASSERT_EQ(planned_with.exit_code, 0) << planned_with.text;
+  ASSERT_EQ(planned_without.exit_code, 0) << planned_without.text;
+  EXPECT_EQ(planned_with.text, planned_without.text);
+  EXPECT_NE(planned_with.text.find("cut to 12 s"), std::string::npos) << planned_with.text;
+  EXPECT_NE(planned_with.text.find("cut to 0.25 s"), std::string::npos) << planned_with.text;
+  EXPECT_NE(planned_with.text.find("continued 12 s"), std::string::npos) << planned_with.text;
+}
+
 TEST(StudyFile, AnArrayItemKeepsItsComma) {
   // A scenario file whose name holds a comma: one item of the array, not two.
   const fs::path folder = fs::temp_directory_path() / ("impactbench-study-comma-" + std::to_string(::getpid()));
@@ -153,6 +220,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadStudy{"reference_chains_not_integers",
                  "[[suite]]\nscenarios = [\"scenarios/paper\"]\nreference_chains = [8.5]\n",
                  {":3:", "reference_chains", "8.5 is not allowed"}},
+        BadStudy{"defaults_wrong_type",
+                 "[defaults]\nduration_s = \"long\"\n[[suite]]\nscenarios = [\"scenarios/paper\"]\n",
+                 {":2:", "defaults.duration_s", "wrong type", "a number"}},
+        BadStudy{"defaults_naming_a_parts_own_key",
+                 "[defaults]\nscenarios = [\"scenarios/paper\"]\n[[suite]]\nscenarios = [\"scenarios/paper\"]\n",
+                 {":2:", "scenarios", "unknown key", "allowed keys in [defaults]", "a part's name and scenarios"}},
+        BadStudy{"defaults_out_of_range",  // checked by the part that takes it, named at its line in [defaults]
+                 "[defaults]\n\nduration_s = -1\n[[suite]]\nscenarios = [\"scenarios/paper\"]\n",
+                 {":3:", "duration_s", "-1", "allowed"}},
         BadStudy{"syntax", "[[suite]\nscenarios = [\"scenarios/paper\"]\n", {":1:", "TOML syntax error"}}),
     [](const ::testing::TestParamInfo<BadStudy>& info) { return std::string(info.param.name); });
 

@@ -1,0 +1,94 @@
+// The keys of a study file's parts (study_keys.h).
+#include "cli/study_keys.h"
+
+#include <set>
+#include <string>
+
+namespace cli {
+
+const char* kind_name(StudyPart::Kind kind) {
+  switch (kind) {
+    case StudyPart::Kind::suite:
+      return "suite";
+    case StudyPart::Kind::search:
+      return "search";
+    case StudyPart::Kind::sweep:
+      return "sweep";
+  }
+  return "";
+}
+
+namespace {
+
+// The keys of each kind of part. Every key is optional but `scenarios` (suite, search) and `name`,
+// `scenario` (sweep): a part left to its defaults is the command's defaults.
+const std::vector<KeySpec> kCommonKeys = {
+    {"name", Type::text, "", "the part's name, in messages (a sweep's: its folder below OUT/sweeps/)"},
+    {"engines", Type::texts_or_all, "--engines", "\"all\" (every simulator of the build) or a list of simulators",
+     "engine"},
+    {"skip_engines", Type::texts, "--engines", "simulators left out of `engines`"},
+    {"laws", Type::texts_or_all, "--laws", "\"all\" or a list of contact laws: hertz, viscoelastic, newton", "law"},
+    {"paths", Type::texts_or_all, "--paths", "\"all\" or a list of contact paths: matched, injected, native"},
+    {"dt_s", Type::numbers, "--dt", "time steps of the fixed-step engines [s]"},
+    {"options", Type::texts, "--option", "engine.name=value settings", "engine"},
+    {"rate_hz", Type::number, "--rate", "output series sample rate [Hz]"},
+    {"sensor_rate_hz", Type::number, "--sensor-rate", "accelerometer sample rate [Hz]"},
+    {"series", Type::text, "--series", "what a run keeps of its series: window, all or none"},
+    {"series_rate_hz", Type::number, "--series-rate", "the rate an engine run's series file keeps [Hz]; 0: rate_hz"},
+    {"time_limit_s", Type::number, "--time-limit", "per job (a sweep: per ratio) [s]"},
+    {"window_s", Type::number, "--window", "the last S seconds of each run are scored [s]"},
+    {"duration_s", Type::number, "--duration",
+     "suite: runs cut to this length [s]; sweep: each continued ratio's run [s]"},
+};
+const std::vector<KeySpec> kSuiteKeys = {
+    {"scenarios", Type::texts, "scenarios", "scenario files or folders"},
+    {"ensemble_starts", Type::integer, "--ensemble", "every configuration from N starts (1: single runs)"},
+    {"reference_ensemble_starts", Type::integer, "--reference-ensemble",
+     "the references' starts (at least ensemble_starts)"},
+    {"ensemble_step_m", Type::number, "--ensemble-step", "frame 1's initial tip displacement between two starts [m]"},
+    {"recommended", Type::boolean, "--recommended",
+     "each engine in its authors' recommended configuration per law (not with paths or dt_s)"},
+    {"reference_chains", Type::numbers, "--reference-chains",
+     "links K per frame: the reference alone on each K-link chain, every start"},
+};
+const std::vector<KeySpec> kSearchKeys = {
+    {"scenarios", Type::texts, "scenarios", "scenario files or folders"},
+    {"steps_per_octave", Type::integer, "--steps-per-octave", "grid steps per halving of the step"},
+    {"step_range_s", Type::numbers, "--step-range", "[MIN, MAX] step searched [s]"},
+    {"keep_series", Type::boolean, "--keep-series", "keep every probe's series"},
+    {"walk", Type::boolean, "--step-walk",
+     "walk down the grid until the error stops falling (a front's ladder), not bisect"},
+};
+const std::vector<KeySpec> kSweepKeys = {
+    {"scenario", Type::text, "scenario", "a scenario file with a motor"},
+    {"ratios", Type::text, "--ratios", "FROM:TO:STEP, the motor speed over f_1"},
+    {"starts", Type::texts, "--start", "rest, up, down or both"},
+    {"rest_duration_s", Type::number, "--rest-duration", "a start from rest's run [s]"},
+    {"reference_ensemble_starts", Type::integer, "--reference-ensemble",
+     "the reference's starts from rest at each ensemble ratio (1: one)"},
+    {"ensemble_step_m", Type::number, "--ensemble-step", "frame 1's initial tip displacement between two starts [m]"},
+    {"ensemble_ratios", Type::texts, "--ensemble-ratios",
+     "FROM:TO:STEP ranges or single ratios where the reference's ensemble runs"},
+};
+
+}  // namespace
+
+std::vector<KeySpec> keys_of(StudyPart::Kind kind) {
+  std::vector<KeySpec> keys = kCommonKeys;
+  const auto& own = kind == StudyPart::Kind::suite    ? kSuiteKeys
+                    : kind == StudyPart::Kind::search ? kSearchKeys
+                                                      : kSweepKeys;
+  keys.insert(keys.end(), own.begin(), own.end());
+  return keys;
+}
+
+std::vector<KeySpec> default_keys() {
+  std::vector<KeySpec> keys;
+  std::set<std::string> seen = {"name", "scenario", "scenarios"};  // what makes a part itself
+  for (StudyPart::Kind kind : {StudyPart::Kind::suite, StudyPart::Kind::search, StudyPart::Kind::sweep})
+    for (const KeySpec& k : keys_of(kind))
+      if (seen.insert(k.key).second) keys.push_back(k);
+  return keys;
+}
+
+}  // namespace cli
