@@ -51,6 +51,12 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
+std::string join_list(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ",") + item;
+  return text;
+}
+
 // "name=value" pairs from --option.
 std::map<std::string, std::string> parse_options(const std::vector<std::string>& pairs) {
   std::map<std::string, std::string> options;

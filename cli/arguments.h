@@ -29,6 +29,8 @@ extern char** g_argv;
 std::string resume_command(int argc, char** argv);
 
 std::vector<std::string> split(const std::string& text, char separator);
+// The items as one comma-separated option value: what split(text, ',') reads back.
+std::string join_list(const std::vector<std::string>& items);
 // A comma-separated option's items: none empty ('--engines ""' and 'reference,,mujoco' are refused, naming
 // the option, the value and what is allowed).
 std::vector<std::string> split_list(const std::string& text, const std::string& option, const std::string& allowed);

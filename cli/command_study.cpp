@@ -18,12 +18,6 @@ namespace cli {
 
 namespace {
 
-std::string list_text(const std::vector<std::string>& items) {
-  std::string text;
-  for (const std::string& item : items) text += (text.empty() ? "" : ",") + item;
-  return text;
-}
-
 // What decides a part's runs beyond its matrix, for its plan line: the window, the rates, what is kept, the
 // options and the time limit, so that two study files with the same plan lines run the same runs.
 // (A sweep's window is its own: with_window false.)
@@ -43,7 +37,7 @@ std::string measured_text(const ib::MatrixSettings& s, bool with_window = true) 
   for (const auto& [name, value] : s.reference_options) options.push_back("reference." + name + "=" + value);
   for (const auto& [engine, set] : s.engine_options)
     for (const auto& [name, value] : set) options.push_back(engine + "." + name + "=" + value);
-  if (!options.empty()) text += "; options " + list_text(options);
+  if (!options.empty()) text += "; options " + join_list(options);
   return text + "; time limit " + ib::number_text(s.time_limit_s) + " s";
 }
 
@@ -53,12 +47,12 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
   const auto laws = [](const std::vector<ib::ContactLaw>& list) {
     std::vector<std::string> names;
     for (ib::ContactLaw law : list) names.push_back(ib::to_string(law));
-    return list_text(names);
+    return join_list(names);
   };
   const auto steps = [](const std::vector<double>& list) {
     std::vector<std::string> texts;
     for (double dt : list) texts.push_back(ib::number_text(dt));
-    return texts.empty() ? std::string("default") : list_text(texts);
+    return texts.empty() ? std::string("default") : join_list(texts);
   };
   for (std::size_t i = 0; i < suites.size(); ++i) {
     const ib::SuiteSettings& s = suites[i];
@@ -68,7 +62,7 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
                                          std::to_string(s.ensemble.reference_starts) + ")";
     std::vector<std::string> links;
     for (int k : s.reference_chain_links) links.push_back(std::to_string(k));
-    const std::string chains = links.empty() ? "" : "; the reference on chains of " + list_text(links) + " links";
+    const std::string chains = links.empty() ? "" : "; the reference on chains of " + join_list(links) + " links";
     std::string more =
         (s.max_duration_s > 0 ? "; cut to " + ib::number_text(s.max_duration_s) + " s" : "") + measured_text(s);
     if (s.ensemble.reference_starts > 1)
@@ -79,10 +73,10 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
               " s, " + std::to_string(s.step_search->points_per_octave) + " per octave" +
               (s.keep_probe_series ? ", probes' series kept" : "");
     std::printf("%s \"%s\": %s; engines %s; laws %s; paths %s; dt_s %s%s%s%s\n", s.step_search ? "search" : "suite",
-                suite_names[i].c_str(), list_text(s.inputs).c_str(), list_text(s.engines).c_str(), laws(s.laws).c_str(),
+                suite_names[i].c_str(), join_list(s.inputs).c_str(), join_list(s.engines).c_str(), laws(s.laws).c_str(),
                 s.recommended             ? "recommended"
                 : s.contact_paths.empty() ? "default"
-                                          : list_text(s.contact_paths).c_str(),
+                                          : join_list(s.contact_paths).c_str(),
                 s.step_search   ? "searched"
                 : s.recommended ? "recommended"
                                 : steps(s.time_steps_s).c_str(),
@@ -94,18 +88,18 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
     for (ib::SweepStart start : s.starts) starts.push_back(ib::to_string(start));
     for (double ratio : s.ensemble.ratios) ratios.push_back(ib::number_text(ratio));
     std::string more =
-        "; starts " + list_text(starts) + "; from rest " +
+        "; starts " + join_list(starts) + "; from rest " +
         (s.rest_duration_s ? ib::number_text(*s.rest_duration_s) + " s" : std::string("the scenario's")) +
         ", continued " + ib::number_text(s.continuation_duration_s) + " s, window " + ib::number_text(s.window_s) +
         " s";
     if (s.ensemble.reference_starts > 1)
       more += "; the reference from " + std::to_string(s.ensemble.reference_starts) + " starts " +
               ib::number_text(s.ensemble.displacement_step_m) + " m apart at " +
-              (ratios.empty() ? std::string("every ratio") : list_text(ratios));
+              (ratios.empty() ? std::string("every ratio") : join_list(ratios));
     more += measured_text(s, false);
     std::printf("sweep \"%s\": %s; %zu ratios; engines %s; laws %s; paths %s; dt_s %s%s -> %s\n",
-                sweep_names[i].c_str(), s.scenario_path.c_str(), s.ratios.size(), list_text(s.engines).c_str(),
-                laws(s.laws).c_str(), s.contact_paths.empty() ? "default" : list_text(s.contact_paths).c_str(),
+                sweep_names[i].c_str(), s.scenario_path.c_str(), s.ratios.size(), join_list(s.engines).c_str(),
+                laws(s.laws).c_str(), s.contact_paths.empty() ? "default" : join_list(s.contact_paths).c_str(),
                 steps(s.time_steps_s).c_str(), more.c_str(), s.out.c_str());
   }
 }

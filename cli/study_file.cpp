@@ -28,12 +28,6 @@ std::string number_text(double x) {
   return text;
 }
 
-std::string joined(const std::vector<std::string>& items) {
-  std::string text;
-  for (const std::string& item : items) text += (text.empty() ? "" : ",") + item;
-  return text;
-}
-
 class PartReader {
  public:
   // defaults: the study's [defaults] table (null: none), read for a key the part's own table does not hold.
@@ -90,7 +84,7 @@ class PartReader {
               wrong(spec, *node, dotted, spec.type == Type::numbers ? "an array of numbers" : "an array of strings");
           }
           part.key_items[spec.key] = items;
-          return joined(items);
+          return join_list(items);
         }
         if (spec.type == Type::numbers && node->is_number()) return number_text(node->value<double>().value());
         break;
@@ -122,7 +116,7 @@ class PartReader {
 // "all" spelled out: every simulator of the build (less skip_engines), every law, every path.
 std::string expand_all(const std::string& key, const std::string& value, const std::vector<std::string>& engines) {
   if (value != "all") return value;
-  if (key == "engines") return joined(engines);
+  if (key == "engines") return join_list(engines);
   if (key == "laws") return "hertz,viscoelastic,newton";
   return "matched,injected,native";
 }
@@ -132,7 +126,7 @@ std::string without(const std::string& list, const std::string& skipped) {
   const std::vector<std::string> skip = split(skipped, ',');
   for (const std::string& item : split(list, ','))
     if (std::find(skip.begin(), skip.end(), item) == skip.end()) kept.push_back(item);
-  return joined(kept);
+  return join_list(kept);
 }
 
 // A relative scenario path: from the study file's folder if it names a file or folder there, else from the
@@ -187,7 +181,7 @@ StudyPart read_part(const Checker& checker, const toml::table& table, const toml
   }
   std::string engine_list = given.count("engines") ? expand_all("engines", given["engines"], engines) : "";
   if (given.count("skip_engines"))
-    engine_list = without(engine_list.empty() ? joined(engines) : engine_list, given["skip_engines"]);
+    engine_list = without(engine_list.empty() ? join_list(engines) : engine_list, given["skip_engines"]);
   MeasurementOptions& m = part.measurement;
   if (given.count("sensor_rate_hz")) m.sensor_rate_hz = std::stod(given["sensor_rate_hz"]);
   if (given.count("series")) m.series = given["series"];

@@ -92,11 +92,15 @@ def engine_score(score_vs_own_chain, score_vs_beam):
     return score_vs_own_chain, "own chain"
 
 
+def engine_score_of(run, tolerances, skip=()):
+    """engine_score of a run: (its score against its own chain, or the beam's where it has none; which)."""
+    return engine_score(score(run, tolerances, "own chain", skip)[0], score(run, tolerances, "beam", skip)[0])
+
+
 def ranking_key(run, tolerances, skip=()):
     """How runs of an engine are ranked: a run that passes its own verdict before one that fails it, then its
     engine_score, then the cheaper."""
-    ranked = engine_score(score(run, tolerances, "own chain", skip)[0], score(run, tolerances, "beam", skip)[0])[0]
-    return (run["verdict"] != "ok", ranked, run.number("cpu_time_per_simulated_s"))
+    return (run["verdict"] != "ok", engine_score_of(run, tolerances, skip)[0], run.number("cpu_time_per_simulated_s"))
 
 
 def best_run(runs, tolerances, skip=()):

@@ -163,7 +163,7 @@ def case_answer(suite, steps, scenario, law, experiment, tolerances):
                       and (analysis.contact_path(r) == analysis.NATIVE) == (kind == "out_of_box")]
             # ties are judged against what ranked it (analysis.engine_score): its own chain, or the beam where its
             # chain reference gave no score
-            against = analysis.engine_score(analysis.score(run, tolerances, "own chain", skip)[0], 0.0)[1]
+            against = analysis.engine_score_of(run, tolerances, skip)[1]
             tied, significant = significance.ties(run, others, tolerances, need, against, skip)
             case["best_" + kind] = {"configuration": entry["configuration"], "job_id": run["job_id"],
                                     "ranked_by": f"error vs {against}, a run that passes its verdict first",
