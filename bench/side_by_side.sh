@@ -3,8 +3,9 @@
 # benchmark of a baseline commit and of this checkout's HEAD, each from a fresh clone, built cold
 # (CCACHE_DISABLE=1), one after the other with nothing else running. Prints each one's build time, study time and
 # folder size as scripts/benchmark.sh reports them, and the ratios: the change's cost at the recorded speed is the
-# baseline's recorded figure (docs/budgets.md) times the ratio.
-#   bench/side_by_side.sh BASELINE_COMMIT SCRATCH_FOLDER [benchmark.sh options, e.g. --full]
+# baseline's recorded figure (docs/budgets.md) times the ratio. With --ci, each side runs CI (.ci/run, the test
+# command) instead, and the ratios are of its phases as scripts/test.sh prints them.
+#   bench/side_by_side.sh BASELINE_COMMIT SCRATCH_FOLDER [--ci | benchmark.sh options, e.g. --full]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if (($# < 2)); then
@@ -29,6 +30,26 @@ seconds_of() {  # M:SS -> seconds
   local m=${1%%:*} s=${1##*:}
   echo $((10#$m * 60 + 10#$s))
 }
+if [[ ${1:-} == --ci ]]; then
+  # the phases scripts/test.sh prints at its end, "  NAME   M:SS", the same names on both sides
+  phases_of() { sed -n '/^test: phases/,$ s/^  \(.*[^ ]\) \{2,\}\([0-9]*:[0-9][0-9]\)$/\1|\2/p' "$1"; }
+  for side in baseline head; do
+    commit=$baseline
+    [[ $side == head ]] && commit=$head
+    git clone -q "$repository" "$scratch/$side"
+    git -C "$scratch/$side" checkout -q "$commit"
+    echo "side_by_side: CI of $side ($commit) from $(date +%T), load average $(cut -d' ' -f1-3 /proc/loadavg)"
+    (cd "$scratch/$side" && .ci/run) >"$scratch/$side.log" 2>&1 || echo "side_by_side: $side's CI failed (log: $scratch/$side.log)"
+  done
+  # a phase's name carries its test count, "tests (175 in build/)": compared by its words before the count
+  join -t'|' <(phases_of "$scratch/baseline.log" | sed 's/ ([0-9]* in /(in /' | sort) \
+             <(phases_of "$scratch/head.log" | sed 's/ ([0-9]* in /(in /' | sort) |
+    while IFS='|' read -r phase before after; do
+      awk -v b="$(seconds_of "$before")" -v h="$(seconds_of "$after")" -v w="$phase" -v x="$before" -v y="$after" \
+        'BEGIN { printf "side_by_side: %-36s baseline %6s  HEAD %6s  HEAD / baseline = %.2f\n", w, x, y, h / b }'
+    done
+  exit 0
+fi
 declare -A build study size
 for side in baseline head; do
   commit=$baseline

@@ -82,9 +82,10 @@ constexpr double na = kNotApplicable;
 //   contact time by 1 to 1.5 %); spring-dashpot plus 5 %, because the beam reference runs the published law,
 //   whose tensile tail makes its contacts 4 % (c/k = 24 us) longer than any engine's compressive contact.
 constexpr const char* kHertzStep =
-    "Hertz is a force from the tip states (MuJoCo, ODE, Bullet and DART have no nonlinear contact), explicit: its 0.25 "
-    "ms contact "
-    "stiffens to 18000 rad/s and gains energy at 1e-4 s (e > 1), so 1e-5 s (25 steps per contact)";
+    "Hertz is a force from the tip states (MuJoCo, ODE, Bullet and DART have no nonlinear contact), explicit: its "
+    "0.25 ms contact stiffens to 18000 rad/s and gains energy at 1e-4 s (e > 1). At 2e-5 s (12 steps per contact, "
+    "as ODE's and Simbody's Hertz) every metric of the forced cases is within 1.4 % of the chain reference (frame 1's "
+    "peak -0.6 % in MuJoCo and Bullet, +0.8 % in DART at resonance), so 2e-5 s";
 constexpr const char* kOdeHertzStep =
     "Hertz as a force from the tip states; ODE's implicit hinge springs keep 2e-5 s (12 steps per contact) within "
     "1.3 % of the chain reference, so the smaller 1e-5 s is not needed in the forced cases";
@@ -130,8 +131,8 @@ constexpr const char* kImplicitJointSpringsPreResonance =
     "finding: ODE's and DART's implicit joint springs add omega h / 2 to every mode's zeta, and on the tuned chain "
     "(rig.md section 4: mode 2 at the beam's 73.19 Hz, near a harmonic of the impacts) that changes the mode-2 "
     "ringing frame 1's sensor reads by +5 to +9 % against the chain reference, first order in the step: ODE, Hertz, "
-    "+7.6 % at 2e-5 s, +5.5 % at 1e-5 s, +3.9 % at 5e-6 s, +1.6 % at 2.5e-6 s; with explicit springs (no such "
-    "damping) -0.3 % at 1e-5 s. So 10 % (chain) and 12 % (beam)";
+    "+7.6 % at 2e-5 s (DART the same), +5.5 % at 1e-5 s, +3.9 % at 5e-6 s, +1.6 % at 2.5e-6 s; with explicit springs "
+    "(no such damping) -0.3 % at 1e-5 s. So 10 % (chain) and 12 % (beam)";
 
 constexpr const char* kDartSpringDashpot =
     "DART has no compliant rigid contact: the law's force from the tip states (matched = injected), explicit; at "
@@ -165,7 +166,7 @@ constexpr const char* kSimbodyPostResonance =
 // duration} against the chain reference, then against the beam reference, and why.
 constexpr AgreementRow kAgreement[] = {
     // ---------------------------------------------------------------- MuJoCo 2.2.2, semi-implicit Euler
-    {"mujoco", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
+    {"mujoco", "resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
     {"mujoco",
      "resonance",
      kSpringDashpot,
@@ -176,7 +177,7 @@ constexpr AgreementRow kAgreement[] = {
      {0.03, 0.15, 0.10},
      kMujocoSpringDashpot},
     {"mujoco", "resonance", kNewton, 1e-4, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kMujocoNewton},
-    {"mujoco", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kHertzStep},
+    {"mujoco", "pre_resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kHertzStep},
     {"mujoco",
      "pre_resonance",
      kSpringDashpot,
@@ -259,7 +260,7 @@ constexpr AgreementRow kAgreement[] = {
      kFreeVibrationSpringDashpot},
     {"ode", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
     // ---------------------------------------------------------------- Bullet 3.24 (double), btMultiBody
-    {"bullet", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
+    {"bullet", "resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
     {"bullet",
      "resonance",
      kSpringDashpot,
@@ -270,7 +271,7 @@ constexpr AgreementRow kAgreement[] = {
      {0.03, 0.15, 0.10},
      kImplicitSpringDashpot},
     {"bullet", "resonance", kNewton, 5e-5, "matched", "", {0.03, 0.05, na}, {0.03, 0.15, na}, kBulletNewton},
-    {"bullet", "pre_resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kHertzStep},
+    {"bullet", "pre_resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.10, 0.07}, kHertzStep},
     {"bullet",
      "pre_resonance",
      kSpringDashpot,
@@ -295,7 +296,7 @@ constexpr AgreementRow kAgreement[] = {
     {"bullet", "free_vibration", kNewton, 1e-5, "matched", "", {na, 0.05, na}, {na, 0.10, na}, kFreeVibration},
     // ---------------------------------------------------------------- DART 6.12.1, semi-implicit Euler, implicit joint
     // springs
-    {"dart", "resonance", kHertz, 1e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
+    {"dart", "resonance", kHertz, 2e-5, "matched", "", {0.03, 0.05, 0.05}, {0.03, 0.15, 0.07}, kHertzStep},
     {"dart",
      "resonance",
      kSpringDashpot,
@@ -309,7 +310,7 @@ constexpr AgreementRow kAgreement[] = {
     {"dart",
      "pre_resonance",
      kHertz,
-     1e-5,
+     2e-5,
      "matched",
      "",
      {0.03, 0.10, 0.05},
