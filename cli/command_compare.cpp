@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +14,18 @@
 extern char** environ;
 
 namespace cli {
+
+namespace {
+
+// `compare BASE NEW [MORE ...]`: result folders side by side, made by reports/compare.py (docs/compare.md):
+// what differs between what made them, then what moved beyond the noise; with more than two, each folder
+// against the next (a history). Its exit code: 0 nothing moved, 1 something moved, 2 bad input.
+struct CompareOptions {
+  std::vector<std::string> folders;  // the baseline first, each next one judged against the one before
+  std::string json, markdown, html;  // files to write (html: a folder), none when empty
+  bool cost_across_machines = false;
+  double cost_noise = 0.3;  // the least relative change of CPU time told apart from a shared machine's drift
+};
 
 // Two folders are compared by reports/compare.py (Python: it reads the results as the report does, with its
 // ensembles' intervals), run with its arguments as given (no shell between), its exit code passed through.
@@ -38,6 +51,33 @@ int command_compare(const CompareOptions& o) {
   if (!WIFEXITED(status) || WEXITSTATUS(status) > kExitOutputError)
     throw std::runtime_error("the comparison could not be made (reports/compare.py failed)");
   return WEXITSTATUS(status);
+}
+
+}  // namespace
+
+Command add_compare_command(CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* compare = app.add_subcommand("compare",
+                                         "put two result folders side by side: what differs between what made "
+                                         "them, then what moved beyond the noise (exit 1 when something did)");
+  compare
+      ->add_option("folders", o->folders,
+                   "BASE NEW: the baseline result folder (a suite's or a study's) and the one judged against it; "
+                   "or several in order, each judged against the one before")
+      ->required()
+      ->expected(2, -1);
+  compare->add_option("--json", o->json, "write the comparison as JSON to this file");
+  compare->add_option("--markdown", o->markdown, "write the comparison as Markdown to this file");
+  compare->add_option("--html", o->html,
+                      "write compare.html (a figure per moved configuration) and compare.md into this folder");
+  compare->add_flag("--cost-across-machines", o->cost_across_machines,
+                    "judge CPU costs timed on other machines too (not comparable by default)");
+  compare
+      ->add_option("--cost-noise", o->cost_noise,
+                   "the least relative change of CPU time told apart from the machine's drift between identical runs")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  return {compare, [o] { return command_compare(*o); }};
 }
 
 }  // namespace cli

@@ -12,6 +12,8 @@
 
 namespace cli {
 
+namespace {
+
 int command_engines(bool json, bool names) {
   const ib::SimulatorCatalog& catalog = ib::simulator_catalog();
   if (names) {  // for scripts: "reference,mujoco,..." as --engines takes it
@@ -43,6 +45,18 @@ int command_engines(bool json, bool names) {
                   k.unit.empty() ? "" : (k.unit + "]").c_str());
   }
   return kExitOk;
+}
+
+}  // namespace
+
+Command add_engines_command(CLI::App& app) {
+  auto flags = std::make_shared<std::pair<bool, bool>>(false, false);  // --json, --names
+  CLI::App* engines = app.add_subcommand(
+      "engines", "every simulator of this build: name, version, Debian packages, report colours, diagnostics keys");
+  engines->add_flag("--json", flags->first, "print the descriptors as JSON (what a suite writes to DIR/engines.json)");
+  engines->add_flag("--names", flags->second, "print the simulators' names alone, comma-separated (for --engines)")
+      ->excludes("--json");
+  return {engines, [flags] { return command_engines(flags->first, flags->second); }};
 }
 
 }  // namespace cli

@@ -3,11 +3,14 @@
 
 #include <cstdio>
 #include <exception>
+#include <memory>
 
 #include "model/scenario_toml.h"
 #include "simulators/catalog.h"
 
 namespace cli {
+
+namespace {
 
 int command_list(const std::string& folder) {
   std::printf("scenarios in %s:\n", folder.c_str());
@@ -28,6 +31,15 @@ int command_list(const std::string& folder) {
       std::printf("  %-18s %s\n", key.c_str(), help.c_str());
   }
   return kExitOk;
+}
+
+}  // namespace
+
+Command add_list_command(CLI::App& app) {
+  auto folder = std::make_shared<std::string>(IMPACTBENCH_SCENARIO_DIR);
+  CLI::App* list = app.add_subcommand("list", "the scenarios, engines, laws and simulator options of this build");
+  list->add_option("folder", *folder, "scenario folder")->capture_default_str();
+  return {list, [folder] { return command_list(*folder); }};
 }
 
 }  // namespace cli

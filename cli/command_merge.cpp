@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "harness/records/engines_file.h"
 #include "harness/records/run_files.h"
@@ -10,6 +11,14 @@
 #include "simulators/catalog.h"
 
 namespace cli {
+
+namespace {
+
+struct MergeOptions {
+  std::string out;
+  std::vector<std::string> shards;
+  bool no_report = false;
+};
 
 // The shards' folders joined into one suite folder (harness/study/merge.h), then its report, made as `report` makes it.
 int command_merge(const std::string& out, const std::vector<std::string>& shards, bool no_report) {
@@ -49,6 +58,19 @@ int command_merge(const std::string& out, const std::vector<std::string>& shards
                "impactbench: merged what exists, but shards are incomplete or absent (see above; exit code %d)\n",
                kExitIncompleteMerge);
   return kExitIncompleteMerge;
+}
+
+}  // namespace
+
+Command add_merge_command(CLI::App& app) {
+  auto o = std::make_shared<MergeOptions>();
+  CLI::App* merge = app.add_subcommand("merge",
+                                       "join the folders of a suite's shards (suite --shard K/N) into one "
+                                       "suite folder, then make its report");
+  merge->add_option("out", o->out, "a new or empty folder for the joined suite")->required();
+  merge->add_option("shards", o->shards, "the shards' folders")->required();
+  merge->add_flag("--no-report", o->no_report, "join only; make the report later with 'report OUT'");
+  return {merge, [o] { return command_merge(o->out, o->shards, o->no_report); }};
 }
 
 }  // namespace cli

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "model/scenario_toml.h"
@@ -10,6 +11,14 @@
 #include "reference/reference_simulator.h"
 
 namespace cli {
+
+namespace {
+
+struct ModesOptions {
+  std::string scenario_path;
+  bool json = false;
+  std::vector<std::string> option_pairs;
+};
 
 int command_modes(const std::string& path, bool json, const std::vector<std::string>& option_pairs) {
   const ib::Scenario scenario = ib::load_scenario(path);
@@ -42,6 +51,18 @@ int command_modes(const std::string& path, bool json, const std::vector<std::str
   }
   if (json) std::cout << out.dump(2) << '\n';
   return kExitOk;
+}
+
+}  // namespace
+
+Command add_modes_command(CLI::App& app) {
+  auto o = std::make_shared<ModesOptions>();
+  CLI::App* modes = app.add_subcommand("modes", "each frame's natural frequencies [Hz] and tip modal values");
+  modes->add_option("scenario", o->scenario_path, "scenario file (.toml)")->required();
+  modes->add_flag("--json", o->json, "print JSON");
+  modes->add_option("--option", o->option_pairs,
+                    "reference option name=value (modes=beam|beam_paper|chain, n=N, links=K)");
+  return {modes, [o] { return command_modes(o->scenario_path, o->json, o->option_pairs); }};
 }
 
 }  // namespace cli

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include "harness/records/reporters.h"
@@ -47,6 +48,15 @@ int command_report(const std::string& suite_folder, const std::string& out) {
   const int status = std::system(command.c_str());
   if (status != 0) throw std::runtime_error("the report could not be made (" + command + " failed)");
   return kExitOk;
+}
+
+Command add_report_command(CLI::App& app) {
+  auto folders = std::make_shared<std::pair<std::string, std::string>>();  // the suite's, the report's
+  CLI::App* report =
+      app.add_subcommand("report", "make the report (index.html, summary.md, figures) from a suite's saved results");
+  report->add_option("suite", folders->first, "a suite's output folder")->required();
+  report->add_option("--out", folders->second, "report folder; default: SUITE/report");
+  return {report, [folders] { return command_report(folders->first, folders->second); }};
 }
 
 }  // namespace cli

@@ -104,8 +104,11 @@ std::vector<std::string> rerun_arguments(const Json& summary, const ib::Scenario
   return arguments;
 }
 
-}  // namespace
-
+// `repro RUN_FOLDER OUT`: one run of a result folder made ready to run alone and to file with an engine's
+// authors: OUT/scenario.toml (the scenario it ran), OUT/repro.sh (the one command that reruns it, with its
+// engine, law, step, options, start and length), OUT/repro.json (what it was: job, verdict, reason, engine
+// version, the folder it came from) and, where the engine exports one, its model (MuJoCo: OUT/model.xml).
+// scenario_path: the scenario file where the run's own record names one that is no longer there.
 int command_repro(const std::string& run_folder, const std::string& out, const std::string& scenario_path) {
   const Json summary = read_summary(run_folder);
   const std::string recorded = text_of(summary, "scenario_file");
@@ -159,6 +162,25 @@ int command_repro(const std::string& run_folder, const std::string& out, const s
               text_of(summary, "reason").empty() ? "" : (": " + text_of(summary, "reason")).c_str(), out.c_str(),
               out.c_str());
   return kExitOk;
+}
+
+struct ReproOptions {
+  std::string run_folder, out, scenario_path;
+};
+
+}  // namespace
+
+Command add_repro_command(CLI::App& app) {
+  auto o = std::make_shared<ReproOptions>();
+  CLI::App* repro =
+      app.add_subcommand("repro",
+                         "make one run of a result folder ready to rerun alone and to file: its "
+                         "scenario, the one command that reruns it, its model where the engine exports one");
+  repro->add_option("run", o->run_folder, "the run's folder (SUITE/runs/<job id>, or a run's --out)")->required();
+  repro->add_option("out", o->out, "the folder to write")->required();
+  repro->add_option("--scenario", o->scenario_path,
+                    "the scenario file, where the one the run names is no longer there");
+  return {repro, [o] { return command_repro(o->run_folder, o->out, o->scenario_path); }};
 }
 
 }  // namespace cli

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <thread>
 
@@ -126,12 +127,23 @@ std::optional<int> within_time_limit(double time_limit_s, const std::function<in
                            strsignal(WTERMSIG(end->status)) + ")");
 }
 
-}  // namespace
+// `run`'s options, as given on the command line.
+struct RunOptions {
+  std::string path, engine = "reference", law = "hertz", out;
+  double rate_hz = 4096;
+  double series_start_s = -1;  // -1: not given, the scoring window's start
+  double time_step_s = 0;      // 0: the engine's default
+  std::vector<std::string> option_pairs;
+  MeasurementOptions measurement;
+  double time_limit_s = 600;
+  double max_duration_s = 0;  // 0: the scenario's whole run
+  double start_offset_m = 0;  // frame 1's initial tip displacement beyond the scenario's (an ensemble's start)
+};
 
-int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
-                double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
-                const MeasurementOptions& measurement_options, double time_limit_s, double max_duration_s,
-                double start_offset_m) {
+int command_run(const RunOptions& o) {
+  const std::string &path = o.path, &engine = o.engine, &out = o.out;
+  const double time_step_s = o.time_step_s, time_limit_s = o.time_limit_s, max_duration_s = o.max_duration_s,
+               series_start_s = o.series_start_s, rate_hz = o.rate_hz;
   ib::Scenario scenario = ib::load_scenario(path);
   const bool cut = ib::cut_run(scenario, max_duration_s);  // --duration, as a suite's
   // the run the cross checks name: the cut one's length is --duration's, not the file's
@@ -147,13 +159,13 @@ int command_run(const std::string& path, const std::string& engine, const std::s
   ib::JobSpec job;
   job.scenario_path = path;
   job.engine = engine;
-  job.settings.law = parse_law(law_name);
+  job.settings.law = parse_law(o.law);
   job.settings.output_rate_hz = rate_hz;
   job.settings.series_start_s = series_start_s;
   job.settings.time_step_s = time_step_s;
-  job.settings.options = parse_options(option_pairs);
+  job.settings.options = parse_options(o.option_pairs);
   // an ensemble's start (repro writes it): frame 1's tip displaced beyond the scenario's initial displacement
-  job.start.initial_displacement_offset_m = start_offset_m;
+  job.start.initial_displacement_offset_m = o.start_offset_m;
   if (time_step_s != 0 || engine == "reference")
     ib::check_run_size(scenario, job.settings);  // --dt 1e300: not 0 steps, ok
   else {                                         // the engine's default step is its own: the rest of the size
@@ -161,7 +173,7 @@ int command_run(const std::string& path, const std::string& engine, const std::s
     sized.time_step_s = 0;
     ib::check_run_size(scenario, sized);
   }
-  const ib::Measurement measurement = measurement_options.build();
+  const ib::Measurement measurement = o.measurement.build();
   require_series_resolves_sensor(rate_hz, measurement.sensor_rate_hz);
   if (measurement.window_s)
     require_at_most(Shared::window, *measurement.window_s, scenario.duration_s, "the run " + run_length);
@@ -186,6 +198,33 @@ int command_run(const std::string& path, const std::string& engine, const std::s
   ib::write_provenance_file(out, ib::simulator_catalog());
   std::printf("%s: failed: %s\n  files in %s\n", record.job_id.c_str(), record.reason.c_str(), out.c_str());
   return kExitRunNotOk;
+}
+
+}  // namespace
+
+Command add_run_command(CLI::App& app) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* run = app.add_subcommand(
+      "run", "run one scenario with one engine and law; write DIR/summary.json, series.csv, events.csv");
+  run->add_option("scenario", o->path, "scenario file (.toml)")->required();
+  run->add_option("--engine", o->engine, "simulator (see 'impactbench list')")->capture_default_str();
+  run->add_option("--law", o->law, "contact law: hertz, viscoelastic or newton")->capture_default_str();
+  run->add_option("--out", o->out, "output folder")->required();
+  add_shared_option(run, Shared::rate, o->rate_hz, "output series sample rate [Hz]");
+  add_shared_option(run, Shared::series_start, o->series_start_s,
+                    "first output sample [s]; default: start of the scoring window", false);
+  add_shared_option(run, Shared::dt, o->time_step_s, "time step of fixed-step engines [s]; default: each engine's",
+                    false);
+  add_shared_option(run, Shared::duration, o->max_duration_s,
+                    "run a scenario longer than this for this long only, keeping its scoring window [s]", false);
+  run->add_option("--option", o->option_pairs, "simulator option name=value, repeatable (see 'impactbench list')");
+  run->add_option("--start-offset", o->start_offset_m,
+                  "frame 1's initial tip displacement beyond the scenario's, as an ensemble's start [m]")
+      ->check(CLI::Range(-0.01, 0.01));
+  o->measurement.add_to(run, /*with_timing=*/true);
+  add_shared_option(run, Shared::time_limit, o->time_limit_s,
+                    "the run (its references included) is stopped past this and recorded as failed [s]");
+  return {run, [o] { return command_run(*o); }};
 }
 
 }  // namespace cli

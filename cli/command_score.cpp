@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "harness/jobs/run_job.h"
@@ -10,6 +11,14 @@
 #include "model/scenario_toml.h"
 
 namespace cli {
+
+namespace {
+
+struct ScoreOptions {
+  std::string folder, scenario_path, reference_folder;
+  bool json = false;
+  MeasurementOptions measurement;
+};
 
 // A run made elsewhere (series.csv and events.csv in the harness's format, run_files.h), measured with the
 // harness's own metric code exactly as every simulator's run is; with a reference folder, its errors
@@ -43,6 +52,23 @@ int command_score(const std::string& folder, const std::string& scenario_path, c
     for (const auto& [name, value] : figures) std::printf("  %-45s %.17g\n", name.c_str(), value);
   }
   return kExitOk;
+}
+
+}  // namespace
+
+Command add_score_command(CLI::App& app) {
+  auto o = std::make_shared<ScoreOptions>();
+  CLI::App* score = app.add_subcommand("score",
+                                       "measure a run folder's series.csv and events.csv (from any solver) with "
+                                       "the harness's metrics; print them with the names of runs.csv");
+  score->add_option("run", o->folder, "folder with series.csv and events.csv in the harness's format")->required();
+  score->add_option("--scenario", o->scenario_path, "the scenario file (.toml) the run was made for")->required();
+  score->add_option("--reference", o->reference_folder,
+                    "a run folder to compare with (adds the vs_reference_* figures)");
+  score->add_flag("--json", o->json, "print JSON (NaN as null)");
+  o->measurement.add_to(score, /*with_timing=*/false);
+  return {score,
+          [o] { return command_score(o->folder, o->scenario_path, o->reference_folder, o->json, o->measurement); }};
 }
 
 }  // namespace cli

@@ -18,6 +18,16 @@ namespace cli {
 
 namespace {
 
+// `study FILE --out DIR`: every part of a study file (study_file.h) into one folder, then its report.
+struct StudyOptions {
+  std::string file, out, shard;
+  std::string skip;             // kinds of parts left out, comma-separated: suite, search, sweep
+  std::string reference_cache;  // a folder sharing reference runs between output folders
+  int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  bool resume = false, no_report = false;
+  bool plan = false;  // --plan: check the file and say what each part runs, run nothing
+};
+
 // What decides a part's runs beyond its matrix, for its plan line: the window, the rates, what is kept, the
 // options and the time limit, so that two study files with the same plan lines run the same runs.
 // (A sweep's window is its own: with_window false.)
@@ -104,8 +114,6 @@ void print_plan(const std::vector<ib::SuiteSettings>& suites, const std::vector<
   }
 }
 
-}  // namespace
-
 int command_study(const StudyOptions& o) {
   if (o.out.empty() && !o.plan) throw std::invalid_argument("--out '': allowed: a folder path");
   if (o.jobs < 1 || o.jobs > 1024)
@@ -182,6 +190,26 @@ int command_study(const StudyOptions& o) {
     if (report != kExitOk) return report;
   }
   return status;
+}
+
+}  // namespace
+
+Command add_study_command(CLI::App& app) {
+  auto o = std::make_shared<StudyOptions>();
+  CLI::App* study = app.add_subcommand("study",
+                                       "run a study file's suites, step searches and sweeps into one folder, "
+                                       "then make its report (docs/studies.md, \"Study files\")");
+  study->add_option("file", o->file, "a study file (.toml), e.g. studies/default.toml")->required();
+  study->add_option("--out", o->out, "output folder (required unless --plan)");
+  study->add_option("--jobs", o->jobs, "worker processes")->capture_default_str();
+  study->add_option("--shard", o->shard, "K/N: every part's K-th of N shares, for a job array (merge joins them)");
+  study->add_flag("--resume", o->resume, "continue the study recorded in --out");
+  study->add_option("--reference-cache", o->reference_cache,
+                    "a folder that shares reference runs between output folders (as suite --reference-cache)");
+  study->add_option("--skip", o->skip, "kinds of parts left out, comma-separated: suite, search, sweep");
+  study->add_flag("--no-report", o->no_report, "leave the report out");
+  study->add_flag("--plan", o->plan, "check the file and print what each part runs; run nothing");
+  return {study, [o] { return command_study(*o); }};
 }
 
 }  // namespace cli

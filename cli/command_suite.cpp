@@ -7,8 +7,10 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <utility>
 
 #include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
@@ -171,12 +173,6 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
   return s;
 }
 
-int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
-  const ib::SuiteSettings s = suite_settings_from(o, measurement_options);
-  record_command(o.out, s.measurement.verdicts, "");
-  return suite_exit_code(s, ib::run_suite(s));
-}
-
 int suite_exit_code(const ib::SuiteSettings& s, const ib::SuiteOutcome& outcome) {
   if (outcome.interrupted_by != 0) {
     // A step search plans its probes as they end, so its total is not known in advance.
@@ -205,6 +201,93 @@ int suite_exit_code(const ib::SuiteSettings& s, const ib::SuiteOutcome& outcome)
     std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n",
                 ib::to_string(*s.shard).c_str());
   return outcome.not_ok_recorded > 0 ? kExitRunNotOk : kExitOk;  // every result, also those of an earlier invocation
+}
+
+namespace {
+
+int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options) {
+  const ib::SuiteSettings s = suite_settings_from(o, measurement_options);
+  record_command(o.out, s.measurement.verdicts, "");
+  return suite_exit_code(s, ib::run_suite(s));
+}
+
+}  // namespace
+
+Command add_suite_command(CLI::App& app) {
+  auto options = std::make_shared<std::pair<SuiteOptions, MeasurementOptions>>();
+  SuiteOptions& o = options->first;
+  CLI::App* suite = app.add_subcommand("suite",
+                                       "run scenarios x laws x engines x time steps in worker processes; "
+                                       "append DIR/runs.csv, DIR/runs.jsonl and DIR/runs/<job>/");
+  suite->add_option("scenarios", o.inputs, "scenario files or folders; default: the published scenarios");
+  suite->add_option("--engines", o.engines, "comma-separated engines")->capture_default_str();
+  suite->add_option("--laws", o.laws, "comma-separated laws")->capture_default_str();
+  add_shared_list_option(suite, Shared::dt, o.time_steps, "comma-separated time steps of fixed-step engines [s]");
+  suite->add_option("--paths", o.paths,
+                    "comma-separated contact paths of the engines: matched, injected, native; default: each engine's");
+  add_shared_option(suite, Shared::jobs, o.jobs, "worker processes");
+  suite->add_option("--out", o.out, "output folder")->required();
+  suite->add_flag("--resume", o.resume,
+                  "continue the suite recorded in the output folder (same settings): skip the jobs already recorded");
+  suite->add_flag("--extend", o.extend,
+                  "add this suite to a folder that holds suites with other settings (a study's parts); a job it shares "
+                  "with the folder must have been recorded with the same settings");
+  add_shared_option(suite, Shared::time_limit, o.time_limit_s, "per job; a job past it is stopped and recorded [s]");
+  add_shared_option(suite, Shared::rate, o.rate_hz, "output series sample rate [Hz]");
+  add_shared_option(suite, Shared::duration, o.max_duration_s,
+                    "run scenarios longer than this for this long only, keeping their scoring window [s]", false);
+  suite->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.n=5)");
+  suite->add_option("--reference-cache", o.reference_cache,
+                    "a folder that shares reference runs between output folders: a reference it holds (same scenario "
+                    "content, settings and executable) is copied, not solved; one solved is stored there");
+  suite
+      ->add_option("--ensemble", o.ensemble_starts,
+                   "N: run every configuration from N starts, start K with frame 1's tip displaced by K x "
+                   "--ensemble-step; the report gives each metric and error with its confidence interval")
+      ->capture_default_str();
+  suite
+      ->add_option("--reference-ensemble", o.reference_ensemble_starts,
+                   "N: the references' starts (at least --ensemble; 0: --ensemble's): their spread says whether a "
+                   "case needs an ensemble")
+      ->capture_default_str();
+  suite->add_option("--reference-chains", o.reference_chains,
+                    "K,K,...: the reference alone on the K-link chain of every scenario, law and reference start, "
+                    "scored against the beam: how the chain's resolution alone moves each metric (1 <= K <= 64)");
+  suite
+      ->add_option("--ensemble-step", o.ensemble_step_m,
+                   "frame 1's initial tip displacement between two starts of an ensemble [m]")
+      ->capture_default_str();
+  options->second.add_to(suite, /*with_timing=*/true);
+  suite->add_flag("--recommended", o.recommended,
+                  "each engine in its authors' recommended configuration for each law: the options and time step of "
+                  "its adapters/<engine>/descriptor.json, every setting with its source (docs/engines.md); not with "
+                  "--paths, --dt or --find-steps");
+  suite->add_flag(
+      "--find-steps", o.find_steps,
+      "per scenario, law, engine and options: search the largest stable step and the largest step at "
+      "which each headline metric is within tolerance, by bisection on a geometric grid (--steps-per-octave); "
+      "writes DIR/steps.csv and DIR/steps.jsonl");
+  suite
+      ->add_option(
+          "--steps-per-octave", o.steps_per_octave,
+          "with --find-steps: grid steps per halving of the step (4: a ratio of 1.19; 1: a coarse search, ratio 2)")
+      ->capture_default_str();
+  suite->add_flag("--step-walk", o.step_walk,
+                  "with --find-steps: instead of bisecting, walk down the grid from its largest step until the error "
+                  "against the beam stops falling (two stable steps in a row that lower it by at most a tenth of a "
+                  "tolerance) or the range ends: an error-against-cost front's ladder");
+  suite->add_flag("--keep-series", o.keep_series,
+                  "with --find-steps: keep every probe's series.csv.gz (default: its summary and events only)");
+  suite->add_option("--step-range", o.step_range, "with --find-steps: MIN,MAX step searched [s]")
+      ->capture_default_str();
+  suite->add_option("--tolerance", o.tolerances,
+                    "with --find-steps: metric=value,... for frame1_sensor_peak (relative, default 0.10), "
+                    "contact_duration (relative, 0.10), impacts_per_cycle (absolute, 0.10); the verdicts' tolerances, "
+                    "so they judge the probes' verdicts too");
+  suite->add_option("--shard", o.shard,
+                    "K/N: run shard K of N (1 <= K <= N): every N-th engine job (with --find-steps: step search) "
+                    "in planned order, and the references they need; join the shards with 'merge'");
+  return {suite, [options] { return command_suite(options->first, options->second); }};
 }
 
 }  // namespace cli

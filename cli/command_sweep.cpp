@@ -1,7 +1,9 @@
 // `sweep`: the motor speed over a range of ratios to f_1, from rest or continued up and down (harness/sweep/sweep.h).
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "cli/commands.h"
 #include "harness/records/number_text.h"
@@ -9,53 +11,6 @@
 #include "harness/sweep/sweep.h"
 
 namespace cli {
-
-void add_sweep_command(CLI::App& app, SweepOptions& o, MeasurementOptions& measurement, CLI::App*& command) {
-  command = app.add_subcommand("sweep",
-                               "a frequency sweep: every ratio of the motor speed to f_1 from rest, or continued "
-                               "from the previous ratio's final state up and down (sweep.csv, poincare.csv)");
-  command->add_option("scenario", o.scenario, "a scenario file with a motor (.toml)")->required();
-  command->add_option("--ratios", o.ratios, "FROM:TO:STEP, the motor speed over frame 1's f_1")->capture_default_str();
-  command
-      ->add_option("--start", o.start,
-                   "rest (each ratio from rest), up, down (continued from the previous ratio) or both (up and down), "
-                   "comma-separated")
-      ->capture_default_str();
-  command->add_option("--engines", o.engines, "comma-separated simulators")->capture_default_str();
-  command->add_option("--laws", o.laws, "comma-separated laws")->capture_default_str();
-  command->add_option("--paths", o.paths, "comma-separated contact paths of the engines; default: each engine's");
-  add_shared_list_option(command, Shared::dt, o.time_steps,
-                         "comma-separated time steps of fixed-step engines [s]; default: each engine's");
-  command->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.n=5)");
-  add_shared_option(command, Shared::duration, o.duration_s, "each continued ratio's run [s], whole motor periods");
-  add_shared_option(command, Shared::rest_duration, o.rest_duration_s,
-                    "a start from rest's run (also a continuation's first ratio) [s]; default: the scenario's duration",
-                    false);
-  add_shared_option(command, Shared::window, o.window_s, "the last S seconds of each run are scored [s]");
-  add_shared_option(command, Shared::rate, o.rate_hz, "output series sample rate [Hz]");
-  add_shared_option(command, Shared::jobs, o.jobs, "worker processes (one chain each)");
-  add_shared_option(command, Shared::time_limit, o.time_limit_s,
-                    "per ratio; a chain past it is stopped and recorded [s]");
-  command
-      ->add_option(
-          "--reference-ensemble", o.reference_ensemble_starts,
-          "N: the reference from N starts from rest at each --ensemble-ratios ratio (start K: frame 1's tip displaced "
-          "K x --ensemble-step); the report gives the fraction reaching each regime and the multistable ratios")
-      ->capture_default_str();
-  command->add_option("--ensemble-step", o.ensemble_step_m, "frame 1's initial tip displacement between two starts [m]")
-      ->capture_default_str();
-  command->add_option(
-      "--ensemble-ratios", o.ensemble_ratios,
-      "where the reference's ensemble runs: FROM:TO:STEP or single ratios, comma-separated, each one of --ratios; "
-      "default: every ratio");
-  command->add_option("--shard", o.shard, "K/N: run every N-th chain only (configuration and start), for a job array");
-  command->add_flag("--resume", o.resume, "continue the sweep in --out: the rows recorded are kept, the rest run");
-  command->add_option("--out", o.out, "output folder")->required();
-  add_shared_option(command, Shared::sensor_rate, measurement.sensor_rate_hz, "accelerometer sample rate [Hz]");
-  command
-      ->add_option("--series", measurement.series, "what each ratio's folder keeps of its series: none, window or all")
-      ->capture_default_str();
-}
 
 namespace {
 
@@ -115,9 +70,66 @@ ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOp
   return s;
 }
 
+namespace {
+
 int command_sweep(const SweepOptions& o, const MeasurementOptions& measurement_options) {
   const ib::SweepSettings s = sweep_settings_from(o, measurement_options);
   return sweep_exit_code(s, ib::run_sweep(s));
+}
+
+}  // namespace
+
+Command add_sweep_command(CLI::App& app) {
+  auto options = std::make_shared<std::pair<SweepOptions, MeasurementOptions>>();
+  SweepOptions& o = options->first;
+  MeasurementOptions& measurement = options->second;
+  measurement.series = "none";  // a sweep's tables and Poincare samples are its results
+  CLI::App* command =
+      app.add_subcommand("sweep",
+                         "a frequency sweep: every ratio of the motor speed to f_1 from rest, or continued "
+                         "from the previous ratio's final state up and down (sweep.csv, poincare.csv)");
+  command->add_option("scenario", o.scenario, "a scenario file with a motor (.toml)")->required();
+  command->add_option("--ratios", o.ratios, "FROM:TO:STEP, the motor speed over frame 1's f_1")->capture_default_str();
+  command
+      ->add_option("--start", o.start,
+                   "rest (each ratio from rest), up, down (continued from the previous ratio) or both (up and down), "
+                   "comma-separated")
+      ->capture_default_str();
+  command->add_option("--engines", o.engines, "comma-separated simulators")->capture_default_str();
+  command->add_option("--laws", o.laws, "comma-separated laws")->capture_default_str();
+  command->add_option("--paths", o.paths, "comma-separated contact paths of the engines; default: each engine's");
+  add_shared_list_option(command, Shared::dt, o.time_steps,
+                         "comma-separated time steps of fixed-step engines [s]; default: each engine's");
+  command->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.n=5)");
+  add_shared_option(command, Shared::duration, o.duration_s, "each continued ratio's run [s], whole motor periods");
+  add_shared_option(command, Shared::rest_duration, o.rest_duration_s,
+                    "a start from rest's run (also a continuation's first ratio) [s]; default: the scenario's duration",
+                    false);
+  add_shared_option(command, Shared::window, o.window_s, "the last S seconds of each run are scored [s]");
+  add_shared_option(command, Shared::rate, o.rate_hz, "output series sample rate [Hz]");
+  add_shared_option(command, Shared::jobs, o.jobs, "worker processes (one chain each)");
+  add_shared_option(command, Shared::time_limit, o.time_limit_s,
+                    "per ratio; a chain past it is stopped and recorded [s]");
+  command
+      ->add_option(
+          "--reference-ensemble", o.reference_ensemble_starts,
+          "N: the reference from N starts from rest at each --ensemble-ratios ratio (start K: frame 1's tip displaced "
+          "K x --ensemble-step); the report gives the fraction reaching each regime and the multistable ratios")
+      ->capture_default_str();
+  command->add_option("--ensemble-step", o.ensemble_step_m, "frame 1's initial tip displacement between two starts [m]")
+      ->capture_default_str();
+  command->add_option(
+      "--ensemble-ratios", o.ensemble_ratios,
+      "where the reference's ensemble runs: FROM:TO:STEP or single ratios, comma-separated, each one of --ratios; "
+      "default: every ratio");
+  command->add_option("--shard", o.shard, "K/N: run every N-th chain only (configuration and start), for a job array");
+  command->add_flag("--resume", o.resume, "continue the sweep in --out: the rows recorded are kept, the rest run");
+  command->add_option("--out", o.out, "output folder")->required();
+  add_shared_option(command, Shared::sensor_rate, measurement.sensor_rate_hz, "accelerometer sample rate [Hz]");
+  command
+      ->add_option("--series", measurement.series, "what each ratio's folder keeps of its series: none, window or all")
+      ->capture_default_str();
+  return {command, [options] { return command_sweep(options->first, options->second); }};
 }
 
 int sweep_exit_code(const ib::SweepSettings& s, const ib::SweepOutcome& outcome) {

@@ -1,10 +1,9 @@
-// One function per command (cli/command_<name>.cpp), wired to its options in main.cpp. Each returns
-// its exit code (arguments.h) and throws for bad input or a write error, which main turns into exit 2 or 3.
+// One file per command (cli/command_<name>.cpp): its options, registered by its add_<name>_command, and the
+// function that runs it. main.cpp only dispatches. Each returns its exit code (arguments.h) and throws for bad
+// input or a write error, which main turns into exit 2 or 3.
 #pragma once
 
-#include <unistd.h>
-
-#include <algorithm>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,6 +12,26 @@
 #include "harness/sweep/sweep.h"
 
 namespace cli {
+
+// A command as main sees it: its subcommand of the application, and what runs it once that was parsed (the
+// options it reads live as long as the function).
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+Command add_modes_command(CLI::App& app);
+Command add_run_command(CLI::App& app);
+Command add_suite_command(CLI::App& app);
+Command add_merge_command(CLI::App& app);
+Command add_export_command(CLI::App& app);
+Command add_score_command(CLI::App& app);
+Command add_report_command(CLI::App& app);
+Command add_repro_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
+Command add_sweep_command(CLI::App& app);
+Command add_study_command(CLI::App& app);
+Command add_engines_command(CLI::App& app);
+Command add_list_command(CLI::App& app);
 
 // `suite`'s options: the shared ones (MatrixOptions, arguments.h) and its own.
 struct SuiteOptions : MatrixOptions {
@@ -42,14 +61,6 @@ struct SweepOptions : MatrixOptions {
   std::string ensemble_ratios;
 };
 
-int command_run(const std::string& path, const std::string& engine, const std::string& law_name, const std::string& out,
-                double rate_hz, double series_start_s, double time_step_s, const std::vector<std::string>& option_pairs,
-                const MeasurementOptions& measurement_options, double time_limit_s, double max_duration_s,
-                double start_offset_m);  // max_duration_s: 0, the scenario's whole run
-
-int command_modes(const std::string& path, bool json, const std::vector<std::string>& option_pairs);
-
-int command_suite(const SuiteOptions& o, const MeasurementOptions& measurement_options);
 // The suite's settings from its options, every value checked (std::invalid_argument naming the option, the
 // value and what is allowed): what `suite` and a study's [[suite]] and [[search]] parts share.
 ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOptions& measurement_options);
@@ -59,64 +70,13 @@ int suite_exit_code(const ib::SuiteSettings& s, const ib::SuiteOutcome& outcome)
 // (the report names the commands that produced its folder); note: which part of a study, "" for none.
 void record_command(const std::string& out, const ib::VerdictSettings& verdicts, const std::string& note);
 
-// The model an engine builds for a run, in the engine's own format, for a person to open in the
-// engine's tools (MuJoCo: MJCF for its viewer; the reference: its modal model as JSON).
-int command_export(const std::string& path, const std::string& engine, const std::string& law_name,
-                   const std::string& out, double time_step_s, double rate_hz,
-                   const std::vector<std::string>& option_pairs);
-
-// A run made elsewhere (series.csv and events.csv in the harness's format, run_files.h), measured with the
-// harness's own metric code exactly as every simulator's run is; with a reference folder, its errors
-// against it too (the vs_reference_* figures of runs.csv).
-int command_score(const std::string& folder, const std::string& scenario_path, const std::string& reference_folder,
-                  bool json, const MeasurementOptions& measurement_options);
-
-// The report is made by reports/make_report.py with Debian's matplotlib (python3-matplotlib), from
-// the saved results alone.
+// The report of a result folder (`report`, and `merge` and `study` after their runs), made by
+// reports/make_report.py with Debian's matplotlib (python3-matplotlib), from the saved results alone.
 int command_report(const std::string& suite_folder, const std::string& out);
 
-// The shards' folders joined into one suite folder (harness/study/merge.h), then its report, made as `report` makes it.
-int command_merge(const std::string& out, const std::vector<std::string>& shards, bool no_report);
-
-int command_list(const std::string& folder);
-
-// Every simulator of this build with its descriptor; json: the text of a result folder's engines.json;
-// names: the names alone, comma-separated (what --engines takes).
-int command_engines(bool json, bool names);
-
-// `sweep` (harness/sweep/sweep.h): its options are registered by add_sweep_command, which sets `command`.
-void add_sweep_command(CLI::App& app, SweepOptions& options, MeasurementOptions& measurement, CLI::App*& command);
-int command_sweep(const SweepOptions& options, const MeasurementOptions& measurement_options);
+// The sweep's settings from its options, every value checked (as suite_settings_from), and what its outcome
+// means for the exit code: what `sweep` and a study's [[sweep]] parts share.
 ib::SweepSettings sweep_settings_from(const SweepOptions& o, const MeasurementOptions& measurement_options);
 int sweep_exit_code(const ib::SweepSettings& s, const ib::SweepOutcome& outcome);
-
-// `study FILE --out DIR`: every part of a study file (study_file.h) into one folder, then its report.
-struct StudyOptions {
-  std::string file, out, shard;
-  std::string skip;             // kinds of parts left out, comma-separated: suite, search, sweep
-  std::string reference_cache;  // a folder sharing reference runs between output folders
-  int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
-  bool resume = false, no_report = false;
-  bool plan = false;  // --plan: check the file and say what each part runs, run nothing
-};
-int command_study(const StudyOptions& options);
-
-// `repro RUN_FOLDER OUT`: one run of a result folder made ready to run alone and to file with an engine's
-// authors: OUT/scenario.toml (the scenario it ran), OUT/repro.sh (the one command that reruns it, with its
-// engine, law, step, options, start and length), OUT/repro.json (what it was: job, verdict, reason, engine
-// version, the folder it came from) and, where the engine exports one, its model (MuJoCo: OUT/model.xml).
-// scenario_path: the scenario file where the run's own record names one that is no longer there.
-int command_repro(const std::string& run_folder, const std::string& out, const std::string& scenario_path);
-
-// `compare BASE NEW [MORE ...]`: result folders side by side, made by reports/compare.py (docs/compare.md):
-// what differs between what made them, then what moved beyond the noise; with more than two, each folder
-// against the next (a history). Its exit code: 0 nothing moved, 1 something moved, 2 bad input.
-struct CompareOptions {
-  std::vector<std::string> folders;  // the baseline first, each next one judged against the one before
-  std::string json, markdown, html;  // files to write (html: a folder), none when empty
-  bool cost_across_machines = false;
-  double cost_noise = 0.3;  // the least relative change of CPU time told apart from a shared machine's drift
-};
-int command_compare(const CompareOptions& options);
 
 }  // namespace cli
