@@ -287,15 +287,15 @@ class TheChecksCanFail(unittest.TestCase):
 
     def test_the_report_style_fits_a_wide_table_and_figure(self):
         sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-        import make_report
         from impactbench_report import tables
+        from impactbench_report.page_style import STYLE
         header = [f"metric {i} [unit]" for i in range(20)]
         rows = [[f"engine_{r} [contact=matched, option=value_{r}]"] + ["+12.5 % ± 0.57 %"] * 18
                 + ["inaccurate: frame 1's sensor peak −14.9 % from its own chain, beyond the tolerance"]
                 for r in range(3)]
         report = hand_made(os.path.join(self.folder, "styled"), f"<h2>Case</h2><p class='case'>a case</p>"
                            f"{tables.html_table(header, rows)}<figure><img src='figures/broad.svg'></figure>",
-                           figures={"broad.svg": GOOD_IMAGE.replace('"200"', '"3000"')}, style=make_report.STYLE)
+                           figures={"broad.svg": GOOD_IMAGE.replace('"200"', '"3000"')}, style=STYLE)
         self.assertEqual(width_problems(look_at_layout(report)), [])
 
     def test_overlapping_labels_are_named(self):
