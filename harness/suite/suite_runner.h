@@ -1,7 +1,8 @@
 // The suite runner, internal to the harness: its state (the plan, the searches, what runs) in one class,
 // a source of units for the one runner (harness/jobs/unit_source.h), whose stages live in their own files:
 //   suite.cpp               run_suites, and what is ready to run next (a job once its references have ended)
-//   suite_plan.cpp          the job matrix, shards and the plan's description
+//   suite_plan.cpp          the job matrix and the plan's description
+//   suite_shard.cpp         --shard K/N: the share this shard keeps, its plan recorded for merge
 //   suite_jobs.cpp          a job started in the pool (harness/jobs/process_pool.h), its process, its record
 //   step_search_driver.cpp  the step searches' probes, ready as their brackets ask
 // Nothing outside the harness includes this (suite.h is the interface).
