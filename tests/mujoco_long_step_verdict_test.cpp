@@ -38,12 +38,16 @@ TEST_P(MujocoLongStep, VerdictSaysSo) {
   const Measurement measurement;
   RunSettings settings;
   settings.law = c.law;
-  JobSpec reference_job{"", "reference", settings};
+  JobSpec reference_job;
+  reference_job.engine = "reference";
+  reference_job.settings = settings;
   reference_job.settings.options = chain_reference_options(default_links(s));
   ReferenceData chain_reference;
   run_job(s, reference_job, measurement, nullptr, nullptr, "", &chain_reference, make_simulator);
 
-  JobSpec job{"", "mujoco", settings};
+  JobSpec job;
+  job.engine = "mujoco";
+  job.settings = settings;
   job.settings.time_step_s = c.time_step_s;
   const RunRecord record = run_job(s, job, measurement, nullptr, &chain_reference, "", nullptr, make_simulator);
   std::printf("%s, h = %g s: %s (%s)\n", to_string(c.law), c.time_step_s, to_string(record.verdict),
