@@ -30,15 +30,20 @@ seconds_of() {  # M:SS -> seconds
   local m=${1%%:*} s=${1##*:}
   echo $((10#$m * 60 + 10#$s))
 }
+# A fresh clone of SIDE's commit (baseline or head) in SCRATCH/SIDE, said with the time and load it starts at;
+# WHAT: what runs there, as the line names it.
+clone_side() {
+  local side=$1 what=$2 commit=$baseline
+  [[ $side == head ]] && commit=$head
+  git clone -q "$repository" "$scratch/$side"
+  git -C "$scratch/$side" checkout -q "$commit"
+  echo "side_by_side: $what$side ($commit) from $(date +%T), load average $(cut -d' ' -f1-3 /proc/loadavg)"
+}
 if [[ ${1:-} == --ci ]]; then
   # the phases scripts/test.sh prints at its end, "  NAME   M:SS", the same names on both sides
   phases_of() { sed -n '/^test: phases/,$ s/^  \(.*[^ ]\) \{2,\}\([0-9]*:[0-9][0-9]\)$/\1|\2/p' "$1"; }
   for side in baseline head; do
-    commit=$baseline
-    [[ $side == head ]] && commit=$head
-    git clone -q "$repository" "$scratch/$side"
-    git -C "$scratch/$side" checkout -q "$commit"
-    echo "side_by_side: CI of $side ($commit) from $(date +%T), load average $(cut -d' ' -f1-3 /proc/loadavg)"
+    clone_side "$side" "CI of "
     (cd "$scratch/$side" && .ci/run) >"$scratch/$side.log" 2>&1 || echo "side_by_side: $side's CI failed (log: $scratch/$side.log)"
   done
   # a phase's name carries its test count, "tests (175 in build/)": compared by its words before the count
@@ -52,11 +57,7 @@ if [[ ${1:-} == --ci ]]; then
 fi
 declare -A build study size
 for side in baseline head; do
-  commit=$baseline
-  [[ $side == head ]] && commit=$head
-  git clone -q "$repository" "$scratch/$side"
-  git -C "$scratch/$side" checkout -q "$commit"
-  echo "side_by_side: $side ($commit) from $(date +%T), load average $(cut -d' ' -f1-3 /proc/loadavg)"
+  clone_side "$side" ""
   (cd "$scratch/$side" && scripts/benchmark.sh "$@" "$scratch/$side-results") >"$scratch/$side.log" 2>&1 || true
   build[$side]=$(sed -n 's/^benchmark: installed and built in \([0-9:]*\).*/\1/p' "$scratch/$side.log")
   study[$side]=$(sed -n 's/^benchmark: .*study done in \([0-9:]*\).*/\1/p' "$scratch/$side.log")
