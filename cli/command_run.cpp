@@ -141,32 +141,29 @@ struct RunOptions {
 };
 
 int command_run(const RunOptions& o) {
-  const std::string &path = o.path, &engine = o.engine, &out = o.out;
-  const double time_step_s = o.time_step_s, time_limit_s = o.time_limit_s, max_duration_s = o.max_duration_s,
-               series_start_s = o.series_start_s, rate_hz = o.rate_hz;
-  ib::Scenario scenario = ib::load_scenario(path);
-  const bool cut = ib::cut_run(scenario, max_duration_s);  // --duration, as a suite's
+  ib::Scenario scenario = ib::load_scenario(o.path);
+  const bool cut = ib::cut_run(scenario, o.max_duration_s);  // --duration, as a suite's
   // the run the cross checks name: the cut one's length is --duration's, not the file's
-  const std::string run_length =
-      "(" +
-      (cut ? "--duration " + value_text(max_duration_s) : path + ": duration_s = " + value_text(scenario.duration_s)) +
-      " s)";
-  if (series_start_s >= scenario.duration_s)  // given (not given: -1, the scoring window's start)
-    throw std::invalid_argument("--series-start " + value_text(series_start_s) + ": allowed: before the run's end " +
+  const std::string run_length = "(" +
+                                 (cut ? "--duration " + value_text(o.max_duration_s)
+                                      : o.path + ": duration_s = " + value_text(scenario.duration_s)) +
+                                 " s)";
+  if (o.series_start_s >= scenario.duration_s)  // given (not given: -1, the scoring window's start)
+    throw std::invalid_argument("--series-start " + value_text(o.series_start_s) + ": allowed: before the run's end " +
                                 run_length);
-  require_engine(engine);
-  if (out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
+  require_engine(o.engine);
+  if (o.out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
   ib::JobSpec job;
-  job.scenario_path = path;
-  job.engine = engine;
+  job.scenario_path = o.path;
+  job.engine = o.engine;
   job.settings.law = parse_law(o.law);
-  job.settings.output_rate_hz = rate_hz;
-  job.settings.series_start_s = series_start_s;
-  job.settings.time_step_s = time_step_s;
+  job.settings.output_rate_hz = o.rate_hz;
+  job.settings.series_start_s = o.series_start_s;
+  job.settings.time_step_s = o.time_step_s;
   job.settings.options = parse_options(o.option_pairs);
   // an ensemble's start (repro writes it): frame 1's tip displaced beyond the scenario's initial displacement
   job.start.initial_displacement_offset_m = o.start_offset_m;
-  if (time_step_s != 0 || engine == "reference")
+  if (o.time_step_s != 0 || o.engine == "reference")
     ib::check_run_size(scenario, job.settings);  // --dt 1e300: not 0 steps, ok
   else {                                         // the engine's default step is its own: the rest of the size
     ib::RunSettings sized = job.settings;
@@ -174,29 +171,29 @@ int command_run(const RunOptions& o) {
     ib::check_run_size(scenario, sized);
   }
   const ib::Measurement measurement = o.measurement.build();
-  require_series_resolves_sensor(rate_hz, measurement.sensor_rate_hz);
+  require_series_resolves_sensor(o.rate_hz, measurement.sensor_rate_hz);
   if (measurement.window_s)
     require_at_most(Shared::window, *measurement.window_s, scenario.duration_s, "the run " + run_length);
   const bool window_moved = cut || measurement.window_s;
   const std::optional<int> code = within_time_limit(
-      time_limit_s, [&]() { return run_and_print(scenario, job, measurement, engine, out, window_moved); });
+      o.time_limit_s, [&]() { return run_and_print(scenario, job, measurement, o.engine, o.out, window_moved); });
   if (code) return *code;
   // recorded as a suite records a job past its limit
   ib::RunRecord record;
   record.job_id = ib::job_id(scenario.name, job);
   record.scenario = scenario.name;
-  record.scenario_file = path;
-  record.engine = engine;
+  record.scenario_file = o.path;
+  record.engine = o.engine;
   record.law = ib::to_string(job.settings.law);
-  record.time_step_s = time_step_s;
+  record.time_step_s = o.time_step_s;
   record.verdict = ib::Verdict::failed;
-  record.reason = "stopped at the time limit of " + ib::number_text(time_limit_s) + " s (--time-limit)";
+  record.reason = "stopped at the time limit of " + ib::number_text(o.time_limit_s) + " s (--time-limit)";
   record.timed_out = true;
   record.duration_s = scenario.duration_s;
-  std::filesystem::create_directories(out);
-  ib::write_summary_json(out + "/summary.json", record);
-  ib::write_provenance_file(out, ib::simulator_catalog());
-  std::printf("%s: failed: %s\n  files in %s\n", record.job_id.c_str(), record.reason.c_str(), out.c_str());
+  std::filesystem::create_directories(o.out);
+  ib::write_summary_json(o.out + "/summary.json", record);
+  ib::write_provenance_file(o.out, ib::simulator_catalog());
+  std::printf("%s: failed: %s\n  files in %s\n", record.job_id.c_str(), record.reason.c_str(), o.out.c_str());
   return kExitRunNotOk;
 }
 
