@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <array>
-#include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <cstdint>
@@ -19,10 +18,10 @@
 #include <sstream>
 #include <stdexcept>
 #include <vector>
-#include "reference/free_flight.h"
 
 #include "reference/free_flight.h"
 #include "reference/reference_solver.h"
+#include "reference/root_finding.h"
 #include "reference/series_sampler.h"
 
 namespace ib::reference_internal {
@@ -36,29 +35,6 @@ constexpr double kTwoPi = 6.28318530717958647692;
 
 // What force acts between the tips in the current phase.
 enum class Phase { free, compliant, sticking };
-
-// First root of f on [a, b] given f(a), f(b) of opposite signs (or one of them zero), to `bits` bits.
-// Event times need full precision; the location of an extremum much less, as the value there is
-// flat in it (a relative location error e changes the value by order e^2).
-constexpr int kEventBits = 50, kExtremumBits = 26;
-template <class F>
-double find_root(F&& f, double a, double b, double fa, double fb, int bits = kEventBits) {
-  if (fa == 0) return a;
-  if (fb == 0) return b;
-  if ((fa > 0) == (fb > 0)) return std::abs(fa) < std::abs(fb) ? a : b;  // no sign change: nearest end
-  std::uintmax_t iterations = 60;
-  const auto bracket =
-      boost::math::tools::toms748_solve(f, a, b, fa, fb, boost::math::tools::eps_tolerance<double>(bits), iterations);
-  return 0.5 * (bracket.first + bracket.second);
-}
-
-// The same, located in the time from a: an extremum's location needs its bits of the interval, not of the run's
-// clock, which they would be in t itself (26 bits of t = 100 s are 1.5 us: a tenth of a 14 us Hertz contact's
-// rise, a peak force low by 1e-4).
-template <class F>
-double find_root_after(F&& f, double a, double b, double fa, double fb, int bits) {
-  return a + find_root([&](double u) { return f(a + u); }, 0.0, b - a, fa, fb, bits);
-}
 
 class Solver {
  public:
@@ -337,29 +313,7 @@ class Solver {
   // The contact onset in (a, b], or infinity. The grid is fine enough that delta' changes sign at
   // most once per interval, so a crossing is either seen at b or hides behind one interior maximum.
   template <class GapAt>
-  double find_onset(const Gap& a, const Gap& b, GapAt&& gap_at, bool starts_at_contact) {
-    auto delta = [&](double t) { return gap_at(t).delta; };
-    auto delta_rate = [&](double t) { return gap_at(t).rate; };
-    // At a contact end delta(a) is zero up to rounding: treat it as just negative.
-    const double delta_a = starts_at_contact ? -std::numeric_limits<double>::min() : a.delta;
-    if (b.delta >= 0) {
-      double lo = a.t, f_lo = delta_a;
-      if (a.rate < 0 && b.rate > 0) {  // a minimum inside: the crossing comes after it
-        const double c = find_root(delta_rate, a.t, b.t, a.rate, b.rate);
-        const double f_c = delta(c);
-        if (f_c < 0) lo = c, f_lo = f_c;
-      }
-      return find_root(delta, lo, b.t, f_lo, b.delta);
-    }
-    // Leaving a contact with (numerically) zero relative velocity: no maximum can follow at once.
-    if (starts_at_contact && a.rate <= 1e-12) return kInf;
-    if (a.rate > 0 && b.rate < 0) {  // a maximum inside: a grazing contact?
-      const double c = find_root(delta_rate, a.t, b.t, a.rate, b.rate);
-      const double f_c = delta(c);
-      if (f_c >= 0) return find_root(delta, a.t, c, delta_a, f_c);
-    }
-    return kInf;
-  }
+  double find_onset(const Gap& a, const Gap& b, GapAt&& gap_at, bool starts_at_contact);  // free_flight_phase.cpp
 
   // ---- Newton impacts ---------------------------------------------------------------------------
   // Applies the impulse at an onset; returns true when the impacts accumulate and the tips stick.
@@ -374,6 +328,13 @@ class Solver {
   // Integrates a contact phase with Dormand-Prince until it ends (separation, or release from
   // sticking) or the run ends. Returns false when the run cannot go on (status set).
   bool integrate_contact(double& t, ModalState& x, Phase phase);
+  void contact_rates(const OdeState& s, OdeState& ds, double t, Phase phase) const;  // contact_phase.cpp
+  template <class Eval>
+  void track_force_end(const TipState& sa, const TipState& sb, double ta, Eval&& eval);  // contact_phase.cpp
+  // A contact phase ended at t (the state y_stop, the tips tips_stop): the modal state into x, the phase's
+  // energy and impulse added up and its episode recorded (a sticking phase continues the impact before it).
+  void close_contact_phase(double t, const OdeState& y_stop, const TipState& tips_stop, ContactEvent& event,
+                           Phase phase, ModalState& x);
 
   // Keeps the sticking tips exactly on delta = 0, delta' = 0 (removes integration drift) with the
   // smallest mass-weighted correction.

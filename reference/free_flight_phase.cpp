@@ -18,6 +18,31 @@ double Solver::series_slope(const std::array<double, kTaylorDegree + 1>& c, doub
   return slope;
 }
 
+template <class GapAt>
+double Solver::find_onset(const Gap& a, const Gap& b, GapAt&& gap_at, bool starts_at_contact) {
+  auto delta = [&](double t) { return gap_at(t).delta; };
+  auto delta_rate = [&](double t) { return gap_at(t).rate; };
+  // At a contact end delta(a) is zero up to rounding: treat it as just negative.
+  const double delta_a = starts_at_contact ? -std::numeric_limits<double>::min() : a.delta;
+  if (b.delta >= 0) {
+    double lo = a.t, f_lo = delta_a;
+    if (a.rate < 0 && b.rate > 0) {  // a minimum inside: the crossing comes after it
+      const double c = find_root(delta_rate, a.t, b.t, a.rate, b.rate);
+      const double f_c = delta(c);
+      if (f_c < 0) lo = c, f_lo = f_c;
+    }
+    return find_root(delta, lo, b.t, f_lo, b.delta);
+  }
+  // Leaving a contact with (numerically) zero relative velocity: no maximum can follow at once.
+  if (starts_at_contact && a.rate <= 1e-12) return kInf;
+  if (a.rate > 0 && b.rate < 0) {  // a maximum inside: a grazing contact?
+    const double c = find_root(delta_rate, a.t, b.t, a.rate, b.rate);
+    const double f_c = delta(c);
+    if (f_c >= 0) return find_root(delta, a.t, c, delta_a, f_c);
+  }
+  return kInf;
+}
+
 template <class SampleAt>
 void Solver::record_free_interval(const TipState& sa, const TipState& sb, const ModalState& x, SampleAt&& sample_at,
                                   bool extrema) {
