@@ -14,29 +14,29 @@
 namespace ib::suite_internal {
 
 void SuiteRunner::begin_step_searches() {
-  if (step_groups_.empty()) return;
-  if (settings_.resume) step_rows_done_ = repair_and_list_step_rows(settings_.out);
-  recorded_lines_ = recorded_run_lines(settings_.out);
-  for (const PlannedJob& job : jobs_) planned_ids_.insert(job.id);
-  for (const PlannedJob& job : step_groups_) {
+  if (plan_.step_groups.empty()) return;
+  if (settings_.resume) searches_.rows_done = repair_and_list_step_rows(settings_.out);
+  searches_.recorded_lines = recorded_run_lines(settings_.out);
+  for (const PlannedJob& job : plan_.jobs) searches_.planned_ids.insert(job.id);
+  for (const PlannedJob& job : plan_.step_groups) {
     SearchGroup g;
     g.job = &job;
-    g.settings = &*part_of(job).step_search;
+    g.settings = &*plan_.part_of(job).step_search;
     g.with_chain = !job.chain_reference.empty();
-    g.info = step_group(job);
-    if (step_rows_done_.count(step_row_key(g.info, *g.settings))) {
+    g.info = step_group(plan_, job);
+    if (searches_.rows_done.count(step_row_key(g.info, *g.settings))) {
       progress_->estimate().expect(g.info.group_id, {}, 0);  // recorded before (--resume): nothing to come
       continue;
     }
-    searches_.push_back(std::move(g));
+    searches_.groups.push_back(std::move(g));
   }
 }
 
 // The first group, in planned order, whose next probe can start: its reference has ended and its previous probe
 // too. A group whose search needs no more probes writes its row to steps.csv here.
 SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
-  awaited_by_searches_.clear();
-  for (SearchGroup& g : searches_) {
+  searches_.awaited.clear();
+  for (SearchGroup& g : searches_.groups) {
     if (g.finished || g.running) continue;
     if (g.next_probe) return &g;
     if (!references_ended(*g.job)) continue;
@@ -48,38 +48,38 @@ SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
         continue;
       }
       const std::string& reference_id = g.with_chain ? g.job->chain_reference : g.job->beam_reference;
-      const auto found = recorded_lines_.find(reference_id);
+      const auto found = searches_.recorded_lines.find(reference_id);
       const ReferenceFacts facts =
-          found != recorded_lines_.end() ? reference_from_json(found->second) : ReferenceFacts{};
+          found != searches_.recorded_lines.end() ? reference_from_json(found->second) : ReferenceFacts{};
       g.search = std::make_unique<StepSearch>(*g.settings, facts, g.info.accuracy_reference);
     }
     std::optional<int> next;
     PlannedJob probe;
     while ((next = g.search->next_probe())) {
-      probe = make_job(g.job->scenario, JobKind::engine, g.job->spec.engine, g.job->spec.settings.law,
+      probe = make_job(plan_, g.job->scenario, JobKind::engine, g.job->spec.engine, g.job->spec.settings.law,
                        g.search->grid()[*next], g.job->spec.settings.options);
       probe.beam_reference = g.job->beam_reference;
       probe.chain_reference = g.job->chain_reference;
       probe.chain_links = g.job->chain_links;
       probe.spec.warnings = g.job->spec.warnings;
       probe.step_probe = true;
-      const auto found = recorded_lines_.find(probe.id);
-      if (found == recorded_lines_.end()) break;
+      const auto found = searches_.recorded_lines.find(probe.id);
+      if (found == searches_.recorded_lines.end()) break;
       // recorded before (--resume), or the run of a job the plan holds (a walk's ladder crosses the steps a
       // suite part runs): not run again
       g.search->add(*next, probe_from_json(found->second, g.with_chain));
-      if (!planned_ids_.count(probe.id)) ++outcome_.jobs_skipped;
+      if (!searches_.planned_ids.count(probe.id)) ++outcome_.jobs_skipped;
     }
     if (next && unfinished_.count(probe.id)) {  // a job of the plan is this probe: its record, once it ends
-      awaited_by_searches_.insert(probe.id);    // (next_cost starts it before other jobs)
+      searches_.awaited.insert(probe.id);       // (next_cost starts it before other jobs)
       continue;
     }
     if (!next) {
       append_step_row(settings_.out, StepRow{g.info, *g.settings, g.search.get()});
       g.finished = true;
       ++outcome_.step_searches;
-      ++finished_searches_;
-      finished_search_probes_ += g.search->probes();
+      ++searches_.finished;
+      searches_.finished_probes += g.search->probes();
       progress_->estimate().expect(g.info.group_id, {}, 0);
       continue;
     }
@@ -88,12 +88,12 @@ SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
     // unprobed steps costs (their steps differ from this probe's: what share of this step's runs ended early
     // says nothing of them).
     const int measured_left =
-        finished_searches_ > 0
-            ? (finished_search_probes_ + finished_searches_ - 1) / finished_searches_ - g.search->probes()
+        searches_.finished > 0
+            ? (searches_.finished_probes + searches_.finished - 1) / searches_.finished - g.search->probes()
             : 0;
     const int probes_left = std::max(g.search->probes_left_estimate(), measured_left);
-    JobWork later = work_of(probe);
-    later.units = scenarios_[probe.scenario].duration_s * g.search->mean_unprobed_steps_per_second();
+    JobWork later = work_of(plan_, probe);
+    later.units = plan_.scenarios[probe.scenario].duration_s * g.search->mean_unprobed_steps_per_second();
     later.stop_key = "expected probes";
     progress_->estimate().expect(g.info.group_id, later, probes_left - 1);  // this one is planned when it starts
     g.probe_index = *next;
@@ -104,13 +104,13 @@ SuiteRunner::SearchGroup* SuiteRunner::ready_search() {
 }
 
 void SuiteRunner::probe_ended(const PlannedJob& probe, const std::string& json) {
-  SearchGroup& g = searches_[search_of_probe_.at(probe.id)];
+  SearchGroup& g = searches_.groups[searches_.group_of_probe.at(probe.id)];
   g.running = false;
   if (json.empty()) {  // stopped by an interruption or from outside: the search waits for --resume
     g.finished = true;
     return;
   }
-  recorded_lines_[probe.id] = json;
+  searches_.recorded_lines[probe.id] = json;
   g.search->add(g.probe_index, probe_from_json(json, g.with_chain));
 }
 

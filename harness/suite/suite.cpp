@@ -60,12 +60,11 @@ void SuiteRunner::begin() {
     throw std::runtime_error(
         settings_.out +
         " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
-  plan();
   std::string suite;  // a shard's suite: its whole plan and its settings, equal in every shard of one suite
   if (settings_.shard) {
     std::vector<std::string> whole = planned_job_ids();
     for (std::string& key : planned_step_keys()) whole.push_back(std::move(key));
-    for (std::size_t part = 0; part < parts_.size(); ++part) {
+    for (std::size_t part = 0; part < plan_.parts.size(); ++part) {
       nlohmann::ordered_json settings = settings_record(part);
       settings.erase("scenario_files");  // the shards' machines may name the files differently
       whole.push_back(settings.dump());
@@ -73,24 +72,24 @@ void SuiteRunner::begin() {
     suite = plan_digest(whole);
     keep_only_this_shard();
   }
-  for (std::size_t part = 0; part < parts_.size(); ++part) check_and_record_settings(part);
+  for (std::size_t part = 0; part < plan_.parts.size(); ++part) check_and_record_settings(part);
   if (settings_.shard) record_plan(suite);
-  for (const PlannedJob& job : jobs_)
+  for (const PlannedJob& job : plan_.jobs)
     if (!job.same_run_as.empty()) scored_from_.emplace(job.same_run_as, &job);
   int unrecorded_unrunnable = 0;
-  for (const RunRecord& r : unrunnable_) unrecorded_unrunnable += recorded_.count(r.job_id) ? 0 : 1;
+  for (const RunRecord& r : plan_.unrunnable) unrecorded_unrunnable += recorded_.count(r.job_id) ? 0 : 1;
   int to_run = unrecorded_unrunnable;
-  for (const auto& job : jobs_) to_run += recorded_.count(job.id) ? 0 : 1;
-  outcome_.jobs_skipped = static_cast<int>(jobs_.size() + unrunnable_.size()) - to_run;
+  for (const auto& job : plan_.jobs) to_run += recorded_.count(job.id) ? 0 : 1;
+  outcome_.jobs_skipped = static_cast<int>(plan_.jobs.size() + plan_.unrunnable.size()) - to_run;
   progress_ = std::make_unique<Progress>(to_run);
-  for (const auto& job : jobs_)
-    if (!recorded_.count(job.id)) progress_->estimate().plan(job.id, work_of(job));
-  if (!step_groups_.empty()) expect_whole_searches();
+  for (const auto& job : plan_.jobs)
+    if (!recorded_.count(job.id)) progress_->estimate().plan(job.id, work_of(plan_, job));
+  if (!plan_.step_groups.empty()) expect_whole_searches();
   describe_plan(to_run);
-  outcome_.jobs_total = static_cast<int>(jobs_.size() + unrunnable_.size());
-  for (const RunRecord& r : unrunnable_)
+  outcome_.jobs_total = static_cast<int>(plan_.jobs.size() + plan_.unrunnable.size());
+  for (const RunRecord& r : plan_.unrunnable)
     if (!recorded_.count(r.job_id)) finish(r);  // recorded once: a --resume does not add it again
-  for (const PlannedJob& job : jobs_) {
+  for (const PlannedJob& job : plan_.jobs) {
     if (job.same_run_as.empty() && (!recorded_.count(job.id) || !unrecorded_scored_from(job).empty())) {
       pending_.push_back(&job);
       unfinished_.insert(job.id);
@@ -126,17 +125,17 @@ std::optional<double> SuiteRunner::next_cost() {
   const auto reference =
       std::find_if(ready.begin(), ready.end(), [](const PlannedJob* job) { return job->kind != JobKind::engine; });
   next_ = reference != ready.end() ? *reference : nullptr;
-  next_search_ = next_ ? nullptr : ready_search();
-  if (next_ || next_search_) return kUnknownCost;
+  searches_.next = next_ ? nullptr : ready_search();
+  if (next_ || searches_.next) return kUnknownCost;
   const auto awaited = std::find_if(ready.begin(), ready.end(),
-                                    [this](const PlannedJob* job) { return awaited_by_searches_.count(job->id) > 0; });
+                                    [this](const PlannedJob* job) { return searches_.awaited.count(job->id) > 0; });
   if (awaited != ready.end()) {
     next_ = *awaited;
     return kUnknownCost;
   }
   if (ready.empty()) return std::nullopt;
   std::vector<JobWork> work;
-  for (const PlannedJob* job : ready) work.push_back(work_of(*job));
+  for (const PlannedJob* job : ready) work.push_back(work_of(plan_, *job));
   const std::size_t costliest = next_to_start(progress_->estimate(), work);
   next_ = ready[costliest];
   const double cost = progress_->estimate().cost_s(work[costliest]);
@@ -148,18 +147,18 @@ std::string SuiteRunner::start_next(ProcessPool& pool) {
   if (next_) {
     pending_.erase(std::find(pending_.begin(), pending_.end(), next_));
   } else {  // a step search's probe
-    SearchGroup& g = *next_search_;
-    probe_jobs_.push_back(*g.next_probe);
+    SearchGroup& g = *searches_.next;
+    searches_.probe_jobs.push_back(*g.next_probe);
     g.next_probe.reset();
     g.running = true;
-    job = &probe_jobs_.back();
-    search_of_probe_[job->id] = static_cast<std::size_t>(&g - searches_.data());
+    job = &searches_.probe_jobs.back();
+    searches_.group_of_probe[job->id] = static_cast<std::size_t>(&g - searches_.groups.data());
     unfinished_.insert(job->id);
     progress_->add_to_total(1);
-    progress_->estimate().plan(job->id, work_of(*job));
+    progress_->estimate().plan(job->id, work_of(plan_, *job));
   }
   next_ = nullptr;
-  next_search_ = nullptr;
+  searches_.next = nullptr;
   const std::string unit = start(*job, pool);
   if (unit.empty()) {  // recorded from the reference cache
     unfinished_.erase(job->id);
@@ -174,7 +173,8 @@ void SuiteRunner::ended(const ProcessEnd& end) {
   running_.erase(end.unit);
   const std::string json = collect(job, end);
   unfinished_.erase(job.id);
-  if (!json.empty() && !step_groups_.empty()) recorded_lines_[job.id] = json;  // a search's reference or probe
+  if (!json.empty() && !plan_.step_groups.empty())
+    searches_.recorded_lines[job.id] = json;  // a search's reference or probe
   if (job.step_probe) probe_ended(job, json);
 }
 
@@ -195,7 +195,7 @@ namespace ib {
 SuiteOutcome run_suite(const SuiteSettings& settings) { return run_suites({settings}); }
 
 std::unique_ptr<SuiteSource> prepare_suites(const std::vector<SuiteSettings>& parts) {
-  auto runner = std::make_unique<suite_internal::SuiteRunner>(parts);
+  auto runner = std::make_unique<suite_internal::SuiteRunner>(suite_internal::plan_suite(parts));
   runner->begin();
   return runner;
 }

@@ -40,7 +40,7 @@ const ReferenceData* SuiteRunner::reference(const std::string& id, const Planned
     std::unique_ptr<ReferenceData> data;
     try {
       data = std::make_unique<ReferenceData>(
-          load_reference(settings_.out + "/runs/" + id, scenarios_[job.scenario], part_of(job).measurement));
+          load_reference(settings_.out + "/runs/" + id, plan_.scenarios[job.scenario], plan_.part_of(job).measurement));
     } catch (const std::exception&) {
       data = nullptr;  // the reference failed: the job is recorded without errors against it
     }
@@ -52,11 +52,11 @@ const ReferenceData* SuiteRunner::reference(const std::string& id, const Planned
 std::string SuiteRunner::start(const PlannedJob& job, ProcessPool& pool) {
   const std::string folder = folder_of(job);
   clear_run_folder(folder);  // a previous, unfinished attempt's files; the runs below its id are others'
-  const Scenario& scenario = scenarios_[job.scenario];
+  const Scenario& scenario = plan_.scenarios[job.scenario];
   if (cacheable(job) && restore_cached_reference(settings_.reference_cache, cache_key_of(job), folder)) {
     progress_->estimate().start(job.id, progress_->now_s());
     const std::string json = append_row_of(job);  // as if its process had just ended
-    if (!step_groups_.empty()) recorded_lines_[job.id] = json;
+    if (!plan_.step_groups.empty()) searches_.recorded_lines[job.id] = json;
     ++outcome_.references_from_cache;
     return "";
   }
@@ -82,20 +82,20 @@ std::string SuiteRunner::start(const PlannedJob& job, ProcessPool& pool) {
 // a step-search probe none unless asked (its summary and events say whether the step is stable and accurate);
 // any other run what --series says.
 nlohmann::ordered_json SuiteRunner::cache_key_of(const PlannedJob& job) const {
-  return reference_cache_key(scenarios_[job.scenario], job.spec, measurement_of(job));
+  return reference_cache_key(plan_.scenarios[job.scenario], job.spec, measurement_of(job));
 }
 
 Measurement SuiteRunner::measurement_of(const PlannedJob& job) const {
-  Measurement m = part_of(job).measurement;
+  Measurement m = plan_.part_of(job).measurement;
   if (job.kind != JobKind::engine) {
-    if (compared_references_.count(job.id)) {
+    if (plan_.compared_references.count(job.id)) {
       if (m.series == SeriesOutput::none) m.series = SeriesOutput::window;
     } else if (job.spec.start.index > 0) {
       m.series = SeriesOutput::none;
     }
     m.series_rate_hz = 0;  // every sample: the runs compared with it are scored against it
   }
-  if (job.step_probe && !part_of(job).keep_probe_series) m.series = SeriesOutput::none;
+  if (job.step_probe && !plan_.part_of(job).keep_probe_series) m.series = SeriesOutput::none;
   return m;
 }
 
@@ -194,7 +194,7 @@ std::string SuiteRunner::collect(const PlannedJob& job, const ProcessEnd& end) {
                  job.id.c_str(), WTERMSIG(status), strsignal(WTERMSIG(status)));
     return "";
   }
-  const Scenario& s = scenarios_[job.scenario];
+  const Scenario& s = plan_.scenarios[job.scenario];
   RunRecord record =
       unrunnable(job.id, s.name, s.source_path, job.spec.engine, to_string(job.spec.settings.law),
                  describe_exit(status, settings_.time_limit_s, timed_out, last_line(folder + "/log.txt")));

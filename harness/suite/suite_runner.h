@@ -1,7 +1,8 @@
-// The suite runner, internal to the harness: its state (the plan, the searches, what runs) in one class,
-// a source of units for the one runner (harness/jobs/unit_source.h), whose stages live in their own files:
+// The suite runner, internal to the harness: it takes a plan (suite_plan.h: made before it, plain data) and
+// holds what running it changes (the searches, what runs, what is recorded), a source of units for the one
+// runner (harness/jobs/unit_source.h), whose stages live in their own files:
 //   suite.cpp               run_suites, and what is ready to run next (a job once its references have ended)
-//   suite_plan.cpp          the job matrix and the plan's description
+//   suite_progress.cpp      the plan described before it starts, each job's work for the remaining time
 //   suite_shard.cpp         --shard K/N: the share this shard keeps, its plan recorded for merge
 //   suite_jobs.cpp          a job started in the pool (harness/jobs/process_pool.h), its process, its record
 //   step_search_driver.cpp  the step searches' probes, ready as their brackets ask
@@ -29,31 +30,11 @@
 #include "harness/records/folder_lock.h"
 #include "harness/suite/step_search.h"
 #include "harness/suite/suite.h"
+#include "harness/suite/suite_plan.h"
 
 namespace ib::suite_internal {
 
 using Clock = std::chrono::steady_clock;
-
-enum class JobKind { beam_reference, chain_reference, engine };
-
-struct PlannedJob {
-  std::string id;
-  JobKind kind = JobKind::engine;
-  std::size_t scenario = 0;  // index into the loaded scenarios
-  JobSpec spec;
-  std::string beam_reference;  // job ids of the references this job is compared with ("" if none)
-  std::string chain_reference;
-  int chain_links = 0;
-  bool step_probe = false;  // a probe of a step search (its series is kept only on request)
-  // The job whose run this one scores against its own law's references (native contact ignores the
-  // law): it is recorded by that job's process, never run itself. "" for a job that runs.
-  std::string same_run_as;
-};
-
-// A job that cannot run at all (a malformed scenario, a law the scenario has no parameters for): it
-// is recorded as failed with the reason, and the suite goes on.
-RunRecord unrunnable(const std::string& id, const std::string& scenario, const std::string& file,
-                     const std::string& engine, const std::string& law, const std::string& reason);
 
 // A job scored from another's run, with the references of its own law (loaded before the fork).
 struct ScoredFrom {
@@ -62,19 +43,6 @@ struct ScoredFrom {
   const ReferenceData* chain;
 };
 
-// The (options, time step [s]; 0: the engine's default) an engine runs for one law in a suite part: the part's
-// contact paths x time steps (a step search: one each, its steps searched), or, with `recommended`, the
-// engine's authors' configuration for the law (its descriptor's), none for an engine without one.
-// suite_configurations.cpp.
-using EngineConfiguration = std::pair<std::map<std::string, std::string>, double>;
-std::vector<EngineConfiguration> engine_configurations(const SuiteSettings& part, const SimulatorCatalog& catalog,
-                                                       const std::string& engine, ContactLaw law,
-                                                       const std::map<std::string, std::string>& engine_options);
-
-// The step search judges "within tolerance" with the verdicts' own tolerances: one record.
-SuiteSettings with_one_tolerance_record(SuiteSettings settings);
-std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSettings>& parts);
-
 // The suite's parts (run_suites): one plan, a source of units for the one runner (unit_source.h). What
 // every part shares (the folder, the workers, the time limit, resume, shards) is the first part's; what
 // decides a job's run (its scenario as cut, its measurement, its step search) is its own part's. A job is
@@ -82,14 +50,12 @@ std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSett
 // next probe when its previous one has ended.
 class SuiteRunner : public SuiteSource {
  public:
-  explicit SuiteRunner(const std::vector<SuiteSettings>& parts) : parts_(with_one_tolerance_record(parts)) {}
+  explicit SuiteRunner(SuitePlan plan) : plan_(std::move(plan)) {}
   SuiteRunner(const SuiteRunner&) = delete;
   SuiteRunner& operator=(const SuiteRunner&) = delete;
 
-  // Checks and records the settings, plans, records what cannot run (suite.cpp).
+  // Checks and records the settings, records what cannot run (suite.cpp).
   void begin();
-  // The plan alone, as plain data (plan_suites): nothing is written, nothing runs.
-  std::vector<PlannedUnit> planned_units();
   std::optional<double> next_cost() override;
   std::string start_next(ProcessPool& pool) override;
   void ended(const ProcessEnd& end) override;
@@ -105,6 +71,18 @@ class SuiteRunner : public SuiteSource {
     bool with_chain = false, running = false, finished = false;
     int probe_index = -1;
     std::optional<PlannedJob> next_probe;  // its next probe, once chosen and not yet started
+  };
+  // The step searches as they go (step_search_driver.cpp).
+  struct StepSearches {
+    std::vector<SearchGroup> groups;
+    std::deque<PlannedJob> probe_jobs;                  // their probes (a deque keeps their addresses)
+    std::map<std::string, std::size_t> group_of_probe;  // a probe's job id -> its group
+    SearchGroup* next = nullptr;                        // the group whose probe start_next starts
+    std::map<std::string, std::string> recorded_lines;  // references and probes, for the searches
+    std::set<std::string> planned_ids;                  // the plan's job ids (a probe may be one)
+    std::set<std::string> awaited;                      // planned jobs a walk waits for as its next probe
+    std::set<std::string> rows_done;                    // --resume: the searches recorded before
+    int finished = 0, finished_probes = 0;              // how many probes a search takes, measured here
   };
   void begin_step_searches();
   // The group whose next probe is ready (choosing it, or ending the group's search when it needs none).
@@ -130,11 +108,6 @@ class SuiteRunner : public SuiteSource {
   // suite: the digest of the whole suite's plan.
   void record_plan(const std::string& suite) const;
 
-  // The row a step-search group writes to steps.csv (its probes' job ids are the group's id with /dt=...).
-  StepGroup step_group(const PlannedJob& job) const;
-
-  void plan();
-
   // DIR/suite.jsonl (suite_settings.cpp): what decides this suite's results, and its job ids.
   nlohmann::ordered_json settings_record(std::size_t part) const;
   // Refuses (std::invalid_argument) a --resume whose settings equal none of the folder's suites, naming
@@ -143,31 +116,13 @@ class SuiteRunner : public SuiteSource {
   // refuses a job it shares with an earlier part under other result-deciding settings.
   void check_and_record_settings(std::size_t part);
 
-  // The part a job belongs to: that of its scenario, as loaded and cut for that part.
-  const SuiteSettings& part_of(const PlannedJob& job) const { return parts_[scenario_part_[job.scenario]]; }
-  void plan_part(std::size_t part, std::set<std::string>& planned);
-
-  PlannedJob make_job(std::size_t scenario, JobKind kind, const std::string& engine, ContactLaw law, double dt,
-                      const std::map<std::string, std::string>& options, int start = 0) const;
-  // The reference on the `links`-link chain (damped as an engine's option chain_damping says; "": the
-  // default), compared with the beam reference `beam` of the same scenario, law and start.
-  PlannedJob chain_reference_job(std::size_t scenario, ContactLaw law, int start, int links, const SuiteSettings& part,
-                                 const PlannedJob& beam, const std::vector<std::string>& warnings,
-                                 const std::string& chain_damping = "") const;
-
   // Before a step search starts (its references run first), its probes to come: about a bisection of
   // the whole grid, each costing what a probe at the grid's steps costs on average. The search itself
   // replaces this as it goes (run_step_searches).
   void expect_whole_searches();
 
-  // A job's work for the remaining-time estimate: its steps (an engine at a given step), else its
-  // simulated seconds; jobs of one engine and options cost about the same per unit.
-  JobWork work_of(const PlannedJob& job) const;
-
   // What the suite runs, in one line each, before it starts.
   void describe_plan(int to_run) const;
-
-  void add(const PlannedJob& job, std::set<std::string>& planned);
 
   // The reference a job is compared with, read from its folder once and kept; null if it did not finish.
   const ReferenceData* reference(const std::string& id, const PlannedJob& job);  // read as job's part measures
@@ -228,19 +183,8 @@ class SuiteRunner : public SuiteSource {
 
   void count_and_show(const std::string& id, Verdict verdict, double units_done = -1, double compute_s = -1);
 
-  const std::vector<SuiteSettings> parts_;  // copies: the tolerance record is set in them (with_one_tolerance_record)
-  const SuiteSettings& settings_ = parts_.front();  // what the parts share
-  std::vector<Scenario> scenarios_;
-  std::vector<std::size_t> scenario_part_;            // the part each scenario was loaded (and cut) for
-  std::vector<std::vector<std::string>> part_jobs_;   // each part's job ids, also those an earlier part planned
-  std::vector<std::vector<std::string>> part_files_;  // each part's scenario files, readable or not
-  std::vector<PlannedJob> jobs_;
-  std::vector<PlannedJob> step_groups_;  // --find-steps: one job (dt = 0) per group, not run itself
-  // The references some run of the whole plan is compared with: a reference's series is kept only then (an
-  // ensemble's reference starts beyond its engines' measure the references' spread by their metrics alone).
-  std::set<std::string> compared_references_;
-  std::deque<PlannedJob> probe_jobs_;  // the searches' probes (a deque keeps their addresses)
-  std::vector<RunRecord> unrunnable_;
+  SuitePlan plan_;  // what runs: made before the runner (plan_suite); --shard keeps its share of it
+  const SuiteSettings& settings_ = plan_.shared();  // what the parts share
   std::set<std::string> recorded_;
   std::set<std::string>
       stopped_;  // jobs stopped from outside: neither they nor the jobs compared with them are recorded
@@ -250,14 +194,7 @@ class SuiteRunner : public SuiteSource {
   std::set<std::string> unfinished_;                  // jobs pending or running: those compared with them wait
   std::map<std::string, const PlannedJob*> running_;  // by unit id
   const PlannedJob* next_ = nullptr;                  // what next_cost chose and start_next starts
-  SearchGroup* next_search_ = nullptr;
-  std::vector<SearchGroup> searches_;
-  std::map<std::string, std::size_t> search_of_probe_;
-  std::map<std::string, std::string> recorded_lines_;       // references and probes, for the searches
-  std::set<std::string> planned_ids_;                       // the plan's job ids, for the searches (a probe may be one)
-  std::set<std::string> awaited_by_searches_;               // planned jobs a walk waits for as its next probe
-  std::set<std::string> step_rows_done_;                    // --resume: the searches recorded before
-  int finished_searches_ = 0, finished_search_probes_ = 0;  // how many probes a search takes, measured here
+  StepSearches searches_;
   std::unique_ptr<Progress> progress_;
   std::unique_ptr<FolderLock> lock_;  // the output folder's, held while the suite writes into it
   SuiteOutcome outcome_;

@@ -101,13 +101,14 @@ std::vector<SuitePart> read_parts(const std::string& folder) {
 }  // namespace
 
 nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
-  const SuiteSettings& settings = parts_[part];
+  const SuiteSettings& settings = plan_.parts[part];
   Json s;
   Json files = Json::object();
-  for (std::size_t i = 0; i < scenarios_.size(); ++i)
-    if (scenario_part_[i] == part) files[scenarios_[i].source_path] = file_digest(scenarios_[i].source_path);
+  for (std::size_t i = 0; i < plan_.scenarios.size(); ++i)
+    if (plan_.scenario_part[i] == part)
+      files[plan_.scenarios[i].source_path] = file_digest(plan_.scenarios[i].source_path);
   // a file that cannot be read is "unreadable" whatever it holds: a --resume after fixing it runs it
-  for (const std::string& file : part_files_[part])
+  for (const std::string& file : plan_.part_files[part])
     if (!files.contains(file)) files[file] = "unreadable";
   s["scenario_files"] = files;
   record_configurations(settings, s);
@@ -162,95 +163,118 @@ std::string line_of(const Json& settings, const std::vector<std::string>& jobs, 
   return line.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
-}  // namespace
-
-void SuiteRunner::check_and_record_settings(std::size_t this_part) {
-  const Json current = settings_record(this_part);
-  std::vector<SuitePart> parts = read_parts(settings_.out);
-  // this part's jobs in planned order (a shard's: those it kept), also those an earlier part plans
-  const std::set<std::string> mine(part_jobs_[this_part].begin(), part_jobs_[this_part].end());
-  std::vector<std::string> planned;
-  for (const std::string& id : planned_job_ids())
-    if (mine.count(id)) planned.push_back(id);
-  // A job an earlier part of this run planned runs once, under that part's settings: they must decide its
-  // result as this part's would.
-  for (std::size_t earlier = 0; earlier < this_part; ++earlier) {
-    const std::set<std::string> theirs(part_jobs_[earlier].begin(), part_jobs_[earlier].end());
+// A job an earlier part of this run planned runs once, under that part's settings: they must decide its
+// result as this part's would. earlier: the earlier parts' settings records and job ids.
+void refuse_a_job_planned_under_other_settings(const std::vector<std::pair<Json, std::vector<std::string>>>& earlier,
+                                               const Json& current, const std::vector<std::string>& planned) {
+  for (const auto& [settings, jobs] : earlier) {
+    const std::set<std::string> theirs(jobs.begin(), jobs.end());
     for (const std::string& id : planned) {
       if (!theirs.count(id)) continue;
-      std::string keys = differing_keys(settings_record(earlier), current, kMatrixKeys);
-      if (keys.empty()) keys = differing_ensemble_step(settings_record(earlier), current);
+      std::string keys = differing_keys(settings, current, kMatrixKeys);
+      if (keys.empty()) keys = differing_ensemble_step(settings, current);
       if (!keys.empty())
         throw std::invalid_argument("job " + id + " is planned by two parts with other settings (" + keys +
                                     " differ): give them other scenarios, laws or steps, or the same settings");
       break;
     }
   }
-  for (const SuitePart& part : parts)
-    if (part.settings == current) return;  // the same suite: --resume continues it
+}
+
+// A suite of the folder whose scenario file was fixed since (same_but_fixed): the rows saying it could not be
+// read go (unless another suite of the folder plans them) and this suite's line replaces the old one. Returns
+// whether there was one; recorded loses the dropped rows.
+bool replace_a_fixed_suite(const std::string& folder, std::vector<SuitePart>& parts, const Json& current,
+                           const std::vector<std::string>& planned, const std::string& command,
+                           std::set<std::string>& recorded) {
   for (SuitePart& part : parts) {
     if (!same_but_fixed(part.settings, current)) continue;
-    // A scenario file fixed since: the rows saying it could not be read go (unless another suite of the
-    // folder plans them), and this suite's line replaces the old one.
     std::set<std::string> stale, kept(planned.begin(), planned.end());
     for (const SuitePart& other : parts)
       if (&other != &part) kept.insert(other.jobs.begin(), other.jobs.end());
     for (const std::string& id : part.jobs)
-      if (!kept.count(id) && recorded_.count(id)) stale.insert(id);
+      if (!kept.count(id) && recorded.count(id)) stale.insert(id);
     if (!stale.empty()) {
-      drop_runs(settings_.out, stale);
+      drop_runs(folder, stale);
       for (const std::string& id : stale) {
-        recorded_.erase(id);
+        recorded.erase(id);
         std::fprintf(stderr, "suite: %s dropped: its scenario file can be read now\n", id.c_str());
       }
     }
     part.settings = current;
     part.jobs = std::set<std::string>(planned.begin(), planned.end());
-    part.command = settings_.resume_command;
+    part.command = command;
     std::string text;
     for (const SuitePart& p : parts)
       text += line_of(p.settings, std::vector<std::string>(p.jobs.begin(), p.jobs.end()), p.command);
-    replace_text_file(settings_.out + kSettingsFile, text);
-    return;
+    replace_text_file(folder + kSettingsFile, text);
+    return true;
   }
-  if (!parts.empty() && !settings_.extend && this_part == 0) {
-    // name the keys that differ from the suite closest to this one
-    std::string keys, command;
-    for (const SuitePart& part : parts) {
-      const std::string k = differing_keys(part.settings, current);
-      if (keys.empty() || std::count(k.begin(), k.end(), ',') < std::count(keys.begin(), keys.end(), ','))
-        keys = k, command = part.command;
-    }
-    throw std::invalid_argument(
-        settings_.out + " holds a suite with other settings (" + keys + " differ" +
-        (command.empty() ? "" : " from: " + command) + ", see " + settings_.out + kSettingsFile +
-        "): --resume continues the same suite only; add --extend to add this suite to the folder, "
-        "or choose another --out");
+  return false;
+}
+
+// A suite of other settings in the folder without --extend: refused, naming the keys that differ from the
+// folder's suite closest to this one.
+[[noreturn]] void refuse_another_suite(const std::string& folder, const std::vector<SuitePart>& parts,
+                                       const Json& current) {
+  std::string keys, command;
+  for (const SuitePart& part : parts) {
+    const std::string k = differing_keys(part.settings, current);
+    if (keys.empty() || std::count(k.begin(), k.end(), ',') < std::count(keys.begin(), keys.end(), ','))
+      keys = k, command = part.command;
   }
-  // --extend: a job this suite shares with the folder must have been recorded under the same
-  // result-deciding settings and from the same scenario file, or the folder would mix them.
-  std::map<std::string, std::size_t> scenario_of;
-  for (const PlannedJob& job : jobs_) scenario_of[job.id] = job.scenario;
+  throw std::invalid_argument(folder + " holds a suite with other settings (" + keys + " differ" +
+                              (command.empty() ? "" : " from: " + command) + ", see " + folder + kSettingsFile +
+                              "): --resume continues the same suite only; add --extend to add this suite to the "
+                              "folder, or choose another --out");
+}
+
+// --extend: a job this suite shares with the folder must have been recorded under the same result-deciding
+// settings and from the same scenario file (file_of: a planned job's scenario file), or the folder would mix them.
+void refuse_mixed_settings(const std::string& folder, const std::vector<SuitePart>& parts, const Json& current,
+                           const std::vector<std::string>& planned, const std::set<std::string>& recorded,
+                           const std::map<std::string, std::string>& file_of) {
   for (const std::string& id : planned) {
-    if (!recorded_.count(id)) continue;
+    if (!recorded.count(id)) continue;
     for (const SuitePart& part : parts) {
       if (!part.jobs.count(id)) continue;
       std::string keys = differing_keys(part.settings, current, kMatrixKeys);
       if (keys.empty()) keys = differing_ensemble_step(part.settings, current);
-      const auto s = scenario_of.find(id);
-      if (s != scenario_of.end()) {
-        const std::string& file = scenarios_[s->second].source_path;
+      if (const auto f = file_of.find(id); f != file_of.end()) {
         const Json& then = part.settings["scenario_files"];
-        if (then.contains(file) && then[file] != current["scenario_files"][file])
-          keys += (keys.empty() ? "" : ", ") + ("the scenario file " + file + " (changed since)");
+        if (then.contains(f->second) && then[f->second] != current["scenario_files"][f->second])
+          keys += (keys.empty() ? "" : ", ") + ("the scenario file " + f->second + " (changed since)");
       }
       if (!keys.empty())
-        throw std::invalid_argument(settings_.out + ": job " + id + " was recorded with other settings (" + keys +
+        throw std::invalid_argument(folder + ": job " + id + " was recorded with other settings (" + keys +
                                     (part.command.empty() ? "" : ", by: " + part.command) +
                                     "); --extend adds jobs, it does not mix settings: choose another --out");
       break;
     }
   }
+}
+
+}  // namespace
+
+void SuiteRunner::check_and_record_settings(std::size_t this_part) {
+  const Json current = settings_record(this_part);
+  std::vector<SuitePart> parts = read_parts(settings_.out);
+  // this part's jobs in planned order (a shard's: those it kept), also those an earlier part plans
+  const std::set<std::string> mine(plan_.part_jobs[this_part].begin(), plan_.part_jobs[this_part].end());
+  std::vector<std::string> planned;
+  for (const std::string& id : planned_job_ids())
+    if (mine.count(id)) planned.push_back(id);
+  std::vector<std::pair<Json, std::vector<std::string>>> earlier;
+  for (std::size_t part = 0; part < this_part; ++part)
+    earlier.emplace_back(settings_record(part), plan_.part_jobs[part]);
+  refuse_a_job_planned_under_other_settings(earlier, current, planned);
+  for (const SuitePart& part : parts)
+    if (part.settings == current) return;  // the same suite: --resume continues it
+  if (replace_a_fixed_suite(settings_.out, parts, current, planned, settings_.resume_command, recorded_)) return;
+  if (!parts.empty() && !settings_.extend && this_part == 0) refuse_another_suite(settings_.out, parts, current);
+  std::map<std::string, std::string> file_of;
+  for (const PlannedJob& job : plan_.jobs) file_of[job.id] = plan_.scenarios[job.scenario].source_path;
+  refuse_mixed_settings(settings_.out, parts, current, planned, recorded_, file_of);
   append_text_file(settings_.out + kSettingsFile, line_of(current, planned, settings_.resume_command));
 }
 

@@ -45,15 +45,15 @@ void SuiteRunner::check_same_shard() const {
 // What the suite records, in planned order: its job ids, and the keys of its step searches' rows.
 std::vector<std::string> SuiteRunner::planned_job_ids() const {
   std::vector<std::string> ids;
-  for (const RunRecord& r : unrunnable_) ids.push_back(r.job_id);
-  for (const PlannedJob& job : jobs_) ids.push_back(job.id);
+  for (const RunRecord& r : plan_.unrunnable) ids.push_back(r.job_id);
+  for (const PlannedJob& job : plan_.jobs) ids.push_back(job.id);
   return ids;
 }
 
 std::vector<std::string> SuiteRunner::planned_step_keys() const {
   std::vector<std::string> keys;
-  for (const PlannedJob& group : step_groups_)
-    keys.push_back(step_row_key(step_group(group), *part_of(group).step_search));
+  for (const PlannedJob& group : plan_.step_groups)
+    keys.push_back(step_row_key(step_group(plan_, group), *plan_.part_of(group).step_search));
   return keys;
 }
 
@@ -63,42 +63,42 @@ std::vector<std::string> SuiteRunner::planned_step_keys() const {
 void SuiteRunner::keep_only_this_shard() {
   const Shard& shard = *settings_.shard;
   const bool references_alone =
-      step_groups_.empty() &&
-      std::none_of(jobs_.begin(), jobs_.end(), [](const PlannedJob& j) { return j.kind == JobKind::engine; });
+      plan_.step_groups.empty() &&
+      std::none_of(plan_.jobs.begin(), plan_.jobs.end(), [](const PlannedJob& j) { return j.kind == JobKind::engine; });
   std::size_t unit = 0;
   std::vector<RunRecord> unrunnable;
-  for (RunRecord& r : unrunnable_)
+  for (RunRecord& r : plan_.unrunnable)
     if (in_shard(unit++, shard)) unrunnable.push_back(std::move(r));
-  unrunnable_ = std::move(unrunnable);
+  plan_.unrunnable = std::move(unrunnable);
   std::vector<PlannedJob> groups;
   std::set<std::string> references;  // those the kept units are compared with
   const auto keep_references_of = [&](const PlannedJob& job) {
     for (const std::string& id : {job.beam_reference, job.chain_reference})
       if (!id.empty()) references.insert(id);
   };
-  for (const PlannedJob& group : step_groups_)
+  for (const PlannedJob& group : plan_.step_groups)
     if (in_shard(unit++, shard)) {
       groups.push_back(group);
       keep_references_of(group);
     }
-  step_groups_ = std::move(groups);
+  plan_.step_groups = std::move(groups);
   std::set<std::string> kept;
-  for (const PlannedJob& job : jobs_)
+  for (const PlannedJob& job : plan_.jobs)
     if ((job.kind == JobKind::engine || references_alone) && job.same_run_as.empty() && in_shard(unit++, shard)) {
       kept.insert(job.id);
       keep_references_of(job);
     }
-  for (const PlannedJob& job : jobs_)  // a job scored from another's run goes with that run
+  for (const PlannedJob& job : plan_.jobs)  // a job scored from another's run goes with that run
     if (!job.same_run_as.empty() && kept.count(job.same_run_as)) {
       kept.insert(job.id);
       keep_references_of(job);
     }
-  for (const PlannedJob& job : jobs_)  // a chain reference is compared with its beam reference
+  for (const PlannedJob& job : plan_.jobs)  // a chain reference is compared with its beam reference
     if (references.count(job.id) && !job.beam_reference.empty()) references.insert(job.beam_reference);
   std::vector<PlannedJob> jobs;
-  for (const PlannedJob& job : jobs_)
+  for (const PlannedJob& job : plan_.jobs)
     if (kept.count(job.id) || references.count(job.id)) jobs.push_back(job);
-  jobs_ = std::move(jobs);
+  plan_.jobs = std::move(jobs);
 }
 
 // The shard's plan, for `impactbench merge` to tell a finished shard from one that stopped early.
