@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -142,28 +143,20 @@ std::string scenario_path(const std::string& study_file, const std::string& path
   return !error && !relative.empty() && *relative.begin() != ".." ? relative.string() : in_project.string();
 }
 
-StudyPart read_part(const Checker& checker, const toml::table& table, const toml::table* defaults, StudyPart::Kind kind,
-                    int index, const std::string& file, const std::vector<std::string>& engines) {
-  StudyPart part;
-  part.kind = kind;
-  part.file = file;
-  part.line = line_of(table);
-  const std::string dotted = std::string(kind_name(kind)) + " " + std::to_string(index + 1);
-  const std::vector<KeySpec> keys = keys_of(kind);
-  std::vector<std::string> names;
-  for (const KeySpec& k : keys) names.push_back(k.key);
-  checker.reject_unknown(ib::toml_schema::Section{&table, dotted, part.line}, names,
-                         "allowed keys in [[" + std::string(kind_name(kind)) + "]]: " + ib::toml_schema::join(names));
-  const PartReader reader(checker, table, dotted, defaults);
-  std::map<std::string, std::string> given;
-  for (const KeySpec& k : keys)
-    if (auto value = reader.text(k, part)) given[k.key] = *value;
-  const auto require = [&](const char* key, const char* meaning) {
-    if (!given.count(key))
-      checker.fail(part.line, dotted + "." + key, dotted + "." + key + ": missing required key; allowed: " + meaning);
-  };
-  part.name = given.count("name") ? given["name"] : std::string(kind_name(kind)) + " " + std::to_string(index + 1);
-  // Each number is checked as its command-line option is, as soon as it is read (cli/option_rules.h).
+// The keys a part gives, as its table (or [defaults]) holds them: key -> the command's option text.
+using GivenKeys = std::map<std::string, std::string>;
+
+void require_key(const Checker& checker, const GivenKeys& given, const StudyPart& part, const std::string& dotted,
+                 const char* key, const char* meaning) {
+  if (!given.count(key))
+    checker.fail(part.line, dotted + "." + key, dotted + "." + key + ": missing required key; allowed: " + meaning);
+}
+
+// The keys every kind of part has: the measurement, and the engines, laws, paths, steps and options that a
+// suite and a sweep share. Each number is checked as its command-line option is, as soon as it is read
+// (cli/option_rules.h).
+void read_shared_keys(const Checker& checker, GivenKeys& given, const std::string& dotted,
+                      const std::vector<std::string>& engines, StudyPart& part) {
   const std::pair<const char*, Shared> numbers[] = {{"rate_hz", Shared::rate},
                                                     {"sensor_rate_hz", Shared::sensor_rate},
                                                     {"time_limit_s", Shared::time_limit},
@@ -186,8 +179,7 @@ StudyPart read_part(const Checker& checker, const toml::table& table, const toml
   if (given.count("sensor_rate_hz")) m.sensor_rate_hz = std::stod(given["sensor_rate_hz"]);
   if (given.count("series")) m.series = given["series"];
   if (given.count("series_rate_hz")) m.series_rate_hz = std::stod(given["series_rate_hz"]);
-  // The keys every kind of part has, into the options suite and sweep share.
-  MatrixOptions& shared = kind == StudyPart::Kind::sweep ? static_cast<MatrixOptions&>(part.sweep) : part.suite;
+  MatrixOptions& shared = part.kind == StudyPart::Kind::sweep ? static_cast<MatrixOptions&>(part.sweep) : part.suite;
   if (!engine_list.empty()) shared.engines = engine_list;
   if (given.count("laws")) shared.laws = expand_all("laws", given["laws"], engines);
   if (given.count("paths")) shared.paths = expand_all("paths", given["paths"], engines);
@@ -195,32 +187,38 @@ StudyPart read_part(const Checker& checker, const toml::table& table, const toml
   if (given.count("options")) shared.options = part.key_items["options"];
   if (given.count("rate_hz")) shared.rate_hz = std::stod(given["rate_hz"]);
   if (given.count("time_limit_s")) shared.time_limit_s = std::stod(given["time_limit_s"]);
-  if (kind == StudyPart::Kind::sweep) {
-    require("name", "the sweep's folder below OUT/sweeps/ (a-z, 0-9, _ and -)");
-    require("scenario", "a scenario file with a motor");
-    if (part.name.empty() || part.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
-      checker.fail(part.key_lines["name"], dotted + ".name",
-                   dotted + ".name = \"" + part.name +
-                       "\": not allowed; allowed: 1 or more of a-z, 0-9, _ and - (the sweep's folder)");
-    SweepOptions& s = part.sweep;
-    m.series = given.count("series") ? given["series"] : "none";  // a sweep's tables are its results
-    s.scenario = scenario_path(file, given["scenario"]);
-    if (given.count("ratios")) s.ratios = given["ratios"];
-    if (given.count("starts")) s.start = given["starts"];
-    if (given.count("duration_s")) s.duration_s = std::stod(given["duration_s"]);
-    if (given.count("rest_duration_s")) s.rest_duration_s = std::stod(given["rest_duration_s"]);
-    if (given.count("window_s")) s.window_s = std::stod(given["window_s"]);
-    if (given.count("reference_ensemble_starts"))
-      s.reference_ensemble_starts = std::stoi(given["reference_ensemble_starts"]);
-    if (given.count("ensemble_step_m")) s.ensemble_step_m = std::stod(given["ensemble_step_m"]);
-    if (given.count("ensemble_ratios")) s.ensemble_ratios = given["ensemble_ratios"];
-    return part;
-  }
-  require("scenarios", "scenario files or folders");
+}
+
+// A [[sweep]]'s own keys: its folder's name, its scenario, its ratios, starts and lengths.
+void read_sweep_keys(const Checker& checker, GivenKeys& given, const std::string& dotted, StudyPart& part) {
+  require_key(checker, given, part, dotted, "name", "the sweep's folder below OUT/sweeps/ (a-z, 0-9, _ and -)");
+  require_key(checker, given, part, dotted, "scenario", "a scenario file with a motor");
+  if (part.name.empty() || part.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
+    checker.fail(part.key_lines["name"], dotted + ".name",
+                 dotted + ".name = \"" + part.name +
+                     "\": not allowed; allowed: 1 or more of a-z, 0-9, _ and - (the sweep's folder)");
+  SweepOptions& s = part.sweep;
+  part.measurement.series = given.count("series") ? given["series"] : "none";  // a sweep's tables are its results
+  s.scenario = scenario_path(part.file, given["scenario"]);
+  if (given.count("ratios")) s.ratios = given["ratios"];
+  if (given.count("starts")) s.start = given["starts"];
+  if (given.count("duration_s")) s.duration_s = std::stod(given["duration_s"]);
+  if (given.count("rest_duration_s")) s.rest_duration_s = std::stod(given["rest_duration_s"]);
+  if (given.count("window_s")) s.window_s = std::stod(given["window_s"]);
+  if (given.count("reference_ensemble_starts"))
+    s.reference_ensemble_starts = std::stoi(given["reference_ensemble_starts"]);
+  if (given.count("ensemble_step_m")) s.ensemble_step_m = std::stod(given["ensemble_step_m"]);
+  if (given.count("ensemble_ratios")) s.ensemble_ratios = given["ensemble_ratios"];
+}
+
+// A [[suite]]'s or [[search]]'s own keys: its scenarios, lengths and ensembles, and a search's grid.
+void read_suite_keys(const Checker& checker, GivenKeys& given, const std::string& dotted, StudyPart& part) {
+  require_key(checker, given, part, dotted, "scenarios", "scenario files or folders");
   SuiteOptions& s = part.suite;
+  MeasurementOptions& m = part.measurement;
   const std::vector<std::string> scenarios =
       part.key_items.count("scenarios") ? part.key_items["scenarios"] : std::vector<std::string>{given["scenarios"]};
-  for (const std::string& path : scenarios) s.inputs.push_back(scenario_path(file, path));
+  for (const std::string& path : scenarios) s.inputs.push_back(scenario_path(part.file, path));
   if (given.count("duration_s")) s.max_duration_s = std::stod(given["duration_s"]);
   if (given.count("window_s")) {
     m.window_s = std::stod(given["window_s"]);
@@ -232,13 +230,37 @@ StudyPart read_part(const Checker& checker, const toml::table& table, const toml
   if (given.count("ensemble_step_m")) s.ensemble_step_m = std::stod(given["ensemble_step_m"]);
   if (given.count("recommended")) s.recommended = given["recommended"] == "true";
   if (given.count("reference_chains")) s.reference_chains = given["reference_chains"];
-  if (kind == StudyPart::Kind::search) {
+  if (part.kind == StudyPart::Kind::search) {
     s.find_steps = true;
     if (given.count("steps_per_octave")) s.steps_per_octave = std::stoi(given["steps_per_octave"]);
     if (given.count("step_range_s")) s.step_range = given["step_range_s"];
     if (given.count("keep_series")) s.keep_series = given["keep_series"] == "true";
     if (given.count("walk")) s.step_walk = given["walk"] == "true";
   }
+}
+
+StudyPart read_part(const Checker& checker, const toml::table& table, const toml::table* defaults, StudyPart::Kind kind,
+                    int index, const std::string& file, const std::vector<std::string>& engines) {
+  StudyPart part;
+  part.kind = kind;
+  part.file = file;
+  part.line = line_of(table);
+  const std::string dotted = std::string(kind_name(kind)) + " " + std::to_string(index + 1);
+  const std::vector<KeySpec> keys = keys_of(kind);
+  std::vector<std::string> names;
+  for (const KeySpec& k : keys) names.push_back(k.key);
+  checker.reject_unknown(ib::toml_schema::Section{&table, dotted, part.line}, names,
+                         "allowed keys in [[" + std::string(kind_name(kind)) + "]]: " + ib::toml_schema::join(names));
+  const PartReader reader(checker, table, dotted, defaults);
+  GivenKeys given;
+  for (const KeySpec& k : keys)
+    if (auto value = reader.text(k, part)) given[k.key] = *value;
+  part.name = given.count("name") ? given["name"] : std::string(kind_name(kind)) + " " + std::to_string(index + 1);
+  read_shared_keys(checker, given, dotted, engines, part);
+  if (kind == StudyPart::Kind::sweep)
+    read_sweep_keys(checker, given, dotted, part);
+  else
+    read_suite_keys(checker, given, dotted, part);
   return part;
 }
 
