@@ -164,13 +164,17 @@ std::string line_of(const Json& settings, const std::vector<std::string>& jobs, 
 }
 
 // A job an earlier part of this run planned runs once, under that part's settings: they must decide its
-// result as this part's would. earlier: the earlier parts' settings records and job ids.
-void refuse_a_job_planned_under_other_settings(const std::vector<std::pair<Json, std::vector<std::string>>>& earlier,
-                                               const Json& current, const std::vector<std::string>& planned) {
-  for (const auto& [settings, jobs] : earlier) {
-    const std::set<std::string> theirs(jobs.begin(), jobs.end());
+// result as this part's would. part_jobs: each part's job ids; record_of(part): a part's settings record, made
+// only for an earlier part that shares a job (it reads and digests the part's scenario files).
+template <class RecordOf>
+void refuse_a_job_planned_under_other_settings(const std::vector<std::vector<std::string>>& part_jobs,
+                                               std::size_t this_part, const Json& current,
+                                               const std::vector<std::string>& planned, RecordOf&& record_of) {
+  for (std::size_t earlier = 0; earlier < this_part; ++earlier) {
+    const std::set<std::string> theirs(part_jobs[earlier].begin(), part_jobs[earlier].end());
     for (const std::string& id : planned) {
       if (!theirs.count(id)) continue;
+      const Json settings = record_of(earlier);
       std::string keys = differing_keys(settings, current, kMatrixKeys);
       if (keys.empty()) keys = differing_ensemble_step(settings, current);
       if (!keys.empty())
@@ -264,10 +268,8 @@ void SuiteRunner::check_and_record_settings(std::size_t this_part) {
   std::vector<std::string> planned;
   for (const std::string& id : planned_job_ids())
     if (mine.count(id)) planned.push_back(id);
-  std::vector<std::pair<Json, std::vector<std::string>>> earlier;
-  for (std::size_t part = 0; part < this_part; ++part)
-    earlier.emplace_back(settings_record(part), plan_.part_jobs[part]);
-  refuse_a_job_planned_under_other_settings(earlier, current, planned);
+  refuse_a_job_planned_under_other_settings(plan_.part_jobs, this_part, current, planned,
+                                            [this](std::size_t part) { return settings_record(part); });
   for (const SuitePart& part : parts)
     if (part.settings == current) return;  // the same suite: --resume continues it
   if (replace_a_fixed_suite(settings_.out, parts, current, planned, settings_.resume_command, recorded_)) return;
