@@ -125,6 +125,30 @@ TEST_F(SuitePlan, WhatCannotRunIsPlannedAsSuch) {
   EXPECT_TRUE(units.front().after.empty());
 }
 
+// --shard K/N is a function from the whole plan to a share of it: the shards' engine runs partition the whole
+// plan's, each shard keeps the references its runs wait for, and planning a shard writes nothing.
+TEST_F(SuitePlan, ShardsPartitionTheEngineRunsAndKeepTheirReferences) {
+  const auto whole = by_id(plan_suites({settings_}));
+  std::map<std::string, int> shards_of_run;
+  for (int k = 1; k <= 3; ++k) {
+    settings_.shard = Shard{k, 3};
+    const std::vector<PlannedUnit> units = plan_suites({settings_});
+    EXPECT_FALSE(fs::exists(settings_.out)) << "planning a shard writes nothing";
+    const auto shard = by_id(units);
+    for (const PlannedUnit& u : units) {
+      ASSERT_TRUE(whole.count(u.id)) << u.id << " is not in the whole plan";
+      if (u.kind == PlannedUnit::Kind::engine) ++shards_of_run[u.id];
+      for (const std::string& before : u.after)
+        EXPECT_TRUE(shard.count(before)) << "shard " << k << ": " << u.id << " waits for " << before << ", not kept";
+    }
+    EXPECT_GE(count(units, PlannedUnit::Kind::engine), 1) << "shard " << k << " of 8 runs";
+  }
+  const auto engine_runs = std::count_if(
+      whole.begin(), whole.end(), [](const auto& unit) { return unit.second.kind == PlannedUnit::Kind::engine; });
+  EXPECT_EQ(static_cast<long>(shards_of_run.size()), engine_runs) << "every engine run is in a shard";
+  for (const auto& [id, shards] : shards_of_run) EXPECT_EQ(shards, 1) << id << " in " << shards << " shards";
+}
+
 // An ensemble plans each start as a run of its own: start 0 is the single run (its id unchanged), start K
 // adds /start=K, and every engine start waits for the references of the same start; the references may run
 // more starts than the engines (their spread decides whether a case needs an ensemble).

@@ -60,20 +60,8 @@ void SuiteRunner::begin() {
     throw std::runtime_error(
         settings_.out +
         " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
-  std::string suite;  // a shard's suite: its whole plan and its settings, equal in every shard of one suite
-  if (settings_.shard) {
-    std::vector<std::string> whole = planned_job_ids();
-    for (std::string& key : planned_step_keys()) whole.push_back(std::move(key));
-    for (std::size_t part = 0; part < plan_.parts.size(); ++part) {
-      nlohmann::ordered_json settings = settings_record(part);
-      settings.erase("scenario_files");  // the shards' machines may name the files differently
-      whole.push_back(settings.dump());
-    }
-    suite = plan_digest(whole);
-    keep_only_this_shard();
-  }
   for (std::size_t part = 0; part < plan_.parts.size(); ++part) check_and_record_settings(part);
-  if (settings_.shard) record_plan(suite);
+  if (settings_.shard) record_plan();
   for (const PlannedJob& job : plan_.jobs)
     if (!job.same_run_as.empty()) scored_from_.emplace(job.same_run_as, &job);
   int unrecorded_unrunnable = 0;
@@ -195,7 +183,7 @@ namespace ib {
 SuiteOutcome run_suite(const SuiteSettings& settings) { return run_suites({settings}); }
 
 std::unique_ptr<SuiteSource> prepare_suites(const std::vector<SuiteSettings>& parts) {
-  auto runner = std::make_unique<suite_internal::SuiteRunner>(suite_internal::plan_suite(parts));
+  auto runner = std::make_unique<suite_internal::SuiteRunner>(suite_internal::plan_to_run(parts));
   runner->begin();
   return runner;
 }

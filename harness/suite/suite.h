@@ -84,7 +84,8 @@ SuiteOutcome run_suites(const std::vector<SuiteSettings>& parts);
 
 // A suite's plan as plain data, made without running anything: each unit of work with the units it waits for
 // (an engine's run after the references it is compared with, a chain reference after its beam reference),
-// in planned order. Throws std::invalid_argument as run_suites does for input it refuses.
+// in planned order; with a shard (MatrixSettings::shard), that shard's share. Throws std::invalid_argument as
+// run_suites does for input it refuses.
 struct PlannedUnit {
   enum class Kind { beam_reference, chain_reference, engine, step_search, unrunnable };
   std::string id;

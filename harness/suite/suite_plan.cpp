@@ -291,7 +291,7 @@ std::vector<PlannedUnit> planned_units(const SuitePlan& plan) {
 namespace ib {
 
 std::vector<PlannedUnit> plan_suites(const std::vector<SuiteSettings>& parts) {
-  return suite_internal::planned_units(suite_internal::plan_suite(parts));
+  return suite_internal::planned_units(suite_internal::plan_to_run(parts));
 }
 
 }  // namespace ib

@@ -11,8 +11,11 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "harness/jobs/progress.h"
 #include "harness/jobs/run_job.h"
+#include "harness/jobs/shard_plan.h"
 #include "harness/suite/step_search.h"
 #include "harness/suite/suite.h"
 #include "model/scenario.h"
@@ -68,6 +71,9 @@ struct SuitePlan {
   // ensemble's reference starts beyond its engines' measure the references' spread by their metrics alone).
   std::set<std::string> compared_references;
   std::vector<RunRecord> unrunnable;  // one record each, in planned order
+  // A shard's plan (shard_of): the digest of the whole suite's plan and settings, the same in every shard of it
+  // (shard.jsonl: merge tells shards of one suite from those of another); "" for a whole suite.
+  std::string whole_suite_digest;
 
   const SuiteSettings& shared() const { return parts.front(); }
   // The part a job belongs to: that of its scenario, as loaded and cut for that part.
@@ -94,5 +100,22 @@ JobWork work_of(const SuitePlan& plan, const PlannedJob& job);
 
 // The plan as units of work and what each waits for (plan_suites).
 std::vector<PlannedUnit> planned_units(const SuitePlan& plan);
+
+// What the suite records, in planned order: its job ids (the unrunnable first), and the keys of its step
+// searches' rows (suite_shard.cpp).
+std::vector<std::string> planned_job_ids(const SuitePlan& plan);
+std::vector<std::string> planned_step_keys(const SuitePlan& plan);
+
+// --shard K/N: the share of the whole plan one shard runs: every N-th unit of work in planned order (the
+// unrunnable jobs, then the step-search groups, then the engine jobs; the references when there is nothing
+// else), with the references those units are compared with; whole_suite_digest set (suite_shard.cpp).
+SuitePlan shard_of(SuitePlan whole, const Shard& shard);
+
+// The plan a suite runs: plan_suite's, then shard_of's share when the parts name a shard (suite_shard.cpp).
+SuitePlan plan_to_run(const std::vector<SuiteSettings>& parts);
+
+// A part's settings record (DIR/suite.jsonl, suite_settings.cpp): what decides its results, its scenario files
+// with their contents' digests.
+nlohmann::ordered_json settings_record(const SuitePlan& plan, std::size_t part);
 
 }  // namespace ib::suite_internal

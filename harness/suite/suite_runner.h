@@ -95,21 +95,9 @@ class SuiteRunner : public SuiteSource {
   // would leave it holding neither.
   void check_same_shard() const;
 
-  // What the suite records, in planned order: its job ids, and the keys of its step searches' rows.
-  std::vector<std::string> planned_job_ids() const;
-  std::vector<std::string> planned_step_keys() const;
+  // The shard's plan (shard_of), for `impactbench merge` to tell a finished shard from one that stopped early.
+  void record_plan() const;
 
-  // --shard K/N: keeps every N-th unit of work in planned order (the unrunnable jobs, then the engine
-  // jobs or step-search groups; the references when there is nothing else) and the references those
-  // units are compared with.
-  void keep_only_this_shard();
-
-  // The shard's plan, for `impactbench merge` to tell a finished shard from one that stopped early.
-  // suite: the digest of the whole suite's plan.
-  void record_plan(const std::string& suite) const;
-
-  // DIR/suite.jsonl (suite_settings.cpp): what decides this suite's results, and its job ids.
-  nlohmann::ordered_json settings_record(std::size_t part) const;
   // Refuses (std::invalid_argument) a --resume whose settings equal none of the folder's suites, naming
   // the keys that differ, unless --extend; with --extend, a shared job recorded under other settings.
   // Then records this suite's line unless it is there. A part after the first extends the folder, and
@@ -183,7 +171,7 @@ class SuiteRunner : public SuiteSource {
 
   void count_and_show(const std::string& id, Verdict verdict, double units_done = -1, double compute_s = -1);
 
-  SuitePlan plan_;  // what runs: made before the runner (plan_suite); --shard keeps its share of it
+  const SuitePlan plan_;  // what runs: made before the runner (plan_suite; a shard's share: shard_of)
   const SuiteSettings& settings_ = plan_.shared();  // what the parts share
   std::set<std::string> recorded_;
   std::set<std::string>

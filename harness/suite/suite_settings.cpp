@@ -100,15 +100,15 @@ std::vector<SuitePart> read_parts(const std::string& folder) {
 
 }  // namespace
 
-nlohmann::ordered_json SuiteRunner::settings_record(std::size_t part) const {
-  const SuiteSettings& settings = plan_.parts[part];
+nlohmann::ordered_json settings_record(const SuitePlan& plan, std::size_t part) {
+  const SuiteSettings& settings = plan.parts[part];
   Json s;
   Json files = Json::object();
-  for (std::size_t i = 0; i < plan_.scenarios.size(); ++i)
-    if (plan_.scenario_part[i] == part)
-      files[plan_.scenarios[i].source_path] = file_digest(plan_.scenarios[i].source_path);
+  for (std::size_t i = 0; i < plan.scenarios.size(); ++i)
+    if (plan.scenario_part[i] == part)
+      files[plan.scenarios[i].source_path] = file_digest(plan.scenarios[i].source_path);
   // a file that cannot be read is "unreadable" whatever it holds: a --resume after fixing it runs it
-  for (const std::string& file : plan_.part_files[part])
+  for (const std::string& file : plan.part_files[part])
     if (!files.contains(file)) files[file] = "unreadable";
   s["scenario_files"] = files;
   record_configurations(settings, s);
@@ -261,15 +261,15 @@ void refuse_mixed_settings(const std::string& folder, const std::vector<SuitePar
 }  // namespace
 
 void SuiteRunner::check_and_record_settings(std::size_t this_part) {
-  const Json current = settings_record(this_part);
+  const Json current = settings_record(plan_, this_part);
   std::vector<SuitePart> parts = read_parts(settings_.out);
   // this part's jobs in planned order (a shard's: those it kept), also those an earlier part plans
   const std::set<std::string> mine(plan_.part_jobs[this_part].begin(), plan_.part_jobs[this_part].end());
   std::vector<std::string> planned;
-  for (const std::string& id : planned_job_ids())
+  for (const std::string& id : planned_job_ids(plan_))
     if (mine.count(id)) planned.push_back(id);
   refuse_a_job_planned_under_other_settings(plan_.part_jobs, this_part, current, planned,
-                                            [this](std::size_t part) { return settings_record(part); });
+                                            [this](std::size_t part) { return settings_record(plan_, part); });
   for (const SuitePart& part : parts)
     if (part.settings == current) return;  // the same suite: --resume continues it
   if (replace_a_fixed_suite(settings_.out, parts, current, planned, settings_.resume_command, recorded_)) return;

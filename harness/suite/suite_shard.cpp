@@ -2,6 +2,7 @@
 // keeps, and the record of its plan that `impactbench merge` checks.
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -42,70 +43,90 @@ void SuiteRunner::check_same_shard() const {
                                   ", or choose another --out for this shard");
 }
 
-// What the suite records, in planned order: its job ids, and the keys of its step searches' rows.
-std::vector<std::string> SuiteRunner::planned_job_ids() const {
+std::vector<std::string> planned_job_ids(const SuitePlan& plan) {
   std::vector<std::string> ids;
-  for (const RunRecord& r : plan_.unrunnable) ids.push_back(r.job_id);
-  for (const PlannedJob& job : plan_.jobs) ids.push_back(job.id);
+  for (const RunRecord& r : plan.unrunnable) ids.push_back(r.job_id);
+  for (const PlannedJob& job : plan.jobs) ids.push_back(job.id);
   return ids;
 }
 
-std::vector<std::string> SuiteRunner::planned_step_keys() const {
+std::vector<std::string> planned_step_keys(const SuitePlan& plan) {
   std::vector<std::string> keys;
-  for (const PlannedJob& group : plan_.step_groups)
-    keys.push_back(step_row_key(step_group(plan_, group), *plan_.part_of(group).step_search));
+  for (const PlannedJob& group : plan.step_groups)
+    keys.push_back(step_row_key(step_group(plan, group), *plan.part_of(group).step_search));
   return keys;
 }
 
-// --shard K/N: keeps every N-th unit of work in planned order (the unrunnable jobs, then the engine
-// jobs or step-search groups; the references when there is nothing else) and the references those
-// units are compared with.
-void SuiteRunner::keep_only_this_shard() {
-  const Shard& shard = *settings_.shard;
+namespace {
+
+// Every shard of one suite agrees on it: the whole plan and the parts' settings (without the scenario files'
+// paths, which the shards' machines may name differently).
+std::string whole_suite_digest(const SuitePlan& plan) {
+  std::vector<std::string> whole = planned_job_ids(plan);
+  for (std::string& key : planned_step_keys(plan)) whole.push_back(std::move(key));
+  for (std::size_t part = 0; part < plan.parts.size(); ++part) {
+    nlohmann::ordered_json settings = settings_record(plan, part);
+    settings.erase("scenario_files");
+    whole.push_back(settings.dump());
+  }
+  return plan_digest(whole);
+}
+
+}  // namespace
+
+SuitePlan shard_of(SuitePlan plan, const Shard& shard) {
+  plan.whole_suite_digest = whole_suite_digest(plan);
   const bool references_alone =
-      plan_.step_groups.empty() &&
-      std::none_of(plan_.jobs.begin(), plan_.jobs.end(), [](const PlannedJob& j) { return j.kind == JobKind::engine; });
+      plan.step_groups.empty() &&
+      std::none_of(plan.jobs.begin(), plan.jobs.end(), [](const PlannedJob& j) { return j.kind == JobKind::engine; });
   std::size_t unit = 0;
   std::vector<RunRecord> unrunnable;
-  for (RunRecord& r : plan_.unrunnable)
+  for (RunRecord& r : plan.unrunnable)
     if (in_shard(unit++, shard)) unrunnable.push_back(std::move(r));
-  plan_.unrunnable = std::move(unrunnable);
+  plan.unrunnable = std::move(unrunnable);
   std::vector<PlannedJob> groups;
   std::set<std::string> references;  // those the kept units are compared with
   const auto keep_references_of = [&](const PlannedJob& job) {
     for (const std::string& id : {job.beam_reference, job.chain_reference})
       if (!id.empty()) references.insert(id);
   };
-  for (const PlannedJob& group : plan_.step_groups)
+  for (const PlannedJob& group : plan.step_groups)
     if (in_shard(unit++, shard)) {
       groups.push_back(group);
       keep_references_of(group);
     }
-  plan_.step_groups = std::move(groups);
+  plan.step_groups = std::move(groups);
   std::set<std::string> kept;
-  for (const PlannedJob& job : plan_.jobs)
+  for (const PlannedJob& job : plan.jobs)
     if ((job.kind == JobKind::engine || references_alone) && job.same_run_as.empty() && in_shard(unit++, shard)) {
       kept.insert(job.id);
       keep_references_of(job);
     }
-  for (const PlannedJob& job : plan_.jobs)  // a job scored from another's run goes with that run
+  for (const PlannedJob& job : plan.jobs)  // a job scored from another's run goes with that run
     if (!job.same_run_as.empty() && kept.count(job.same_run_as)) {
       kept.insert(job.id);
       keep_references_of(job);
     }
-  for (const PlannedJob& job : plan_.jobs)  // a chain reference is compared with its beam reference
+  for (const PlannedJob& job : plan.jobs)  // a chain reference is compared with its beam reference
     if (references.count(job.id) && !job.beam_reference.empty()) references.insert(job.beam_reference);
   std::vector<PlannedJob> jobs;
-  for (const PlannedJob& job : plan_.jobs)
+  for (const PlannedJob& job : plan.jobs)
     if (kept.count(job.id) || references.count(job.id)) jobs.push_back(job);
-  plan_.jobs = std::move(jobs);
+  plan.jobs = std::move(jobs);
+  return plan;
 }
 
 // The shard's plan, for `impactbench merge` to tell a finished shard from one that stopped early.
-// suite: the digest of the whole suite's plan.
-void SuiteRunner::record_plan(const std::string& suite) const {
-  record_shard_plan(settings_.out, ShardPlan{*settings_.shard, suite, planned_job_ids(), planned_step_keys(),
-                                             settings_.resume_command});
+SuitePlan plan_to_run(const std::vector<SuiteSettings>& parts) {
+  SuitePlan plan = plan_suite(parts);
+  const std::optional<Shard> shard = plan.shared().shard;
+  return shard ? shard_of(std::move(plan), *shard) : plan;
+}
+
+// The shard's plan (shard_of), for `impactbench merge` to tell a finished shard from one that stopped early.
+void SuiteRunner::record_plan() const {
+  record_shard_plan(settings_.out, ShardPlan{*settings_.shard, plan_.whole_suite_digest, planned_job_ids(plan_),
+                                             planned_step_keys(plan_), settings_.resume_command});
   // A shard is a suite's folder even when it gets no job (more shards than units): the report reads it.
   if (!fs::exists(settings_.out + "/runs.jsonl")) {
     write_text_file(settings_.out + "/runs.jsonl", "");
