@@ -38,7 +38,7 @@ std::vector<SyntheticJob> default_study_like() {
   for (const Case c : {Case{20}, Case{4}, Case{20}}) {
     for (int law = 0; law < 3; ++law) {
       for (const char* reference : {"reference/", "reference/links=8;modes=chain"})
-        jobs.push_back({{reference, "reference", c.duration_s, false}, 0.02 * c.duration_s * next_scatter()});
+        jobs.push_back({{reference, "reference", c.duration_s, false, ""}, 0.02 * c.duration_s * next_scatter()});
     }
   }
   for (const Case c : {Case{20}, Case{4}, Case{20}}) {
@@ -143,8 +143,8 @@ TEST(ProgressEstimate, WithinThirtyPercentOnceAFifthOfTheJobsAreDone) {
 
 TEST(ProgressEstimate, UnknownUntilAJobOfTheSameUnitHasRun) {
   RemainingTime estimate;
-  estimate.plan("ref", {"reference/", "reference", 20, false});
-  estimate.plan("engine", {"engine_a/", "engine_a", 2e5, true});
+  estimate.plan("ref", {"reference/", "reference", 20, false, ""});
+  estimate.plan("engine", {"engine_a/", "engine_a", 2e5, true, ""});
   estimate.start("ref", 0);
   estimate.finish("ref", 0.4);
   // Nothing measured per step yet: a reference's cost per simulated second says nothing of an engine's.
@@ -155,8 +155,8 @@ TEST(ProgressEstimate, UnknownUntilAJobOfTheSameUnitHasRun) {
 
 TEST(ProgressEstimate, AKindNotYetMeasuredTakesItsEnginesCostPerStep) {
   RemainingTime estimate;
-  estimate.plan("a", {"engine_b/contact=matched", "engine_b", 1e5, true});
-  estimate.plan("b", {"engine_b/contact=native", "engine_b", 2e5, true});
+  estimate.plan("a", {"engine_b/contact=matched", "engine_b", 1e5, true, ""});
+  estimate.plan("b", {"engine_b/contact=native", "engine_b", 2e5, true, ""});
   estimate.start("a", 0);
   estimate.finish("a", 2.0);  // 20 us per step
   EXPECT_NEAR(estimate.remaining_s(2.0, 1), 4.0, 1e-12);
@@ -166,15 +166,41 @@ TEST(ProgressEstimate, AKindNotYetMeasuredTakesItsEnginesCostPerStep) {
 
 TEST(ProgressEstimate, StartsEachKindOnceBeforeTheCostliestFirst) {
   RemainingTime estimate;
-  estimate.plan("m1", {"engine_a/", "engine_a", 1e5, true});
+  estimate.plan("m1", {"engine_a/", "engine_a", 1e5, true, ""});
   estimate.start("m1", 0);
   estimate.finish("m1", 1.0);
-  const std::vector<JobWork> pending = {
-      {"engine_a/", "engine_a", 1e5, true}, {"engine_a/", "engine_a", 4e5, true}, {"engine_b/", "engine_b", 1e5, true}};
+  const std::vector<JobWork> pending = {{"engine_a/", "engine_a", 1e5, true, ""},
+                                        {"engine_a/", "engine_a", 4e5, true, ""},
+                                        {"engine_b/", "engine_b", 1e5, true, ""}};
   EXPECT_EQ(next_to_start(estimate, pending), 2u);  // engine_b: not measured yet
   estimate.plan("o1", pending[2]);
   estimate.start("o1", 1.0);
   EXPECT_EQ(next_to_start(estimate, {pending[0], pending[1]}), 1u);  // then the longest
+}
+
+// Suites and sweeps price their units in one model: a fixed-step run's work is its steps, an adaptive one's its
+// simulated seconds, and a unit's cost is unknown (it goes first) until its kind, its engine or its unit is measured.
+TEST(ProgressEstimate, SuitesAndSweepsShareOneCostModel) {
+  const JobWork engine = run_work("engine_a", "contact=matched", 1e-4, 20);
+  EXPECT_EQ(engine.kind, "engine_a/contact=matched");
+  EXPECT_TRUE(engine.in_steps);
+  EXPECT_NEAR(engine.units, 2e5, 1e-6);
+  const JobWork reference = run_work("reference", "", 0, 20);
+  EXPECT_FALSE(reference.in_steps);
+  EXPECT_DOUBLE_EQ(reference.units, 20);
+  EXPECT_NE(run_work("engine_a", "", 1e-4, 1).stop_key, run_work("engine_a", "", 5e-5, 1).stop_key)
+      << "runs at two steps stop early apart";
+
+  RemainingTime estimate;
+  EXPECT_EQ(choose_next(estimate, {engine, reference}).cost_s, kUnknownCost) << "nothing measured yet";
+  estimate.plan("first", engine);
+  estimate.start("first", 0);
+  estimate.finish("first", 4.0);  // 20 us per step
+  const JobWork twice = run_work("engine_a", "contact=matched", 1e-4, 40);
+  const NextUnit chosen = choose_next(estimate, {engine, twice});
+  EXPECT_EQ(chosen.index, 1u) << "the costliest first";
+  EXPECT_NEAR(chosen.cost_s, 8.0, 1e-9);
+  EXPECT_EQ(choose_next(estimate, {engine, reference}).index, 1u) << "a kind not measured yet first";
 }
 
 }  // namespace progress_estimate_test

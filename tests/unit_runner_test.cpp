@@ -21,6 +21,8 @@ using Clock = std::chrono::steady_clock;
 
 // A unit: its cost, how long its process sleeps, and the unit it waits for ("" none).
 struct FakeUnit {
+  FakeUnit(std::string unit_id, double unit_cost, double unit_sleep_s = 0, std::string unit_after = "")
+      : id(std::move(unit_id)), cost(unit_cost), sleep_s(unit_sleep_s), after(std::move(unit_after)) {}
   std::string id;
   double cost = 1;
   double sleep_s = 0;

@@ -1,11 +1,23 @@
 #include "harness/jobs/progress.h"
 
+#include "harness/records/number_text.h"
+
 #include <unistd.h>
 #include <algorithm>
 #include <cstdio>
 #include <vector>
 
 namespace ib {
+
+JobWork run_work(const std::string& engine, const std::string& options_text, double dt_s, double simulated_s) {
+  JobWork work;
+  work.engine = engine;
+  work.kind = engine + "/" + options_text;
+  work.in_steps = dt_s > 0;
+  work.units = dt_s > 0 ? simulated_s / dt_s : simulated_s;
+  work.stop_key = work.kind + "/dt=" + exact_number_text(dt_s);
+  return work;
+}
 
 void RemainingTime::plan(const std::string& id, const JobWork& work) { jobs_[id].work = work; }
 
@@ -111,6 +123,12 @@ std::size_t next_to_start(const RemainingTime& estimate, const std::vector<JobWo
     }
   }
   return best;
+}
+
+NextUnit choose_next(const RemainingTime& estimate, const std::vector<JobWork>& pending) {
+  const std::size_t index = next_to_start(estimate, pending);
+  const double cost_s = estimate.cost_s(pending[index]);
+  return {index, cost_s < 0 ? kUnknownCost : cost_s};
 }
 
 namespace {

@@ -1,4 +1,5 @@
-// A suite's progress: how many jobs are done and how long the rest will take. The remaining time is
+// A campaign's progress and its one cost model, shared by suites and sweeps (so that their units' costs compare
+// on the one runner, unit_source.h): how many jobs are done and how long the rest will take. The remaining time is
 // estimated from each job's work (its steps: simulated time over time step; for an adaptive simulator
 // its simulated time) and the measured cost per unit of work of its kind (engine and options), not from
 // the jobs done so far: a suite runs its cheap references first and its costly engine runs last, so a
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/jobs/unit_source.h"
 #include "harness/scoring/verdict.h"
 
 namespace ib {
@@ -25,6 +27,11 @@ struct JobWork {
   // springs diverge at 1e-4 s within the first second, whatever the case); "": the kind.
   std::string stop_key;
 };
+
+// A run's work: its steps at a fixed step dt_s > 0, else its simulated seconds (an adaptive simulator), of the
+// kind engine/options; it stops early as runs of the same kind and step do (stop_key). A sweep's chain is the
+// work of its rows added.
+JobWork run_work(const std::string& engine, const std::string& options_text, double dt_s, double simulated_s);
 
 // The estimate alone, without a clock or a screen, so that it can be tested on a synthetic job list.
 class RemainingTime {
@@ -73,6 +80,14 @@ class RemainingTime {
 // measured, so that every kind's cost is known early, then the costliest, so that a pool of workers
 // does not end waiting for one long job. The plan (and so the shards) stays as planned.
 std::size_t next_to_start(const RemainingTime& estimate, const std::vector<JobWork>& pending);
+
+// next_to_start's choice with its estimated cost [s] as the one runner compares units (UnitSource::next_cost):
+// kUnknownCost when nothing of its kind, its engine or its unit is measured yet. pending must not be empty.
+struct NextUnit {
+  std::size_t index = 0;
+  double cost_s = 0;
+};
+NextUnit choose_next(const RemainingTime& estimate, const std::vector<JobWork>& pending);
 
 // Progress on stderr: a bar that redraws itself on a terminal, one plain line per job elsewhere.
 class Progress {

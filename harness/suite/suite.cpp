@@ -107,7 +107,7 @@ std::vector<const PlannedJob*> SuiteRunner::ready_jobs() {
 // of units is left to run alone at the end): a reference first, cheap, since the jobs compared with it wait for
 // it; then a step search's probe, since each probe waits for the one before it (a search is a chain whose
 // length only its probes reveal), and a job a walk waits for as its next probe, for the same reason; then, of
-// the other jobs, a kind not measured yet, then the costliest (next_to_start).
+// the other jobs, a kind not measured yet, then the costliest (choose_next, the cost model sweeps share).
 std::optional<double> SuiteRunner::next_cost() {
   const std::vector<const PlannedJob*> ready = ready_jobs();
   const auto reference =
@@ -124,10 +124,9 @@ std::optional<double> SuiteRunner::next_cost() {
   if (ready.empty()) return std::nullopt;
   std::vector<JobWork> work;
   for (const PlannedJob* job : ready) work.push_back(work_of(plan_, *job));
-  const std::size_t costliest = next_to_start(progress_->estimate(), work);
-  next_ = ready[costliest];
-  const double cost = progress_->estimate().cost_s(work[costliest]);
-  return cost < 0 ? kUnknownCost : cost;
+  const NextUnit chosen = choose_next(progress_->estimate(), work);
+  next_ = ready[chosen.index];
+  return chosen.cost_s;
 }
 
 std::string SuiteRunner::start_next(ProcessPool& pool) {

@@ -258,13 +258,8 @@ SuitePlan plan_suite(const std::vector<SuiteSettings>& parts) {
 // A job's work for the remaining-time estimate: its steps (an engine at a given step), else its
 // simulated seconds; jobs of one engine and options cost about the same per unit.
 JobWork work_of(const SuitePlan& plan, const PlannedJob& job) {
-  const double duration_s = plan.scenarios[job.scenario].duration_s, dt = job.spec.settings.time_step_s;
-  JobWork work;
-  work.engine = job.spec.engine;
-  work.kind = job.spec.engine + "/" + options_text(job.spec.settings.options);
-  work.in_steps = dt > 0;
-  work.units = dt > 0 ? duration_s / dt : duration_s;
-  work.stop_key = work.kind + "/dt=" + exact_number_text(dt);
+  JobWork work = run_work(job.spec.engine, options_text(job.spec.settings.options), job.spec.settings.time_step_s,
+                          plan.scenarios[job.scenario].duration_s);
   if (!job.same_run_as.empty()) work.units = 0;  // scored from another job's run: no work of its own
   return work;
 }

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "harness/jobs/progress.h"
 #include "harness/jobs/shard_plan.h"
 #include "harness/jobs/unit_source.h"
 #include "harness/jobs/worker_process.h"
@@ -68,14 +70,10 @@ class SweepRunner : public SweepSource {
   SweepOutcome finish() override;
 
  private:
-  // A chain to run, with the simulated seconds of its rows not done yet (known when the sweep begins).
-  struct Pending {
-    const SweepChain* chain;
-    double simulated_s = 0;
-  };
   struct Running {
     const SweepChain* chain;
-    int rows_done = 0;  // when the chain last finished a row (or started): its clock restarts with each row
+    int rows_done = 0;      // when the chain last finished a row (or started): its clock restarts with each row
+    double units_left = 0;  // its work not done when it started (the cost model's units)
   };
 
   std::string folder_of(const SweepRow& row) const { return s_.out + "/runs/" + row.id; }
@@ -85,11 +83,9 @@ class SweepRunner : public SweepSource {
     for (const SweepRow& row : chain.rows) done += row_done(folder_of(row)) ? 1 : 0;
     return done;
   }
-  // The simulated seconds of a chain's rows not done yet.
-  double simulated_s_left(const SweepChain& chain) const;
-  static std::string kind_of(const SweepChain& chain) {
-    return chain.rows.front().job.engine + " " + options_text(chain.rows.front().job.settings.options);
-  }
+  // The work of a chain's rows not done yet, in the cost model that suites share (progress.h).
+  JobWork work_left(const SweepChain& chain) const;
+  double now_s() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - began_).count(); }
   void prepare_folder();
   [[noreturn]] void run_chain_in_child(const SweepChain& chain, int message_pipe);
   // Rows from..end of a chain that will not run: row `from` with first_reason (and timed_out), the rest
@@ -102,12 +98,12 @@ class SweepRunner : public SweepSource {
   Scenario scenario_;
   std::vector<SweepChain> all_, mine_;
   std::vector<std::string> my_row_ids_;
-  std::vector<Pending> pending_;
+  std::vector<const SweepChain*> pending_;
   std::size_t next_ = 0;                    // the pending chain next_cost chose, which start_next starts
   std::map<std::string, Running> running_;  // by unit id
-  std::set<std::string> started_kinds_;
-  std::map<std::string, std::pair<double, double>> cost_of_kind_;  // seconds, simulated seconds of the chains ended
-  int recorded_ = -1;                                              // rows in the tables when last written
+  RemainingTime estimate_;                  // the chains' costs, as a suite's jobs' (by chain id)
+  std::chrono::steady_clock::time_point began_ = std::chrono::steady_clock::now();
+  int recorded_ = -1;  // rows in the tables when last written
   SweepOutcome outcome_;
   std::unique_ptr<FolderLock> lock_;  // the output folder's, held while the sweep writes into it
 };
@@ -180,40 +176,36 @@ void SweepRunner::run_chain_in_child(const SweepChain& chain, int message_pipe) 
   _exit(0);
 }
 
-double SweepRunner::simulated_s_left(const SweepChain& chain) const {
-  double seconds = 0;
+JobWork SweepRunner::work_left(const SweepChain& chain) const {
+  double simulated_s = 0;
   for (const SweepRow& row : chain.rows)
-    if (!row_done(folder_of(row))) seconds += row_scenario(scenario_, row, s_).scenario.duration_s;
-  return seconds;
+    if (!row_done(folder_of(row))) simulated_s += row_scenario(scenario_, row, s_).scenario.duration_s;
+  const JobSpec& job = chain.rows.front().job;
+  return run_work(job.engine, options_text(job.settings.options), job.settings.time_step_s, simulated_s);
 }
 
-// The costliest chain to come: its simulated seconds at what its kind cost per simulated second so far; a kind
-// not started yet is unknown (it goes first, so that its cost is measured), one started but not ended costs
-// what the reference costs on the rig. Ties: the first in planned order.
+// The chain to start next as a suite chooses its job (choose_next): a kind not measured yet first, so that its
+// cost is known early, then the costliest.
 std::optional<double> SweepRunner::next_cost() {
   if (pending_.empty()) return std::nullopt;
-  double best = -1;
-  for (std::size_t i = 0; i < pending_.size(); ++i) {
-    const std::string kind = kind_of(*pending_[i].chain);
-    double cost = kUnknownCost;
-    if (const auto measured = cost_of_kind_.find(kind); measured != cost_of_kind_.end() && measured->second.second > 0)
-      cost = pending_[i].simulated_s * measured->second.first / measured->second.second;
-    else if (started_kinds_.count(kind))
-      cost = pending_[i].simulated_s * 0.01;
-    if (cost > best) best = cost, next_ = i;
-  }
-  return best;
+  std::vector<JobWork> work;
+  for (const SweepChain* chain : pending_) work.push_back(work_left(*chain));
+  const NextUnit chosen = choose_next(estimate_, work);
+  next_ = chosen.index;
+  return chosen.cost_s;
 }
 
 std::string SweepRunner::start_next(ProcessPool& pool) {
-  const SweepChain& chain = *pending_[next_].chain;
+  const SweepChain& chain = *pending_[next_];
   pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(next_));
-  started_kinds_.insert(kind_of(chain));
+  const JobWork work = work_left(chain);
+  estimate_.plan(chain.id, work);
+  estimate_.start(chain.id, now_s());
   std::filesystem::create_directories(s_.out + "/runs/" + chain.id);
   const std::string unit = "sweep " + s_.out + " " + chain.id;
   pool.start({unit, s_.time_limit_s, log_of(chain), /*append_log=*/true},
              [this, &chain](int message_pipe) { run_chain_in_child(chain, message_pipe); });
-  running_[unit] = Running{&chain, rows_done(chain)};
+  running_[unit] = Running{&chain, rows_done(chain), work.units};
   return unit;
 }
 
@@ -229,16 +221,12 @@ void SweepRunner::record_rest_not_run(const SweepChain& chain, std::size_t from,
 
 void SweepRunner::ended(const ProcessEnd& end) {
   const SweepChain& chain = *running_.at(end.unit).chain;
+  const double units_left_at_start = running_.at(end.unit).units_left;
   running_.erase(end.unit);
   const int status = end.status;
   if (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerOutputError)
     throw OutputError(end.output_error.empty() ? last_line(log_of(chain)) : end.output_error);
-  const std::string kind = kind_of(chain);
-  double simulated_s = 0;
-  for (const SweepRow& row : chain.rows)
-    if (row_done(folder_of(row))) simulated_s += row_scenario(scenario_, row, s_).scenario.duration_s;
-  cost_of_kind_[kind].first += end.wall_time_s;
-  cost_of_kind_[kind].second += simulated_s;
+  estimate_.finish(chain.id, now_s(), units_left_at_start - work_left(chain).units);
   std::size_t first_missing = chain.rows.size();
   for (std::size_t k = 0; k < chain.rows.size() && first_missing == chain.rows.size(); ++k)
     if (!row_done(folder_of(chain.rows[k]))) first_missing = k;
@@ -295,7 +283,7 @@ void SweepRunner::begin() {
   for (const SweepChain& chain : mine_) {
     const int done = rows_done(chain);
     outcome_.rows_skipped += done;
-    if (done < static_cast<int>(chain.rows.size())) pending_.push_back({&chain, simulated_s_left(chain)});
+    if (done < static_cast<int>(chain.rows.size())) pending_.push_back(&chain);
   }
   std::fprintf(stderr, "sweep: %s, %zu ratios x %zu chains%s: %d rows to run (%d recorded already)\n",
                scenario_.name.c_str(), s_.ratios.size(), mine_.size(),
