@@ -12,6 +12,18 @@ namespace cli {
 int g_argc = 0;
 char** g_argv = nullptr;
 
+int exit_code(const ib::CampaignResult& result) {
+  switch (result.status) {
+    case ib::CampaignStatus::ok:
+      return kExitOk;
+    case ib::CampaignStatus::not_ok:
+      return kExitRunNotOk;
+    case ib::CampaignStatus::stopped:
+      return kExitInterrupted + result.signal;
+  }
+  return kExitOk;
+}
+
 // The command line as typed, with --resume added when missing: what continues an interrupted suite.
 std::string resume_command(int argc, char** argv) {
   std::string command = "impactbench";

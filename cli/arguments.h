@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/option_rules.h"
+#include "harness/jobs/campaign_folder.h"
 #include "harness/jobs/matrix_settings.h"
 #include "harness/jobs/run_job.h"
 #include "physics/contact_laws.h"
@@ -20,6 +21,10 @@ namespace cli {
 
 constexpr int kExitOk = 0, kExitRunNotOk = 1, kExitBadInput = 2, kExitOutputError = 3, kExitIncompleteMerge = 4;
 constexpr int kExitInterrupted = 128;  // + the signal's number, as a shell reports a process it stopped
+
+// A campaign's exit code (a suite's, a sweep's, a study's): 0 every result ok, 1 one not ok, 128 + the signal
+// that stopped it (harness/jobs/campaign_folder.h: how it ended).
+int exit_code(const ib::CampaignResult& result);
 
 // The command line as typed (main keeps it here first).
 extern int g_argc;

@@ -174,19 +174,20 @@ ib::SuiteSettings suite_settings_from(const SuiteOptions& o, const MeasurementOp
 }
 
 int suite_exit_code(const ib::SuiteSettings& s, const ib::SuiteOutcome& outcome) {
+  const int code = exit_code(ib::result_of(ib::end_of(outcome)));  // how any campaign ends: one rule
   if (outcome.interrupted_by != 0) {
     // A step search plans its probes as they end, so its total is not known in advance.
     const std::string total = s.step_search ? "" : " of " + std::to_string(outcome.jobs_total);
     std::fprintf(stderr, "\nimpactbench: interrupted after %d%s jobs; continue with: %s\n",
                  outcome.jobs_skipped + outcome.jobs_run, total.c_str(), s.resume_command.c_str());
-    return kExitInterrupted + outcome.interrupted_by;
+    return code;
   }
   if (outcome.jobs_stopped > 0) {  // a worker got a signal from outside before the suite did (or alone)
     std::fprintf(stderr,
                  "\nimpactbench: %d jobs are not recorded: stopped by signal %d from outside, or compared with a "
                  "reference that was; run them with: %s\n",
                  outcome.jobs_stopped, outcome.stopped_by, s.resume_command.c_str());
-    return kExitInterrupted + outcome.stopped_by;
+    return code;
   }
   std::printf(
       "suite: %d runs recorded in %s/runs.csv (%d skipped as already done), %d unstable or failed; "
@@ -200,7 +201,7 @@ int suite_exit_code(const ib::SuiteSettings& s, const ib::SuiteOutcome& outcome)
   if (s.shard)
     std::printf("suite: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n",
                 ib::to_string(*s.shard).c_str());
-  return outcome.not_ok_recorded > 0 ? kExitRunNotOk : kExitOk;  // every result, also those of an earlier invocation
+  return code;  // every result, also those of an earlier invocation
 }
 
 namespace {

@@ -133,15 +133,16 @@ Command add_sweep_command(CLI::App& app) {
 }
 
 int sweep_exit_code(const ib::SweepSettings& s, const ib::SweepOutcome& outcome) {
+  const int code = exit_code(ib::result_of(ib::end_of(outcome)));  // how any campaign ends: one rule
   if (outcome.interrupted_by != 0) {
     std::fprintf(stderr, "\nimpactbench: sweep interrupted; continue with: %s\n", s.resume_command.c_str());
-    return kExitInterrupted + outcome.interrupted_by;
+    return code;
   }
   if (outcome.chains_stopped > 0) {  // a chain's process got a signal from outside before the sweep did (or alone)
     std::fprintf(
         stderr, "\nimpactbench: %d chains were stopped by signal %d from outside before their end; continue with: %s\n",
         outcome.chains_stopped, outcome.stopped_by, s.resume_command.c_str());
-    return kExitInterrupted + outcome.stopped_by;
+    return code;
   }
   std::printf("sweep: %d ratios recorded in %s/sweep.csv (%d run now, %d already recorded), %d not ok\n",
               outcome.rows_run + outcome.rows_skipped, s.out.c_str(), outcome.rows_run, outcome.rows_skipped,
@@ -149,7 +150,7 @@ int sweep_exit_code(const ib::SweepSettings& s, const ib::SweepOutcome& outcome)
   if (s.shard)
     std::printf("sweep: shard %s done; join the shards with: impactbench merge OUT SHARD_FOLDER ...\n",
                 ib::to_string(*s.shard).c_str());
-  return outcome.not_ok > 0 ? kExitRunNotOk : kExitOk;
+  return code;
 }
 
 }  // namespace cli

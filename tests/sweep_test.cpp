@@ -201,6 +201,22 @@ TEST(SweepResults, TheSameWholeResumedAndShardedThenMerged) {
     run_sweep(shard);
     shards.push_back(shard.out);
   }
+  // a shard's folder holds that shard alone, a whole sweep's none (campaign_folder.h), as a suite's
+  SweepSettings other_shard = small_sweep(root + "/shard-1");
+  other_shard.shard = Shard{2, 2};
+  other_shard.resume = true;
+  try {
+    run_sweep(other_shard);
+    ADD_FAILURE() << "shard 2/2 was run into shard 1/2's folder";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("holds shard 1/2 of a sweep (shard.jsonl), not --shard 2/2"),
+              std::string::npos)
+        << e.what();
+  }
+  SweepSettings shard_of_whole = small_sweep(root + "/whole");
+  shard_of_whole.shard = Shard{1, 2};
+  shard_of_whole.resume = true;
+  EXPECT_THROW(run_sweep(shard_of_whole), std::invalid_argument) << "a shard into a whole sweep's folder";
   const MergeOutcome merged = merge_suites(MergeSettings{shards, root + "/merged"});
   EXPECT_TRUE(merged.complete());
   EXPECT_EQ(merged.runs, 9);

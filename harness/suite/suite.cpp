@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "harness/jobs/campaign_folder.h"
 #include "harness/records/engines_file.h"
 #include "harness/records/recorded_run.h"
 #include "harness/records/reporters.h"
@@ -45,13 +46,8 @@ std::vector<SuiteSettings> with_one_tolerance_record(const std::vector<SuiteSett
 }
 
 void SuiteRunner::begin() {
-  std::error_code error;
-  fs::create_directories(settings_.out, error);
-  if (error) throw OutputError(output_error_text(settings_.out, "create the output folder", error.value()));
-  if (access(settings_.out.c_str(), W_OK) != 0)
-    throw OutputError(output_error_text(settings_.out, "write into the output folder", errno));
-  lock_ = std::make_unique<FolderLock>(settings_.out, "suite");
-  check_same_shard();
+  lock_ = open_campaign_folder(settings_.out, CampaignKind::suite);
+  check_same_shard(settings_.out, CampaignKind::suite, settings_.shard, !recorded_run_lines(settings_.out).empty());
   if (settings_.resume || settings_.extend) {
     std::vector<std::string> repairs;
     recorded_ = repair_and_list_runs(settings_.out, &repairs);
@@ -178,6 +174,10 @@ SuiteOutcome SuiteRunner::finish() {
 }  // namespace ib::suite_internal
 
 namespace ib {
+
+CampaignEnd end_of(const SuiteOutcome& outcome) {
+  return {outcome.interrupted_by, outcome.jobs_stopped, outcome.stopped_by, outcome.not_ok_recorded};
+}
 
 SuiteOutcome run_suite(const SuiteSettings& settings) { return run_suites({settings}); }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/jobs/campaign_folder.h"
 #include "harness/jobs/matrix_settings.h"
 #include "harness/jobs/run_job.h"
 #include "harness/jobs/shard_plan.h"
@@ -68,6 +69,9 @@ struct SuiteOutcome {
   int stopped_by = 0;             // that signal (the last one seen)
   int references_from_cache = 0;  // recorded from --reference-cache, not solved
 };
+
+// How it ended, as every campaign's outcome says it (campaign_folder.h: the exit code's one rule).
+CampaignEnd end_of(const SuiteOutcome& outcome);
 
 // Runs the suite (or its shard); progress goes to stderr (a bar on a terminal, lines otherwise). SIGINT or SIGTERM
 // stops the worker processes, keeps every finished result and returns with interrupted_by set (a

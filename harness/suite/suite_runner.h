@@ -91,10 +91,6 @@ class SuiteRunner : public SuiteSource {
 
   std::string folder_of(const PlannedJob& job) const { return settings_.out + "/runs/" + job.id; }
 
-  // A shard's folder holds that shard alone: another shard's plan (or a whole suite) in the same folder
-  // would leave it holding neither.
-  void check_same_shard() const;
-
   // The shard's plan (shard_of), for `impactbench merge` to tell a finished shard from one that stopped early.
   void record_plan() const;
 

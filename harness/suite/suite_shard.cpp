@@ -17,32 +17,6 @@ namespace ib::suite_internal {
 
 namespace fs = std::filesystem;
 
-// A shard's folder holds that shard alone: another shard's plan (or a whole suite) in the same folder
-// would leave it holding neither.
-void SuiteRunner::check_same_shard() const {
-  const std::vector<ShardPlan> plans = read_shard_plans(settings_.out);
-  if (!settings_.shard) {
-    if (!plans.empty())
-      throw std::invalid_argument(settings_.out + " holds shard " + to_string(plans.front().shard) +
-                                  " of a suite (shard.jsonl): resume it with --shard " +
-                                  to_string(plans.front().shard));
-    return;
-  }
-  if (plans.empty()) {
-    if (!recorded_run_lines(settings_.out).empty())
-      throw std::invalid_argument(settings_.out +
-                                  " holds a whole suite's results, not a shard's: resume it without --shard " +
-                                  to_string(*settings_.shard) + ", or choose another --out for the shard");
-    return;
-  }
-  for (const ShardPlan& p : plans)
-    if (p.shard != *settings_.shard)
-      throw std::invalid_argument(settings_.out + " holds shard " + to_string(p.shard) +
-                                  " of a suite (shard.jsonl), not --shard " + to_string(*settings_.shard) +
-                                  ": resume it with --shard " + to_string(p.shard) +
-                                  ", or choose another --out for this shard");
-}
-
 std::vector<std::string> planned_job_ids(const SuitePlan& plan) {
   std::vector<std::string> ids;
   for (const RunRecord& r : plan.unrunnable) ids.push_back(r.job_id);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/jobs/campaign_folder.h"
 #include "harness/jobs/matrix_settings.h"
 #include "harness/jobs/run_job.h"
 #include "harness/jobs/shard_plan.h"
@@ -63,6 +64,9 @@ struct SweepOutcome {
   int chains_stopped = 0;  // chains whose process a signal from outside stopped (--resume runs the rest)
   int stopped_by = 0;      // that signal (the last one seen)
 };
+
+// How it ended, as every campaign's outcome says it (campaign_folder.h: the exit code's one rule).
+CampaignEnd end_of(const SweepOutcome& outcome);
 
 // Runs the sweep (or its shard); progress on stderr. Throws std::invalid_argument for bad input (a
 // scenario without a motor, a --resume of a folder holding another sweep or shard) before running

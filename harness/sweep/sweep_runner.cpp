@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "harness/jobs/campaign_folder.h"
 #include "harness/jobs/progress.h"
 #include "harness/jobs/shard_plan.h"
 #include "harness/jobs/unit_source.h"
@@ -109,10 +110,10 @@ class SweepRunner : public SweepSource {
 };
 
 void SweepRunner::prepare_folder() {
-  std::error_code error;
-  std::filesystem::create_directories(s_.out + "/runs", error);
-  if (error) throw OutputError(output_error_text(s_.out, "create the sweep's folder", error.value()));
-  lock_ = std::make_unique<FolderLock>(s_.out, "sweep");
+  lock_ = open_campaign_folder(s_.out, CampaignKind::sweep);
+  const std::string rows = s_.out + "/sweep.jsonl";
+  check_same_shard(s_.out, CampaignKind::sweep, s_.shard,
+                   std::filesystem::exists(rows) && std::filesystem::file_size(rows) > 0);
   const nlohmann::ordered_json record = settings_record(s_, scenario_);
   const std::string path = s_.out + "/sweep.json";
   if (std::filesystem::exists(path)) {
@@ -130,8 +131,6 @@ void SweepRunner::prepare_folder() {
       throw std::invalid_argument(s_.out + " holds a sweep with other settings (" + keys + " differ, see " + path +
                                   "): --resume continues the same sweep only; choose another --out");
   } else {
-    if (std::filesystem::exists(s_.out + "/runs.jsonl"))
-      throw std::invalid_argument(s_.out + " holds a suite; choose another --out for a sweep");
     replace_text_file(path, record.dump(2) + "\n");
   }
   std::vector<std::string> all_ids;
@@ -309,6 +308,10 @@ SweepOutcome SweepRunner::finish() {
 }
 
 }  // namespace
+
+CampaignEnd end_of(const SweepOutcome& outcome) {
+  return {outcome.interrupted_by, outcome.chains_stopped, outcome.stopped_by, outcome.not_ok};
+}
 
 std::unique_ptr<SweepSource> prepare_sweep(const SweepSettings& settings) {
   auto runner = std::make_unique<SweepRunner>(settings);
