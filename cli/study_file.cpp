@@ -1,7 +1,8 @@
 // Study files (study_file.h): the schema of a part's keys, and their translation into the commands'
-// options, whose one checking code then decides every range.
+// options, whose one checking code then decides every range and makes each part's settings.
 #include "cli/study_file.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/commands.h"
 #include "cli/option_rules.h"
 #include "cli/study_keys.h"
 #include "model/scenario_toml.h"
@@ -22,6 +24,19 @@ namespace fs = std::filesystem;
 using ib::toml_schema::Checker;
 using ib::toml_schema::line_of;
 using ib::toml_schema::type_name;
+
+// A part as its table gives it, in the terms of the command it stands for: what the options' checks read.
+struct PartOptions {
+  ib::StudyPartKind kind = ib::StudyPartKind::suite;
+  std::string name;    // a sweep's: its folder below OUT/sweeps/; a suite's or search's: for messages
+  std::string file;    // the study file
+  int line = 0;        // its table's header ([[suite]], [[search]], [[sweep]])
+  SuiteOptions suite;  // suite and search
+  SweepOptions sweep;  // sweep
+  MeasurementOptions measurement;
+  std::map<std::string, int> key_lines;  // each key given, by its line: messages about a value name it
+  std::map<std::string, std::vector<std::string>> key_items;  // an array key's items, as given (a comma in one stays)
+};
 
 std::string number_text(double x) {
   char text[32];
@@ -38,7 +53,7 @@ class PartReader {
 
   // The key's value as the command's option text, from the part's table, else from [defaults]; nullopt when
   // neither holds it. Wrong types fail here, named where the value is written.
-  std::optional<std::string> text(const KeySpec& spec, StudyPart& part) const {
+  std::optional<std::string> text(const KeySpec& spec, PartOptions& part) const {
     const toml::node* node = table_.get(spec.key);
     const std::string& dotted = node || !defaults_ ? dotted_ : kDefaults;
     if (!node && defaults_) node = defaults_->get(spec.key);
@@ -50,7 +65,7 @@ class PartReader {
   static inline const std::string kDefaults = "defaults";
 
   std::string value_text(const KeySpec& spec, const toml::node& value, const std::string& dotted,
-                         StudyPart& part) const {
+                         PartOptions& part) const {
     const toml::node* node = &value;
     part.key_lines[spec.key] = line_of(*node);
     switch (spec.type) {
@@ -146,7 +161,7 @@ std::string scenario_path(const std::string& study_file, const std::string& path
 // The keys a part gives, as its table (or [defaults]) holds them: key -> the command's option text.
 using GivenKeys = std::map<std::string, std::string>;
 
-void require_key(const Checker& checker, const GivenKeys& given, const StudyPart& part, const std::string& dotted,
+void require_key(const Checker& checker, const GivenKeys& given, const PartOptions& part, const std::string& dotted,
                  const char* key, const char* meaning) {
   if (!given.count(key))
     checker.fail(part.line, dotted + "." + key, dotted + "." + key + ": missing required key; allowed: " + meaning);
@@ -156,7 +171,7 @@ void require_key(const Checker& checker, const GivenKeys& given, const StudyPart
 // suite and a sweep share. Each number is checked as its command-line option is, as soon as it is read
 // (cli/option_rules.h).
 void read_shared_keys(const Checker& checker, GivenKeys& given, const std::string& dotted,
-                      const std::vector<std::string>& engines, StudyPart& part) {
+                      const std::vector<std::string>& engines, PartOptions& part) {
   const std::pair<const char*, Shared> numbers[] = {{"rate_hz", Shared::rate},
                                                     {"sensor_rate_hz", Shared::sensor_rate},
                                                     {"time_limit_s", Shared::time_limit},
@@ -179,7 +194,7 @@ void read_shared_keys(const Checker& checker, GivenKeys& given, const std::strin
   if (given.count("sensor_rate_hz")) m.sensor_rate_hz = std::stod(given["sensor_rate_hz"]);
   if (given.count("series")) m.series = given["series"];
   if (given.count("series_rate_hz")) m.series_rate_hz = std::stod(given["series_rate_hz"]);
-  MatrixOptions& shared = part.kind == StudyPart::Kind::sweep ? static_cast<MatrixOptions&>(part.sweep) : part.suite;
+  MatrixOptions& shared = part.kind == ib::StudyPartKind::sweep ? static_cast<MatrixOptions&>(part.sweep) : part.suite;
   if (!engine_list.empty()) shared.engines = engine_list;
   if (given.count("laws")) shared.laws = expand_all("laws", given["laws"], engines);
   if (given.count("paths")) shared.paths = expand_all("paths", given["paths"], engines);
@@ -190,7 +205,7 @@ void read_shared_keys(const Checker& checker, GivenKeys& given, const std::strin
 }
 
 // A [[sweep]]'s own keys: its folder's name, its scenario, its ratios, starts and lengths.
-void read_sweep_keys(const Checker& checker, GivenKeys& given, const std::string& dotted, StudyPart& part) {
+void read_sweep_keys(const Checker& checker, GivenKeys& given, const std::string& dotted, PartOptions& part) {
   require_key(checker, given, part, dotted, "name", "the sweep's folder below OUT/sweeps/ (a-z, 0-9, _ and -)");
   require_key(checker, given, part, dotted, "scenario", "a scenario file with a motor");
   if (part.name.empty() || part.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
@@ -212,7 +227,7 @@ void read_sweep_keys(const Checker& checker, GivenKeys& given, const std::string
 }
 
 // A [[suite]]'s or [[search]]'s own keys: its scenarios, lengths and ensembles, and a search's grid.
-void read_suite_keys(const Checker& checker, GivenKeys& given, const std::string& dotted, StudyPart& part) {
+void read_suite_keys(const Checker& checker, GivenKeys& given, const std::string& dotted, PartOptions& part) {
   require_key(checker, given, part, dotted, "scenarios", "scenario files or folders");
   SuiteOptions& s = part.suite;
   MeasurementOptions& m = part.measurement;
@@ -230,7 +245,7 @@ void read_suite_keys(const Checker& checker, GivenKeys& given, const std::string
   if (given.count("ensemble_step_m")) s.ensemble_step_m = std::stod(given["ensemble_step_m"]);
   if (given.count("recommended")) s.recommended = given["recommended"] == "true";
   if (given.count("reference_chains")) s.reference_chains = given["reference_chains"];
-  if (part.kind == StudyPart::Kind::search) {
+  if (part.kind == ib::StudyPartKind::search) {
     s.find_steps = true;
     if (given.count("steps_per_octave")) s.steps_per_octave = std::stoi(given["steps_per_octave"]);
     if (given.count("step_range_s")) s.step_range = given["step_range_s"];
@@ -239,25 +254,27 @@ void read_suite_keys(const Checker& checker, GivenKeys& given, const std::string
   }
 }
 
-StudyPart read_part(const Checker& checker, const toml::table& table, const toml::table* defaults, StudyPart::Kind kind,
-                    int index, const std::string& file, const std::vector<std::string>& engines) {
-  StudyPart part;
+PartOptions read_part(const Checker& checker, const toml::table& table, const toml::table* defaults,
+                      ib::StudyPartKind kind, int index, const std::string& file,
+                      const std::vector<std::string>& engines) {
+  PartOptions part;
   part.kind = kind;
   part.file = file;
   part.line = line_of(table);
-  const std::string dotted = std::string(kind_name(kind)) + " " + std::to_string(index + 1);
+  const std::string dotted = std::string(ib::to_string(kind)) + " " + std::to_string(index + 1);
   const std::vector<KeySpec> keys = keys_of(kind);
   std::vector<std::string> names;
   for (const KeySpec& k : keys) names.push_back(k.key);
-  checker.reject_unknown(ib::toml_schema::Section{&table, dotted, part.line}, names,
-                         "allowed keys in [[" + std::string(kind_name(kind)) + "]]: " + ib::toml_schema::join(names));
+  checker.reject_unknown(
+      ib::toml_schema::Section{&table, dotted, part.line}, names,
+      "allowed keys in [[" + std::string(ib::to_string(kind)) + "]]: " + ib::toml_schema::join(names));
   const PartReader reader(checker, table, dotted, defaults);
   GivenKeys given;
   for (const KeySpec& k : keys)
     if (auto value = reader.text(k, part)) given[k.key] = *value;
-  part.name = given.count("name") ? given["name"] : std::string(kind_name(kind)) + " " + std::to_string(index + 1);
+  part.name = given.count("name") ? given["name"] : std::string(ib::to_string(kind)) + " " + std::to_string(index + 1);
   read_shared_keys(checker, given, dotted, engines, part);
-  if (kind == StudyPart::Kind::sweep)
+  if (kind == ib::StudyPartKind::sweep)
     read_sweep_keys(checker, given, dotted, part);
   else
     read_suite_keys(checker, given, dotted, part);
@@ -270,34 +287,6 @@ std::string read_text(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-// Which key a command's message is about: its option starts the message ("--dt 0: ...").
-const KeySpec* key_of_message(const StudyPart& part, const std::string& message) {
-  const auto starts_with = [&](const std::string& option) {
-    return !option.empty() && message.rfind(option, 0) == 0 &&
-           (message.size() == option.size() || message[option.size()] == ' ' || message[option.size()] == ':');
-  };
-  static const std::vector<KeySpec> keys[] = {keys_of(StudyPart::Kind::suite), keys_of(StudyPart::Kind::search),
-                                              keys_of(StudyPart::Kind::sweep)};
-  for (const KeySpec& k : keys[static_cast<int>(part.kind)])
-    if (part.key_lines.count(k.key) && (starts_with(k.option) || starts_with(k.also))) return &k;
-  return nullptr;
-}
-
-template <class Settings, class Make>
-Settings checked(const StudyPart& part, Make make) {
-  try {
-    return make();
-  } catch (const ib::ScenarioError&) {
-    throw;  // a scenario file's own message names that file
-  } catch (const std::invalid_argument& error) {
-    const KeySpec* key = key_of_message(part, error.what());
-    const std::string dotted =
-        std::string(kind_name(part.kind)) + " \"" + part.name + "\"" + (key ? std::string(".") + key->key : "");
-    throw ib::ScenarioError(part.file, key ? part.key_lines.at(key->key) : part.line, key ? key->key : "",
-                            dotted + ": " + error.what());
-  }
 }
 
 // The study's [defaults] (null: none): its keys checked by name and type here, once, whether or not a part
@@ -315,14 +304,52 @@ const toml::table* read_defaults(const Checker& checker, const toml::table& docu
       ib::toml_schema::Section{node->as_table(), "defaults", line_of(*node)}, names,
       "allowed keys in [defaults]: " + ib::toml_schema::join(names) + " (a part's name and scenarios are its own)");
   const PartReader reader(checker, *node->as_table(), "defaults");
-  StudyPart scratch;
+  PartOptions scratch;
   for (const KeySpec& k : keys) reader.text(k, scratch);
   return node->as_table();
 }
 
+// The part's settings, checked as the command's options are; an error names the study file, the part's key and
+// its line (the key an option's message is about, else the part's header). The folder is a stand-in: run_study
+// places each part (the command checks --out).
+ib::StudyPart typed_part(PartOptions part) {
+  part.suite.out = part.sweep.out = "OUT";
+  try {
+    if (part.kind == ib::StudyPartKind::sweep)
+      return {part.kind, part.name, sweep_settings_from(part.sweep, part.measurement)};
+    return {part.kind, part.name, suite_settings_from(part.suite, part.measurement)};
+  } catch (const ib::ScenarioError&) {
+    throw;  // a scenario file's own message names that file
+  } catch (const std::invalid_argument& error) {
+    const KeySpec* key = key_of_message(part.kind, part.key_lines, error.what());
+    const std::string dotted =
+        std::string(ib::to_string(part.kind)) + " \"" + part.name + "\"" + (key ? std::string(".") + key->key : "");
+    throw ib::ScenarioError(part.file, key ? part.key_lines.at(key->key) : part.line, key ? key->key : "",
+                            dotted + ": " + error.what());
+  }
+}
+
+// [study]: its description, if any.
+std::string read_description(const Checker& checker, const toml::table& document) {
+  const toml::node* node = document.get("study");
+  if (!node) return "";
+  if (!node->is_table())
+    checker.fail(line_of(*node), "study",
+                 "study: wrong type (" + std::string(type_name(*node)) + "); expected a table [study]");
+  const ib::toml_schema::Section section{node->as_table(), "study", line_of(*node)};
+  checker.reject_unknown(section, {"description"}, "allowed keys in [study]: description");
+  const toml::node* d = node->as_table()->get("description");
+  if (!d) return "";
+  if (!d->is_string())
+    checker.fail(line_of(*d), "study.description",
+                 checker.show("study.description", *d) + ": wrong type (" + type_name(*d) + "); expected a string");
+  return d->as_string()->get();
+}
+
 }  // namespace
 
-Study read_study(const std::string& path, const std::vector<std::string>& engines) {
+Study read_study(const std::string& path, const std::vector<std::string>& engines,
+                 const std::vector<ib::StudyPartKind>& left_out) {
   const std::string text = read_text(path);
   const Checker checker(path, text);
   const toml::table document = checker.parse();
@@ -332,50 +359,37 @@ Study read_study(const std::string& path, const std::vector<std::string>& engine
       "allowed: [study], [defaults], [[suite]], [[search]], [[sweep]] (docs/studies.md, \"Study files\")");
   Study study;
   study.file = path;
-  if (const toml::node* node = document.get("study")) {
-    if (!node->is_table())
-      checker.fail(line_of(*node), "study",
-                   "study: wrong type (" + std::string(type_name(*node)) + "); expected a table [study]");
-    const ib::toml_schema::Section section{node->as_table(), "study", line_of(*node)};
-    checker.reject_unknown(section, {"description"}, "allowed keys in [study]: description");
-    if (const toml::node* d = node->as_table()->get("description")) {
-      if (!d->is_string())
-        checker.fail(line_of(*d), "study.description",
-                     checker.show("study.description", *d) + ": wrong type (" + type_name(*d) + "); expected a string");
-      study.description = d->as_string()->get();
-    }
-  }
+  study.description = read_description(checker, document);
   const toml::table* defaults = read_defaults(checker, document);
-  for (StudyPart::Kind kind : {StudyPart::Kind::suite, StudyPart::Kind::search, StudyPart::Kind::sweep}) {
-    const toml::node* node = document.get(kind_name(kind));
+  std::vector<PartOptions> parts;
+  for (ib::StudyPartKind kind : {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep}) {
+    const toml::node* node = document.get(ib::to_string(kind));
     if (!node) continue;
     const toml::array* tables = node->as_array();
     if (!tables || !tables->is_array_of_tables())
-      checker.fail(line_of(*node), kind_name(kind),
-                   std::string(kind_name(kind)) + ": wrong type (" + type_name(*node) + "); expected tables [[" +
-                       kind_name(kind) + "]]");
+      checker.fail(line_of(*node), ib::to_string(kind),
+                   std::string(ib::to_string(kind)) + ": wrong type (" + type_name(*node) + "); expected tables [[" +
+                       ib::to_string(kind) + "]]");
     int index = 0;
     for (const toml::node& table : *tables)
-      study.parts.push_back(read_part(checker, *table.as_table(), defaults, kind, index++, path, engines));
+      parts.push_back(read_part(checker, *table.as_table(), defaults, kind, index++, path, engines));
   }
-  if (study.parts.empty())
+  if (parts.empty())
     throw ib::ScenarioError(path, 1, "", "a study needs at least one [[suite]], [[search]] or [[sweep]]");
   // Sweeps write into OUT/sweeps/NAME: two of one name would share a folder.
   std::map<std::string, int> sweep_lines;
-  for (const StudyPart& part : study.parts)
-    if (part.kind == StudyPart::Kind::sweep && !sweep_lines.emplace(part.name, part.line).second)
+  for (const PartOptions& part : parts)
+    if (part.kind == ib::StudyPartKind::sweep && !sweep_lines.emplace(part.name, part.line).second)
       throw ib::ScenarioError(path, part.line, "sweep.name",
                               "sweep.name = \"" + part.name + "\": already the name of the sweep at line " +
                                   std::to_string(sweep_lines[part.name]) + "; allowed: a name of its own (its folder)");
+  // Every kept part's values, in order, before anything runs; a kind left out is not checked (as if absent).
+  for (const PartOptions& part : parts) {
+    if (std::find(left_out.begin(), left_out.end(), part.kind) != left_out.end()) continue;
+    study.parts.push_back(typed_part(part));
+    study.lines.push_back(part.line);
+  }
   return study;
-}
-
-ib::SuiteSettings settings_of_suite_part(const StudyPart& part) {
-  return checked<ib::SuiteSettings>(part, [&] { return suite_settings_from(part.suite, part.measurement); });
-}
-
-ib::SweepSettings settings_of_sweep_part(const StudyPart& part) {
-  return checked<ib::SweepSettings>(part, [&] { return sweep_settings_from(part.sweep, part.measurement); });
 }
 
 }  // namespace cli

@@ -6,18 +6,6 @@
 
 namespace cli {
 
-const char* kind_name(StudyPart::Kind kind) {
-  switch (kind) {
-    case StudyPart::Kind::suite:
-      return "suite";
-    case StudyPart::Kind::search:
-      return "search";
-    case StudyPart::Kind::sweep:
-      return "sweep";
-  }
-  return "";
-}
-
 namespace {
 
 // The keys of each kind of part. Every key is optional but `scenarios` (suite, search) and `name`,
@@ -73,11 +61,11 @@ const std::vector<KeySpec> kSweepKeys = {
 
 }  // namespace
 
-std::vector<KeySpec> keys_of(StudyPart::Kind kind) {
+std::vector<KeySpec> keys_of(ib::StudyPartKind kind) {
   std::vector<KeySpec> keys = kCommonKeys;
-  const auto& own = kind == StudyPart::Kind::suite    ? kSuiteKeys
-                    : kind == StudyPart::Kind::search ? kSearchKeys
-                                                      : kSweepKeys;
+  const auto& own = kind == ib::StudyPartKind::suite    ? kSuiteKeys
+                    : kind == ib::StudyPartKind::search ? kSearchKeys
+                                                        : kSweepKeys;
   keys.insert(keys.end(), own.begin(), own.end());
   return keys;
 }
@@ -85,10 +73,23 @@ std::vector<KeySpec> keys_of(StudyPart::Kind kind) {
 std::vector<KeySpec> default_keys() {
   std::vector<KeySpec> keys;
   std::set<std::string> seen = {"name", "scenario", "scenarios"};  // what makes a part itself
-  for (StudyPart::Kind kind : {StudyPart::Kind::suite, StudyPart::Kind::search, StudyPart::Kind::sweep})
+  for (ib::StudyPartKind kind : {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep})
     for (const KeySpec& k : keys_of(kind))
       if (seen.insert(k.key).second) keys.push_back(k);
   return keys;
+}
+
+const KeySpec* key_of_message(ib::StudyPartKind kind, const std::map<std::string, int>& key_lines,
+                              const std::string& message) {
+  const auto starts_with = [&](const std::string& option) {
+    return !option.empty() && message.rfind(option, 0) == 0 &&
+           (message.size() == option.size() || message[option.size()] == ' ' || message[option.size()] == ':');
+  };
+  static const std::vector<KeySpec> keys[] = {keys_of(ib::StudyPartKind::suite), keys_of(ib::StudyPartKind::search),
+                                              keys_of(ib::StudyPartKind::sweep)};
+  for (const KeySpec& k : keys[static_cast<int>(kind)])
+    if (key_lines.count(k.key) && (starts_with(k.option) || starts_with(k.also))) return &k;
+  return nullptr;
 }
 
 }  // namespace cli

@@ -2,13 +2,13 @@
 // stands for (whose checking code decides its range) and what it means. cli/study_file.cpp reads them.
 #pragma once
 
+#include <map>
+#include <string>
 #include <vector>
 
-#include "cli/study_file.h"
+#include "harness/study/study.h"
 
 namespace cli {
-
-const char* kind_name(StudyPart::Kind kind);
 
 // What a key takes; the option it stands for (its messages start with that option) and what it means.
 enum class Type { text, number, integer, boolean, texts, numbers, texts_or_all };
@@ -21,10 +21,15 @@ struct KeySpec {
 };
 
 // The keys of one kind of part: those every kind has, then its own.
-std::vector<KeySpec> keys_of(StudyPart::Kind kind);
+std::vector<KeySpec> keys_of(ib::StudyPartKind kind);
 
 // The keys [defaults] may hold: every kind's, but a part's own name and scenarios. A part takes from [defaults]
 // each key its kind has and it does not set itself.
 std::vector<KeySpec> default_keys();
+
+// Which key of a part a command's message is about: the given key (key_lines: each key given, by its line) whose
+// option starts the message ("--dt 0: ..."); null when none does (the message is then the part's).
+const KeySpec* key_of_message(ib::StudyPartKind kind, const std::map<std::string, int>& key_lines,
+                              const std::string& message);
 
 }  // namespace cli
