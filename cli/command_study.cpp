@@ -89,12 +89,12 @@ int command_study(const StudyOptions& o) {
     if (const auto* suite = std::get_if<ib::SuiteSettings>(&part.settings))
       record_command(o.out, suite->measurement.verdicts, o.file + ": " + part.name);
   const ib::StudyOutcome outcome = ib::run_study(study.parts, settings);
-  int status = kExitOk;
-  if (outcome.suites) status = std::max(status, suite_exit_code(*suites.front(), *outcome.suites));
-  for (std::size_t i = 0; i < sweeps.size(); ++i)
-    status = std::max(status, sweep_exit_code(*sweeps[i], outcome.sweeps[i].outcome));
-  if (status == kExitBadInput || status >= kExitOutputError)
-    return status;  // bad input, a write error, an interruption
+  // each part says how it ended; the study ends as the worst of them (one rule: harness/jobs/campaign_folder.h)
+  if (outcome.suites) suite_exit_code(*suites.front(), *outcome.suites);
+  for (std::size_t i = 0; i < sweeps.size(); ++i) sweep_exit_code(*sweeps[i], outcome.sweeps[i].outcome);
+  const ib::CampaignResult result = ib::result_of(outcome);
+  const int status = exit_code(result);
+  if (result.status == ib::CampaignStatus::stopped) return status;  // interrupted: no report of a part of it
   if (!o.no_report && o.shard.empty()) {
     const int report = command_report(o.out, "");
     if (report != kExitOk) return report;

@@ -1,6 +1,7 @@
 // A campaign's folder (harness/jobs/campaign_folder.h), the one policy of suites and sweeps: it is created and
 // locked, a folder of the other kind or of another shard is refused, and how a campaign ended decides its status.
 #include "harness/jobs/campaign_folder.h"
+#include "harness/study/study.h"
 
 #include <gtest/gtest.h>
 
@@ -86,6 +87,20 @@ TEST(CampaignEnd, StoppedOverNotOkOverOk) {
   EXPECT_EQ(worse(CampaignResult{}, not_ok).status, CampaignStatus::not_ok);
   EXPECT_EQ(worse(from_outside, not_ok).signal, SIGKILL);
   EXPECT_EQ(worse(not_ok, CampaignResult{}).status, CampaignStatus::not_ok);
+}
+
+// A study ends as the worst of its parts: the suites' (one outcome) and each sweep's.
+TEST(CampaignEnd, AStudyEndsAsItsWorstPart) {
+  StudyOutcome study;
+  EXPECT_EQ(result_of(study).status, CampaignStatus::ok) << "no part";
+  study.suites = SuiteOutcome{};
+  study.suites->not_ok_recorded = 1;
+  study.sweeps.push_back({"fine", SweepOutcome{}});
+  EXPECT_EQ(result_of(study).status, CampaignStatus::not_ok);
+  study.sweeps.push_back({"coarse", SweepOutcome{}});
+  study.sweeps.back().outcome.interrupted_by = SIGTERM;
+  EXPECT_EQ(result_of(study).status, CampaignStatus::stopped);
+  EXPECT_EQ(result_of(study).signal, SIGTERM);
 }
 
 }  // namespace campaign_folder_test

@@ -148,7 +148,7 @@ TEST_F(StudyRun, SuitesGoIntoTheFolderAndEachSweepIntoSweepsName) {
   EXPECT_EQ(test::line_count(out / "suite.jsonl"), 2u);  // each part's settings line
   EXPECT_EQ(test::line_count(out / "runs.jsonl"), 6u);
   EXPECT_EQ(test::line_count(out / "sweeps" / "coarse" / "sweep.csv"), 3u);  // its header and a row per ratio
-  for (const fs::path folder : {out, out / "sweeps" / "coarse"}) {
+  for (const fs::path& folder : {out, out / "sweeps" / "coarse"}) {
     EXPECT_TRUE(fs::exists(folder / "engines.json")) << folder;
     EXPECT_TRUE(fs::exists(folder / "provenance.json")) << folder;
   }

@@ -77,4 +77,11 @@ StudyOutcome run_study(const std::vector<StudyPart>& parts, const StudySettings&
   return outcome;
 }
 
+CampaignResult result_of(const StudyOutcome& outcome) {
+  CampaignResult result;
+  if (outcome.suites) result = worse(result, result_of(end_of(*outcome.suites)));
+  for (const StudyOutcome::Sweep& sweep : outcome.sweeps) result = worse(result, result_of(end_of(sweep.outcome)));
+  return result;
+}
+
 }  // namespace ib

@@ -57,6 +57,10 @@ struct StudyOutcome {
   std::vector<Sweep> sweeps;  // in the parts' order
 };
 
+// How the study ended: the worst of its parts' ends (campaign_folder.h), which the command line turns into its
+// exit code.
+CampaignResult result_of(const StudyOutcome& outcome);
+
 // Runs the parts (placed as place_study_parts does) as one plan on one pool of settings.jobs workers: no part
 // waits for another, the costliest ready unit starts first. Then each folder's engines.json and
 // provenance.json are written (with_engines_file: the suites' from the first suite's catalog). Installs the
