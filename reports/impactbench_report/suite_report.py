@@ -11,8 +11,8 @@ import os
 import shutil
 import sys
 
-from . import ablation, answer, data, figures, first_screen, machine, metric_catalog, performance, tables
-from . import budget_figures, convergence_table, front_figures, step_figures, zoom_figures
+from . import answer, data, figures, first_screen, machine, metric_catalog, report_views, tables
+from . import budget_figures, front_figures, step_figures, zoom_figures
 from . import dynamics, named_runs, spectral, sweep, sweep_starts
 from .page_writer import anchor, figure_html, html_head, markdown_figure, sections_html, sections_markdown
 
@@ -225,20 +225,14 @@ def make(suite_folder, out):
             markdown_text += "\n\n" + STEPS_NOTE + "\n\n" + tables.markdown(steps_header, steps_rows)
             html_text += f"<p>{STEPS_NOTE}</p>" + tables.html_table(steps_header, steps_rows)
         sections.append((f"{scenario}, {law}", markdown_text, html_text, paths))
-    convergence = convergence_table.section(document)
-    if convergence:
-        sections.insert(0, (*convergence, []))
     for law, paths in zip(sorted(chosen_by_law), paths_by_law):
         sections.append((f"{law}: stability and the experiment", "", "", paths))
-
-    if document["ablation"]:
-        sections.append(ablation.section(document["ablation"]))
+    inputs = report_views.ViewInputs(suite_folder, document, out)
     try:
-        measured = performance.section(suite_folder)  # SUITE/performance/: bench/ timings, if any were saved
-    except ValueError as error:
+        sections = (report_views.sections(report_views.BEFORE_CASES, inputs) + sections
+                    + report_views.sections(report_views.AFTER_CASES, inputs))
+    except ValueError as error:  # a saved measurement that is not bench/'s JSON
         sys.exit(f"make_report: {error}")
-    if measured:
-        sections.append(("Performance", measured[0], measured[1], []))
     document["sweep_answers"] = []
     for (name, data_of_sweep), sweep_sections in zip(sweeps, sections_by_sweep):
         document["sweep_answers"].append(f"Frequency sweep ({name}): " + sweep.summary_sentence(data_of_sweep))
