@@ -12,7 +12,8 @@
 namespace ib {
 
 // The descriptors as JSON text: {"simulators": [{"name", "display_name", "summary", "version",
-// "packages", "colours", "diagnostics": [{"key", "label", "meaning", "unit", "values"}]}]}, in the
+// "packages", "colours", "diagnostics": [{"key", "label", "meaning", "unit", "values"}], "default_time_step_s"
+// (null: adaptive), "default_time_step_note" (where there is one), "recommended"}]}, in the
 // catalog's order (docs/diagnostics.md). `impactbench engines --json` prints the same text.
 std::string engines_json(const SimulatorCatalog& catalog);
 
