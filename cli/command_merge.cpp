@@ -43,6 +43,11 @@ int command_merge(const std::string& out, const std::vector<std::string>& shards
   const auto described = std::find_if(shards.begin(), shards.end(),
                                       [](const std::string& s) { return fs::exists(s + "/provenance.json"); });
   if (described != shards.end()) copy_from_shard(*described, "provenance.json");
+  // The metrics they were scored on (metrics.json): a shard's; none when no shard has one (shards of a build
+  // before metrics.json, which the report reads with its catalog of those folders).
+  const auto scored =
+      std::find_if(shards.begin(), shards.end(), [](const std::string& s) { return fs::exists(s + "/metrics.json"); });
+  if (scored != shards.end()) copy_from_shard(*scored, "metrics.json");
   if (std::filesystem::exists(out + "/sweep.json"))
     std::printf("merge: %d sweep rows in %s/sweep.csv from %zu folders\n", outcome.runs, out.c_str(), shards.size());
   else

@@ -14,6 +14,7 @@
 
 #include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
+#include "harness/scoring/metric_catalog.h"
 #include "harness/scoring/plausibility.h"
 #include "harness/suite/suite.h"
 
@@ -30,13 +31,12 @@ void record_command(const std::string& out, const ib::VerdictSettings& v, const 
   char started[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(started, sizeof started, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  // each tolerance under its key in the metric catalog (two metrics may share one: both frames' sensor peaks)
+  nlohmann::json tolerances = nlohmann::json::object();
+  for (const ib::ScoredMetric& m : ib::scored_metrics()) tolerances[m.tolerance_key] = ib::tolerance_of(m, v.accuracy);
   const nlohmann::json line = {{"command", typed},
                                {"started_utc", started},
-                               {"verdict_tolerances",
-                                {{"sensor_peak_relative_error", v.accuracy.sensor_peak_relative},
-                                 {"contact_duration_relative_error", v.accuracy.contact_duration_relative},
-                                 {"impacts_per_cycle_difference", v.accuracy.impacts_per_cycle_difference},
-                                 {"log_decrement_relative_error", v.accuracy.log_decrement_relative}}},
+                               {"verdict_tolerances", tolerances},
                                {"stability_bounds",
                                 {{"displacement_fraction_of_length", v.stability.displacement_bound_fraction_of_length},
                                  {"penetration_gaps", v.stability.penetration_bound_gaps},

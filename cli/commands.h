@@ -31,6 +31,7 @@ Command add_compare_command(CLI::App& app);
 Command add_sweep_command(CLI::App& app);
 Command add_study_command(CLI::App& app);
 Command add_engines_command(CLI::App& app);
+Command add_metrics_command(CLI::App& app);
 Command add_list_command(CLI::App& app);
 
 // `suite`'s options: the shared ones (MatrixOptions, arguments.h) and its own.

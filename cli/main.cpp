@@ -22,11 +22,11 @@ int main(int argc, char** argv) {
   CLI::App app{"impactbench: a benchmark of physics engines on a two-frame vibro-impact rig"};
   app.require_subcommand(1);
   // each command's options beside it (cli/command_<name>.cpp); this order is the help's
-  const std::vector<Command> commands = {add_modes_command(app),  add_run_command(app),    add_suite_command(app),
-                                         add_merge_command(app),  add_export_command(app), add_score_command(app),
-                                         add_report_command(app), add_repro_command(app),  add_compare_command(app),
-                                         add_sweep_command(app),  add_study_command(app),  add_engines_command(app),
-                                         add_list_command(app)};
+  const std::vector<Command> commands = {add_modes_command(app),   add_run_command(app),    add_suite_command(app),
+                                         add_merge_command(app),   add_export_command(app), add_score_command(app),
+                                         add_report_command(app),  add_repro_command(app),  add_compare_command(app),
+                                         add_sweep_command(app),   add_study_command(app),  add_engines_command(app),
+                                         add_metrics_command(app), add_list_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -40,6 +40,10 @@ struct SimulatorDescriptor {
   std::vector<DiagnosticsKey> diagnostics;
   std::vector<RecommendedConfiguration> recommended;  // one per law it names; empty: none
   std::string recommended_json;  // the descriptor's "recommended" object as written (with its sources), "" if none
+  // The step of a run without --dt [s] (descriptor.json "default_time_step_s", which the adapter is compiled
+  // with: adapters/CMakeLists.txt); 0 for an adaptive simulator (the reference, null in its descriptor)
+  double default_time_step_s = 0;
+  std::string default_time_step_note;  // how the step is chosen where a number cannot say it, "" if none
 };
 
 }  // namespace ib

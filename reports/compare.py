@@ -20,6 +20,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from impactbench_compare import changes, folders, writers  # noqa: E402
+from impactbench_report import metric_catalog  # noqa: E402
 
 # a failure of this script itself exits otherwise (an uncaught exception: 1 would read as "moved")
 EXIT_NOTHING_MOVED, EXIT_MOVED, EXIT_BAD_INPUT, EXIT_OUTPUT_ERROR, EXIT_FAILED = 0, 1, 2, 3, 70
@@ -56,7 +57,8 @@ def main(argv):
         return EXIT_BAD_INPUT
     try:
         read = [folders.read_folder(path) for path in arguments.folders]
-    except folders.CompareInputError as e:
+        metric_catalog.use(*arguments.folders)  # the metrics every folder was scored on (metrics.json)
+    except (folders.CompareInputError, metric_catalog.MetricsFileError) as e:
         print(f"impactbench: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT
     if len(read) > 2:

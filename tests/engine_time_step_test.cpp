@@ -1,8 +1,8 @@
 // The step an engine runs with is the step its run records (runs.csv time_step_s): every engine of this
-// build, on frame 1's free vibration, at two asked steps and at its default. The loop's count of steps
-// must be the run's length over the recorded step, and the motion must keep its frequency from one step
-// to the other: an engine that advanced its bodies by a step other than the one the loop counts (its
-// own default, say) would run its physics faster or slower than the recorded time by their ratio.
+// build, on frame 1's free vibration, at two asked steps and at its default (its descriptor.json's). The loop's count
+// of steps must be the run's length over the recorded step, and the motion must keep its frequency from one step to the
+// other: an engine that advanced its bodies by a step other than the one the loop counts (its own default, say) would
+// run its physics faster or slower than the recorded time by their ratio.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -82,8 +82,18 @@ TEST_P(EngineTimeStep, RecordsItsDefaultStepAndStepsWithIt) {
   const SteppedRun run = run_at(GetParam(), 0);
   ASSERT_EQ(run.record.verdict, Verdict::ok) << run.record.reason;
   ASSERT_GT(run.record.time_step_s, 0);
+  // the step the adapter took is the one its descriptor.json states (and engines.json shows): on the default
+  // rig, Bullet's ladder gives its ceiling
+  EXPECT_EQ(run.record.time_step_s, descriptor_of(simulator_catalog(), GetParam()).default_time_step_s);
   EXPECT_EQ(run.record.cost.steps, steps_at(run.record.time_step_s));
   EXPECT_NEAR(run.frequency_hz / frame1_first_frequency_hz(free_vibration()), 1.0, 0.02) << run.frequency_hz << " Hz";
+}
+
+// The reference takes no fixed step: its descriptor says so (null, 0 here) and its runs record 0.
+TEST(ReferenceTimeStep, ItsDescriptorSaysAdaptive) {
+  const SimulatorDescriptor d = descriptor_of(simulator_catalog(), "reference");
+  EXPECT_EQ(d.default_time_step_s, 0);
+  EXPECT_NE(d.default_time_step_note.find("adaptive"), std::string::npos) << d.default_time_step_note;
 }
 
 // Every fixed-step simulator of the catalog: all but the adaptive reference, which takes no step.

@@ -10,6 +10,7 @@
 // is reported by merge with the command that finishes it, and finishing it then gives the whole suite
 // again; a shard no folder holds is reported too.
 // (Its errors: shard_merge_errors_test.cpp.)
+#include "harness/records/metrics_file.h"
 #include "suite_sharding_support.h"
 
 namespace suite_sharding_test {
@@ -23,8 +24,11 @@ TEST_F(SuiteSharding, ShardsMergedGiveTheWholeSuite) {
   const CommandOutput merge = command("merge " + quoted(*root_ / "merged") + shard_list());
   ASSERT_EQ(merge.exit_code, 0) << merge.text;
   expect_same_results(whole(), *root_ / "merged");
-  // the merged folder names the engines that made it, as each shard's does (harness/records/engines_file.h)
+  // the merged folder names the engines that made it and the metrics they were scored on, as each shard's does
+  // (harness/records/engines_file.h): the shard's metrics.json, copied
   EXPECT_TRUE(fs::exists(*root_ / "merged" / "engines.json"));
+  EXPECT_EQ(read_text(*root_ / "merged" / "metrics.json"), read_text(shards.front() / "metrics.json"));
+  EXPECT_EQ(read_text(shards.front() / "metrics.json"), ib::metrics_json());
   EXPECT_NE(merge.text.find("report: " + (*root_ / "merged" / "report" / "index.html").string()), std::string::npos)
       << merge.text;
   const std::string summary = read_text(*root_ / "merged" / "report" / "summary.md");

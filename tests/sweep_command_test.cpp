@@ -67,6 +67,8 @@ TEST(SweepCommand, WritesItsTablesAndAResumeWithOtherSettingsIsRefused) {
   while (std::getline(table, row)) ++rows;
   EXPECT_EQ(rows, 2);
   EXPECT_TRUE(fs::exists(out / "poincare.csv"));
+  // the sweep's folder holds the metrics it measured, as a suite's does (harness/records/metrics_file.h)
+  EXPECT_TRUE(fs::exists(out / "metrics.json"));
   const CommandOutput again = sweep(common + " --window 2");  // the folder holds a sweep: --resume or another --out
   EXPECT_EQ(again.exit_code, 2);
   EXPECT_NE(again.text.find("--resume"), std::string::npos) << again.text;

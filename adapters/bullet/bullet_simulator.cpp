@@ -35,7 +35,8 @@ using namespace bullet;  // the adapter's own names: chains and contact mapping
 // Never above 5e-5 s: a sphere contact starts at the first step that begins overlapping, and the
 // overlap gained unresisted in that step adds up to (omega h)^2 of an impact's energy to the
 // spring-dashpot (omega = 5200 rad/s for the rig): 7 % at 5e-5 s, 27 % at 1e-4 s, enough to make
-// energy grow.
+// energy grow. The ceiling is descriptor.json's default_time_step_s (adapters/CMakeLists.txt compiles it in).
+static_assert(IMPACTBENCH_DEFAULT_TIME_STEP_S == 5e-5, "descriptor.json's default_time_step_s is the ladder's ceiling");
 double default_time_step(const RigSpec& rig) {
   const double allowed = 0.75 * explicit_hinge_step_limit_s(rig);
   for (double step : {5e-5, 2e-5, 1e-5, 5e-6, 2e-6, 1e-6, 5e-7, 2e-7, 1e-7})

@@ -25,7 +25,8 @@ using dart_adapter::DartRigSettings;
 // The step when a run's settings give none, as for the other fixed-step engines. DART's joint springs and
 // dampers are implicit, so the chain is stable at any step; the modal damping torques the loop holds over a
 // step add no limit with implicit springs (explicit_hinge_step_limit_s); the contact is what the step resolves.
-constexpr double kDefaultTimeStep_s = 1e-4;
+// Its value is descriptor.json's default_time_step_s (adapters/CMakeLists.txt).
+constexpr double kDefaultTimeStep_s = IMPACTBENCH_DEFAULT_TIME_STEP_S;
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"contact",

@@ -9,6 +9,9 @@
 #include "adapters/mujoco/mujoco_engine.h"
 
 namespace ib {
+
+const double kDefaultMujocoTimeStep_s = IMPACTBENCH_DEFAULT_TIME_STEP_S;
+
 namespace {
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {

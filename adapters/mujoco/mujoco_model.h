@@ -17,8 +17,10 @@ namespace ib {
 
 enum class MujocoIntegrator { euler, rk4 };
 
-constexpr double kDefaultMujocoTimeStep_s = 1e-4;  // when RunSettings::time_step_s is 0
-constexpr int kDefaultNewtonContactSteps = 4;      // matched Newton: steps the contact force lasts (README)
+// when RunSettings::time_step_s is 0: descriptor.json's default_time_step_s, which the adapter is compiled with
+// (adapters/CMakeLists.txt), defined in mujoco_model.cpp
+extern const double kDefaultMujocoTimeStep_s;
+constexpr int kDefaultNewtonContactSteps = 4;  // matched Newton: steps the contact force lasts (README)
 
 // The tip-to-tip contact MuJoCo computes itself through a <pair> with a direct solref (matched path,
 // spring-dashpot and Newton laws): the spring-dashpot it is set to and MuJoCo's form of it.

@@ -25,8 +25,8 @@ using ode::Stepper;
 // The step when a run's settings give none (the benchmark's default for fixed-step engines). It resolves
 // the structure, but it is not ODE's accurate step for this rig: the implicit hinge springs add
 // omega_1 h / 2 = 0.0022 to zeta = 0.003 and the soft contact keeps about half its restitution
-// (README.md, "What a user should know").
-constexpr double kDefaultTimeStep_s = 1e-4;
+// (README.md, "What a user should know"). Its value is descriptor.json's default_time_step_s (adapters/CMakeLists.txt).
+constexpr double kDefaultTimeStep_s = IMPACTBENCH_DEFAULT_TIME_STEP_S;
 constexpr int kOdeDefaultQuickStepIterations = 20;  // dWorldGetQuickStepNumIterations of a new world
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {

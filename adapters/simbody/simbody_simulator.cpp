@@ -24,8 +24,8 @@ using simbody::IntegratorKind;
 // damping matrix as a force element, simbody_chain.h) are forces integrated explicitly, so the step must stay
 // below the chain's explicit limit (explicit_hinge_step_limit_s for K = 8 with semi-explicit Euler: 7.5e-5 s
 // with hinge damping, about twice that with modal); 5e-5 s also resolves the spring-dashpot contact
-// (omega h = 0.26).
-constexpr double kDefaultTimeStep_s = 5e-5;
+// (omega h = 0.26). Its value is descriptor.json's default_time_step_s (adapters/CMakeLists.txt).
+constexpr double kDefaultTimeStep_s = IMPACTBENCH_DEFAULT_TIME_STEP_S;
 constexpr double kDefaultConstraintTolerance_m = 1e-6;
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {

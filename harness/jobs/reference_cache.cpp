@@ -10,6 +10,7 @@
 
 #include "harness/jobs/shard_plan.h"
 #include "harness/records/run_files.h"
+#include "harness/scoring/metric_catalog.h"
 
 namespace ib {
 
@@ -63,9 +64,7 @@ nlohmann::ordered_json reference_cache_key(const Scenario& scenario, const JobSp
   key["merge_window_s"] = m.merge_window_s;
   key["series"] = series_name(m.series);
   key["timed_repeats"] = m.timed_repeats;
-  key["verdict_tolerances"] = {m.verdicts.accuracy.sensor_peak_relative, m.verdicts.accuracy.contact_duration_relative,
-                               m.verdicts.accuracy.impacts_per_cycle_difference,
-                               m.verdicts.accuracy.log_decrement_relative};
+  key["verdict_tolerances"] = tolerance_values(m.verdicts.accuracy);  // the metric catalog's, in its order
   key["stability_bounds"] = {
       m.verdicts.stability.displacement_bound_fraction_of_length, m.verdicts.stability.penetration_bound_gaps,
       m.verdicts.stability.penetration_bound_floor_m, m.verdicts.stability.energy_growth_tolerance};

@@ -24,6 +24,9 @@ nlohmann::ordered_json descriptor_json(const SimulatorDescriptor& d, const std::
   nlohmann::ordered_json record = {
       {"name", d.name},         {"display_name", d.display_name},     {"summary", d.summary}, {"version", version},
       {"packages", d.packages}, {"colours", pairs_object(d.colours)}, {"diagnostics", keys}};
+  // the step of a run without --dt; null for an adaptive simulator (the reference), which takes none
+  record["default_time_step_s"] = d.default_time_step_s > 0 ? nlohmann::ordered_json(d.default_time_step_s) : nullptr;
+  if (!d.default_time_step_note.empty()) record["default_time_step_note"] = d.default_time_step_note;
   // the authors' recommended configuration with each setting's source, for the report to cite
   if (!d.recommended_json.empty()) record["recommended"] = nlohmann::ordered_json::parse(d.recommended_json);
   return record;

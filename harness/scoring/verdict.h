@@ -25,7 +25,8 @@ struct Judgement {
 
 // A stable run is inaccurate when any of these is exceeded against the reference of the same scenario
 // and law. The one record of accuracy: the verdict judges with it, and so does the step search
-// (step_search.h: "within tolerance" is what the verdict calls accurate).
+// (step_search.h: "within tolerance" is what the verdict calls accurate). Each member's key in
+// commands.jsonl and metrics.json and the metrics it judges: metric_catalog.h.
 struct AccuracyTolerances {
   double sensor_peak_relative = 0.10;          // |relative error| of either frame's sensor peak [-]
   double contact_duration_relative = 0.10;     // |relative error| of the mean contact duration [-]

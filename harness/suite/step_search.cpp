@@ -7,6 +7,7 @@
 
 #include "harness/records/number_text.h"
 #include "harness/records/recorded_run.h"
+#include "harness/scoring/metric_catalog.h"
 
 namespace ib {
 namespace {
@@ -22,15 +23,7 @@ std::string step_text(double dt) {
 }  // namespace
 
 double tolerance_of(const AccuracyTolerances& tolerances, HeadlineMetric metric) {
-  switch (metric) {
-    case HeadlineMetric::frame1_sensor_peak:
-      return tolerances.sensor_peak_relative;
-    case HeadlineMetric::contact_duration:
-      return tolerances.contact_duration_relative;
-    case HeadlineMetric::impacts_per_cycle:
-      return tolerances.impacts_per_cycle_difference;
-  }
-  return kNaN;
+  return tolerance_of(scored_metric(to_string(metric)), tolerances);  // the catalog's key and tolerance
 }
 
 const char* to_string(HeadlineMetric metric) {

@@ -11,6 +11,7 @@
 #include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
 #include "harness/records/run_record.h"
+#include "harness/scoring/metric_catalog.h"
 
 namespace ib {
 namespace {
@@ -18,18 +19,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 using Json = nlohmann::ordered_json;
 
-// The runs.csv name of each metric's error against a reference (metrics.cpp flatten()).
-const char* error_name(HeadlineMetric m) {
-  switch (m) {
-    case HeadlineMetric::frame1_sensor_peak:
-      return "frame1_sensor_peak_relative_error";
-    case HeadlineMetric::contact_duration:
-      return "contact_duration_relative_error";
-    case HeadlineMetric::impacts_per_cycle:
-      return "impacts_per_cycle_difference";
-  }
-  return "";
-}
+// The runs.csv name of each metric's error against a reference (the metric catalog's error_column).
+std::string error_name(HeadlineMetric m) { return scored_metric(to_string(m)).error_column; }
 
 double number_or_nan(const Json& j, const std::string& name) {
   return j.contains(name) && j[name].is_number() ? j[name].get<double>() : kNaN;

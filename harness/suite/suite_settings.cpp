@@ -17,6 +17,7 @@
 #include "harness/records/jsonl_table.h"
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
+#include "harness/scoring/metric_catalog.h"
 
 namespace ib::suite_internal {
 
@@ -121,9 +122,7 @@ nlohmann::ordered_json settings_record(const SuitePlan& plan, std::size_t part) 
   s["timed_repeats"] = m.timed_repeats;
   s["series"] = m.series == SeriesOutput::all ? "all" : m.series == SeriesOutput::none ? "none" : "window";
   if (m.series_rate_hz > 0) s["series_rate_hz"] = m.series_rate_hz;  // absent when unused: older folders resume
-  s["verdict_tolerances"] = {m.verdicts.accuracy.sensor_peak_relative, m.verdicts.accuracy.contact_duration_relative,
-                             m.verdicts.accuracy.impacts_per_cycle_difference,
-                             m.verdicts.accuracy.log_decrement_relative};
+  s["verdict_tolerances"] = tolerance_values(m.verdicts.accuracy);   // the metric catalog's, in its order
   s["stability_bounds"] = {m.verdicts.stability.displacement_bound_fraction_of_length,
                            m.verdicts.stability.penetration_bound_gaps, m.verdicts.stability.penetration_bound_floor_m,
                            m.verdicts.stability.energy_growth_tolerance};

@@ -143,6 +143,10 @@ def read_runs(folder):
     finished (parallel workers, a suite interrupted and resumed)."""
     path = os.path.join(folder, "runs.csv")
     engines.use(folder)  # the names, colours and settings keys of the engines that made these runs
+    try:
+        metric_catalog.use(folder)  # and the metrics they were scored on (metrics.json)
+    except metric_catalog.MetricsFileError as e:
+        raise ResultsError(str(e)) from None
     suite = Suite(folder)
     seen = {}  # job id -> line
     with open(path, newline="") as f:

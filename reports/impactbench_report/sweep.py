@@ -8,8 +8,7 @@ import json
 import math
 import os
 
-from . import data, engines
-from .metric_catalog import CONTACT_DURATION, FRAME1_SENSOR_PEAK, FRAME2_SENSOR_PEAK, IMPACTS_PER_CYCLE
+from . import data, engines, metric_catalog
 from .sweep_starts import (START_ENSEMBLE_HEADER, ensemble_member, multistable, multistable_sentence, ratio_text,
                            regime_agrees, regime_of, start_ensemble_rows, start_ensemble_table, start_ensembles)
 
@@ -84,13 +83,15 @@ def label(config):
     return f"{engine} {options or 'default'}, dt {step:g} s"
 
 
-# sweep.csv's numeric columns, in its order; a quantity runs.csv has too carries runs.csv's name and unit
-# (docs/sweeps.md), the scored metrics among them metric_catalog's (its SWEEP).
-NUMBERS = ("ratio", "ensemble_start", "ensemble_starts", "initial_displacement_offset_m", "time_step_s", "motor_frequency_hz", "duration_s", "window_s", "impacts",
-           IMPACTS_PER_CYCLE.column, "period_n", "impacts_per_period", FRAME1_SENSOR_PEAK.column,
-           FRAME2_SENSOR_PEAK.column, "frame1_peak_displacement_m", "frame2_peak_displacement_m",
-           "mean_approach_velocity_m_s", CONTACT_DURATION.column, "poincare_samples", "steps", "cpu_time_s",
-           "wall_time_s", "load_average")
+def numbers():
+    """sweep.csv's numeric columns, in its order; a quantity runs.csv has too carries runs.csv's name and unit
+    (docs/sweeps.md), the scored metrics among them the folder's metric catalog's (metric_catalog.SWEEP)."""
+    column = {name: metric_catalog.by_name(name).column for name in metric_catalog.SWEEP_NAMES}
+    return ("ratio", "ensemble_start", "ensemble_starts", "initial_displacement_offset_m", "time_step_s",
+            "motor_frequency_hz", "duration_s", "window_s", "impacts", column["impacts_per_cycle"], "period_n",
+            "impacts_per_period", column["frame1_sensor_peak"], column["frame2_sensor_peak"],
+            "frame1_peak_displacement_m", "frame2_peak_displacement_m", "mean_approach_velocity_m_s",
+            column["contact_duration"], "poincare_samples", "steps", "cpu_time_s", "wall_time_s", "load_average")
 
 
 def number(text, path, line, column):
@@ -106,9 +107,18 @@ def is_sweep(folder):
     return os.path.isfile(os.path.join(folder, "sweep.json"))
 
 
+def use_metrics(folder):
+    """The folder's metric catalog (metric_catalog.use), its error as a data.ResultsError."""
+    try:
+        metric_catalog.use(folder)
+    except metric_catalog.MetricsFileError as e:
+        raise data.ResultsError(str(e)) from None
+
+
 def read(folder):
     """The sweep in folder; data.ResultsError naming the file, line and column for what cannot be read."""
     engines.use(folder)  # the names and colours of the engines that made the sweep (engines.json)
+    use_metrics(folder)  # and the metrics it measured (metrics.json)
     path = os.path.join(folder, "sweep.csv")
     if not os.path.isfile(path):
         raise data.ResultsError(f"{path}: no such file (a sweep's folder holds one once a ratio has ended)")
@@ -118,8 +128,9 @@ def read(folder):
         missing = [c for c in ("id", "engine", "law", "start", "ratio", "verdict", "regime") if c not in (reader.fieldnames or [])]
         if missing:
             raise data.ResultsError(f"{path}: columns {', '.join(missing)} missing (not a sweep.csv of this build?)")
+        columns = numbers()
         for line, row in enumerate(reader, start=2):
-            for column in NUMBERS:
+            for column in columns:
                 if column in row:
                     row[column] = number(row[column] or "", path, line, column)
             if math.isnan(row["ratio"]):
@@ -221,8 +232,8 @@ def answer_sentences(sweep):
         post = f["up_at_experiment"].get(ratio)
         if post is not None:
             if impacts(post):
-                text += (f"; at {ratio:g} f_1 it impacts, {post[IMPACTS_PER_CYCLE.column]:.2f} impacts per cycle "
-                         f"({post['regime']})")
+                per_cycle = post[metric_catalog.by_name("impacts_per_cycle").column]
+                text += f"; at {ratio:g} f_1 it impacts, {per_cycle:.2f} impacts per cycle ({post['regime']})"
             else:
                 text += (f"; at {ratio:g} f_1 (the experiment's post-resonance, about "
                          f"{POST_RESONANCE['impacts_per_beat']:g} impacts per beat) it has no impact")
@@ -255,7 +266,7 @@ def agreement(sweep):
                 reached = {id(r): sweep.start_ensembles.get((law, round(r["ratio"], 6))) for r, _ in paired}
                 same = [(r, q) for r, q in paired if regime_agrees(r, q, reached[id(r)])]
                 differ = [(r, q) for r, q in paired if not regime_agrees(r, q, reached[id(r)])]
-                count, peak = IMPACTS_PER_CYCLE.column, FRAME1_SENSOR_PEAK.column  # a difference, a relative error
+                count, peak = (metric_catalog.by_name(n).column for n in ("impacts_per_cycle", "frame1_sensor_peak"))  # a difference, a relative error
                 ipc = [abs(r[count] - q[count]) for r, q in paired
                        if r["verdict"] == "ok" and not math.isnan(r[count]) and not math.isnan(q[count])]
                 peaks = sorted(abs(r[peak] / q[peak] - 1)

@@ -39,8 +39,10 @@ def percent(value):
     return f"{100 * value:+.0f} %" if abs(value) >= 10 else f"{100 * value:+.3g} %"
 
 
-# The case table's metrics: (label with unit, runs.csv column, error column without prefix, kind).
-CASE_METRICS = [(f"{m.label} [{m.unit}]", m.column, m.error_column, m.kind) for m in metric_catalog.SCORED]
+def case_metrics():
+    """The case table's metrics, the folder's scored ones: (label with unit, runs.csv column, error column without
+    prefix, kind)."""
+    return [(f"{m.label} [{m.unit}]", m.column, m.error_column, m.kind) for m in metric_catalog.SCORED]
 
 
 def error_cell(run, column, kind, against):
@@ -90,7 +92,7 @@ def case_table(suite, scenario, law, experiment):
     runs = suite.runs_of(scenario, law)
     runs = sorted((r for r in runs if r["engine"]), key=lambda r: (r["engine"] != "reference", not r.is_beam_reference,
                                                                    r.config, r.number("time_step_s")))
-    metrics = [m for m in CASE_METRICS if any(not math.isnan(r.number(m[1])) for r in runs)]
+    metrics = [m for m in case_metrics() if any(not math.isnan(r.number(m[1])) for r in runs)]
     header = ["configuration", "time step [s]"]
     with_starts = any(starts(r) > 1 for r in runs)  # a column only where an ensemble ran
     if with_starts:

@@ -1,6 +1,6 @@
 """A result folder's engines.json drives the report's names, colours and settings, and an old folder without
 it still reports (each engine under its catalog name, in a spare colour); the descriptors the repository
-ships are complete, each documented diagnostics key is one its adapter writes, and `impactbench engines
+ships are complete (each with its default time step, null for the adaptive reference), each documented diagnostics key is one its adapter writes, and `impactbench engines
 --json` (what a suite writes) carries them with each library's version.
 
     /usr/bin/python3 reports/tests/test_engines_file.py [IMPACTBENCH_EXECUTABLE]
@@ -77,8 +77,12 @@ class TheShippedDescriptors(unittest.TestCase):
             for key in d["diagnostics"]:
                 self.assertTrue(key.get("key") and key.get("label") and key.get("meaning"), f"{path}: {key}")
                 self.assertIn("unit", key, f"{path}: {key['key']} has no unit field ('' for none)")
+            self.assertIn("default_time_step_s", d, path)
             if d["name"] == "reference":
+                self.assertIsNone(d["default_time_step_s"], f"{path}: the reference is adaptive")
+                self.assertIn("adaptive", d["default_time_step_note"], path)
                 continue
+            self.assertGreater(d["default_time_step_s"], 0, f"{path}: the step of a run without --dt [s]")
             self.assertTrue(d["packages"], f"{path}: no Debian package")
             self.assertEqual(set(d["colours"]), {"matched", "injected", "native"}, path)
             for path_name, colour in d["colours"].items():
@@ -150,6 +154,8 @@ class TheCommand(unittest.TestCase):
                 self.assertEqual(p[field], d[field], f"{d['name']}: {field}")
             self.assertEqual([k["key"] for k in p["diagnostics"]], [k["key"] for k in d["diagnostics"]])
             self.assertEqual(p.get("recommended"), d.get("recommended"), f"{d['name']}: recommended")
+            for field in ("default_time_step_s", "default_time_step_note"):  # null: adaptive (the reference)
+                self.assertEqual(p.get(field), d.get(field), f"{d['name']}: {field}")
         names = subprocess.run([EXECUTABLE, "engines", "--names"], capture_output=True, text=True)
         self.assertEqual(names.stdout.strip().split(","), list(printed))
         human = subprocess.run([EXECUTABLE, "engines"], capture_output=True, text=True)

@@ -5,7 +5,7 @@ A copy of this tree gets the toy engine of tests/new_engine/toyphys/ as adapters
 the line `set(impactbench_all_engines ...)`, nothing else. Then, in the copy:
   - the layering and engine-name checks pass (scripts/check_layers.py, scripts/check_engine_names.py);
   - it configures and builds the impactbench command with the toy as its only engine;
-  - the catalog lists it, with its descriptor's display name (what the report reads, engines.json);
+  - the catalog lists it, with its descriptor's display name and default time step (engines.json);
   - `all` in a study means the reference and the toy;
   - the toy runs the published free vibration with the injected Hertz law and the shared fixed-step loop
     judges and scores it: its impacts and frame 2's peak displacement (what the impact gave it) agree with the
@@ -62,6 +62,8 @@ def main():
     engines = json.loads(run([impactbench, "engines", "--json"]))
     toy = next(e for e in engines["simulators"] if e["name"] == "toyphys")
     assert toy["display_name"] == "ToyPhys", toy
+    # its default step, from its descriptor alone: the adapter is compiled with it and engines.json shows it
+    assert toy["default_time_step_s"] == 2e-5, toy
     # a study of every engine of the build (the shipped studies also name engines for named configurations)
     study = scratch / "every-engine.toml"
     study.write_text('[[suite]]\nscenarios = ["scenarios/paper/free_vibration.toml"]\nengines = "all"\n')

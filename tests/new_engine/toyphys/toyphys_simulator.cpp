@@ -16,7 +16,9 @@
 namespace ib {
 namespace {
 
-constexpr double kDefaultTimeStep_s = 2e-5;  // below the explicit springs' limit of the default chain
+// Below the explicit springs' limit of the default chain; descriptor.json's default_time_step_s, which the
+// engine's target is compiled with (adapters/CMakeLists.txt), as engines.json shows it.
+constexpr double kDefaultTimeStep_s = IMPACTBENCH_DEFAULT_TIME_STEP_S;
 
 const std::vector<std::pair<std::string, std::string>> kOptions = {
     {"contact", "injected (the law's force from the tip states; the only path of this toy)"},
