@@ -67,7 +67,9 @@ skip_engines = ["reference"]
   ASSERT_EQ(out.exit_code, 0) << out.text;
   const std::vector<std::string> names = ib::simulator_names();
   EXPECT_EQ(out.text.find("engines reference"), std::string::npos) << out.text;
-  if (names.size() > 1) EXPECT_NE(out.text.find("engines " + names[1]), std::string::npos) << out.text;
+  if (names.size() > 1) {
+    EXPECT_NE(out.text.find("engines " + names[1]), std::string::npos) << out.text;
+  }
 }
 
 // [defaults] holds what every part runs unless it says otherwise: a study written with it plans exactly what the
