@@ -3,8 +3,9 @@
 // (cli/study_file.h); what runs them is here, so that no option text reaches the harness.
 //
 // A new kind of part is a class implementing PartOfItsOwnKind (below): its settings, its source of units and its
-// plan line; this file places it and runs it with the others, unchanged. On the command line it is its table's
-// keys (cli/study_keys.*), its reader (cli/study_file.cpp) and its exit code (cli/command_study.cpp).
+// plan line; this file places it and runs it with the others, unchanged (tests/study_part_kind_test.cpp adds a
+// toy). On the command line it is its table's keys (cli/study_keys.*), its reader (cli/study_file.cpp) and its
+// exit code (cli/command_study.cpp).
 #pragma once
 
 #include <memory>
