@@ -80,8 +80,8 @@ int command_study(const StudyOptions& o) {
   for (const ib::StudyPart& part : parts)
     if (const auto* suite = std::get_if<ib::SuiteSettings>(&part.settings))
       suites.push_back(suite);
-    else
-      sweeps.push_back(&std::get<ib::SweepSettings>(part.settings));
+    else if (const auto* sweep = std::get_if<ib::SweepSettings>(&part.settings))
+      sweeps.push_back(sweep);
   std::fprintf(stderr, "study: %s, %zu suites and searches into %s, %zu sweeps into %s/sweeps/\n", o.file.c_str(),
                suites.size(), o.out.c_str(), sweeps.size(), o.out.c_str());
   // the report names the commands that produced its folder: each suite or search part as one

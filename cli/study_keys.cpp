@@ -87,6 +87,7 @@ const KeySpec* key_of_message(ib::StudyPartKind kind, const std::map<std::string
   };
   static const std::vector<KeySpec> keys[] = {keys_of(ib::StudyPartKind::suite), keys_of(ib::StudyPartKind::search),
                                               keys_of(ib::StudyPartKind::sweep)};
+  if (kind == ib::StudyPartKind::other) return nullptr;  // not a study file's: its messages are its own
   for (const KeySpec& k : keys[static_cast<int>(kind)])
     if (key_lines.count(k.key) && (starts_with(k.option) || starts_with(k.also))) return &k;
   return nullptr;

@@ -18,8 +18,14 @@ const char* to_string(StudyPartKind kind) {
       return "search";
     case StudyPartKind::sweep:
       return "sweep";
+    case StudyPartKind::other:
+      return "other";
   }
   return "";
+}
+
+std::string folder_of(const PartOfItsOwnKind& part, const std::string& name, const StudySettings& settings) {
+  return settings.out + "/" + part.kind() + "/" + name;
 }
 
 std::vector<StudyPart> place_study_parts(const std::vector<StudyPart>& parts, const StudySettings& settings) {
@@ -28,19 +34,22 @@ std::vector<StudyPart> place_study_parts(const std::vector<StudyPart>& parts, co
   for (const StudyPart& given : parts) {
     if (std::find(settings.left_out.begin(), settings.left_out.end(), given.kind) != settings.left_out.end()) continue;
     StudyPart part = given;
+    MatrixSettings* shared = nullptr;
     if (auto* sweep = std::get_if<SweepSettings>(&part.settings)) {
       sweep->out = settings.out + "/sweeps/" + part.name;
-    } else {
-      SuiteSettings& suite = std::get<SuiteSettings>(part.settings);
-      suite.out = settings.out;
-      suite.reference_cache = settings.reference_cache;
-      suite.extend = !first_suite;  // the later parts have other settings: each adds its suite to the folder
+      shared = sweep;
+    } else if (auto* suite = std::get_if<SuiteSettings>(&part.settings)) {
+      suite->out = settings.out;
+      suite->reference_cache = settings.reference_cache;
+      suite->extend = !first_suite;  // the later parts have other settings: each adds its suite to the folder
       first_suite = false;
+      shared = suite;
     }
-    MatrixSettings& shared = std::visit([](auto& s) -> MatrixSettings& { return s; }, part.settings);
-    shared.jobs = settings.jobs;
-    shared.shard = settings.shard;
-    shared.resume = settings.resume;
+    if (shared) {
+      shared->jobs = settings.jobs;
+      shared->shard = settings.shard;
+      shared->resume = settings.resume;
+    }
     placed.push_back(std::move(part));
   }
   return placed;
@@ -48,24 +57,30 @@ std::vector<StudyPart> place_study_parts(const std::vector<StudyPart>& parts, co
 
 StudyOutcome run_study(const std::vector<StudyPart>& parts, const StudySettings& settings) {
   std::vector<SuiteSettings> suites;
-  std::vector<const StudyPart*> sweeps;
+  std::vector<const StudyPart*> sweeps, others;
   const std::vector<StudyPart> placed = place_study_parts(parts, settings);
   for (const StudyPart& part : placed) {
     if (const auto* suite = std::get_if<SuiteSettings>(&part.settings))
       suites.push_back(*suite);
     else
-      sweeps.push_back(&part);
+      (std::holds_alternative<SweepSettings>(part.settings) ? sweeps : others).push_back(&part);
   }
-  // The suites and searches are one source (a job two parts plan runs once), each sweep another; every source
-  // is prepared (checked, its folder made) before any unit runs.
+  // The suites and searches are one source (a job two parts plan runs once), each other part another; every
+  // source is prepared (checked, its folder made) before any unit runs.
   const InterruptionHandler handler;  // outlives the pool, which stops its workers when it ends
   std::unique_ptr<SuiteSource> suite_source = suites.empty() ? nullptr : prepare_suites(suites);
   std::vector<std::unique_ptr<SweepSource>> sweep_sources;
   for (const StudyPart* sweep : sweeps)
     sweep_sources.push_back(prepare_sweep(std::get<SweepSettings>(sweep->settings)));
+  std::vector<std::unique_ptr<UnitSource>> other_sources;
+  for (const StudyPart* other : others) {
+    const auto& own = *std::get<std::shared_ptr<const PartOfItsOwnKind>>(other->settings);
+    other_sources.push_back(own.prepare(folder_of(own, other->name, settings), settings));
+  }
   std::vector<UnitSource*> sources;
   if (suite_source) sources.push_back(suite_source.get());
   for (const auto& sweep : sweep_sources) sources.push_back(sweep.get());
+  for (const auto& other : other_sources) sources.push_back(other.get());
   run_units(sources, settings.jobs);
   StudyOutcome outcome;
   if (suite_source) outcome.suites = with_engines_file(settings.out, suites.front().simulators, suite_source->finish());
@@ -74,6 +89,7 @@ StudyOutcome run_study(const std::vector<StudyPart>& parts, const StudySettings&
     outcome.sweeps.push_back(
         {sweeps[i]->name, with_engines_file(sweep.out, sweep.simulators, sweep_sources[i]->finish())});
   }
+  for (const StudyPart* other : others) outcome.others.push_back(other->name);
   return outcome;
 }
 

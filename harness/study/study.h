@@ -2,33 +2,50 @@
 // one plan on one pool of workers. The command line reads a study file into these typed parts
 // (cli/study_file.h); what runs them is here, so that no option text reaches the harness.
 //
-// A new kind of part touches: StudyPartKind and to_string (below), the settings it runs with (the variant of
-// StudyPart), its folder (place_study_parts), its source of units and outcome (run_study, study.cpp) and its
-// plan line (describe_study, study_plan.cpp); on the command line its table's keys (cli/study_keys.*), its
-// reader (cli/study_file.cpp) and its exit code (cli/command_study.cpp).
+// A new kind of part is a class implementing PartOfItsOwnKind (below): its settings, its source of units and its
+// plan line; this file places it and runs it with the others, unchanged (tests/study_part_kind_test.cpp adds a
+// toy). On the command line it is its table's keys (cli/study_keys.*), its reader (cli/study_file.cpp) and its
+// exit code (cli/command_study.cpp).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "harness/jobs/shard_plan.h"
+#include "harness/jobs/unit_source.h"
 #include "harness/suite/suite.h"
 #include "harness/sweep/sweep.h"
 
 namespace ib {
 
-enum class StudyPartKind { suite, search, sweep };
-const char* to_string(StudyPartKind kind);  // "suite", "search", "sweep": the study file's table names
+// A study file's kinds of part, and `other`: a part of a kind of its own (PartOfItsOwnKind).
+enum class StudyPartKind { suite, search, sweep, other };
+const char* to_string(StudyPartKind kind);  // "suite", "search", "sweep": the study file's table names; "other"
 
-// One part: a suite and a search run SuiteSettings (a search's step_search set), a sweep SweepSettings. The
-// settings are checked already; the study-wide ones in them (folder, workers, shard, resume, reference cache,
-// extend) are StudySettings' and are set by place_study_parts.
+struct StudySettings;
+
+// A part of a kind of its own: its settings are its own, it is its own source of units on the study's pool, and
+// it writes into OUT/KIND/NAME.
+class PartOfItsOwnKind {
+ public:
+  virtual ~PartOfItsOwnKind() = default;
+  virtual std::string kind() const = 0;  // its name (a-z): its folder below OUT, its plan line's first word
+  // Checks its settings and prepares its folder, throwing std::invalid_argument before anything of the study
+  // runs; its units then run on the study's pool with every other part's (study: workers, shard, resume).
+  virtual std::unique_ptr<UnitSource> prepare(const std::string& folder, const StudySettings& study) const = 0;
+  virtual std::string plan(const std::string& folder) const = 0;  // --plan's line after `KIND "NAME": `
+};
+
+// One part: a suite and a search run SuiteSettings (a search's step_search set), a sweep SweepSettings, a part of
+// kind `other` its own. The settings are checked already; the study-wide ones in them (folder, workers, shard,
+// resume, reference cache, extend) are StudySettings' and are set by place_study_parts.
 struct StudyPart {
   StudyPartKind kind = StudyPartKind::suite;
   std::string name;  // a sweep's: its folder below OUT/sweeps/; a suite's or search's: for messages
-  std::variant<SuiteSettings, SweepSettings> settings;
+  std::variant<SuiteSettings, SweepSettings, std::shared_ptr<const PartOfItsOwnKind>> settings;
 };
 
 // What applies to every part (`study`'s own options).
@@ -43,7 +60,7 @@ struct StudySettings {
 
 // The parts as the study runs them, in their order: the kinds left out dropped, each part's folder set (the
 // suites and searches OUT, each after the first with extend, as `suite --extend` adds one to a folder; each
-// sweep OUT/sweeps/NAME) and the study-wide settings copied into each.
+// sweep OUT/sweeps/NAME) and the study-wide settings copied into each (a part of its own kind: folder_of).
 std::vector<StudyPart> place_study_parts(const std::vector<StudyPart>& parts, const StudySettings& settings);
 
 // What a study's run did. The suites and searches are one source of units into one folder (a job two parts
@@ -54,12 +71,16 @@ struct StudyOutcome {
     std::string name;
     SweepOutcome outcome;
   };
-  std::vector<Sweep> sweeps;  // in the parts' order
+  std::vector<Sweep> sweeps;        // in the parts' order
+  std::vector<std::string> others;  // the parts of kinds of their own that ran, by name (each source its outcome)
 };
 
 // How the study ended: the worst of its parts' ends (campaign_folder.h), which the command line turns into its
-// exit code.
+// exit code. (A part of a kind of its own keeps its end in its own source.)
 CampaignResult result_of(const StudyOutcome& outcome);
+
+// The folder of a part of a kind of its own: OUT/KIND/NAME.
+std::string folder_of(const PartOfItsOwnKind& part, const std::string& name, const StudySettings& settings);
 
 // Runs the parts (placed as place_study_parts does) as one plan on one pool of settings.jobs workers: no part
 // waits for another, the costliest ready unit starts first. Then each folder's engines.json and
@@ -71,7 +92,8 @@ StudyOutcome run_study(const std::vector<StudyPart>& parts, const StudySettings&
 
 // `study --plan`: one line per part as placed (no newline): what it runs, "all" spelled out as the settings
 // hold it, and what decides its runs beyond that (window, rates, what is kept, options, time limit), so that
-// two studies with equal lines run the same runs. The suites and searches first, then the sweeps.
+// two studies with equal lines run the same runs. The suites and searches first, then the sweeps, then the
+// parts of kinds of their own.
 std::vector<std::string> describe_study(const std::vector<StudyPart>& parts, const StudySettings& settings);
 
 }  // namespace ib

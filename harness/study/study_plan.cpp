@@ -104,6 +104,10 @@ std::vector<std::string> describe_study(const std::vector<StudyPart>& parts, con
     if (const auto* suite = std::get_if<SuiteSettings>(&part.settings)) lines.push_back(suite_line(part.name, *suite));
   for (const StudyPart& part : placed)
     if (const auto* sweep = std::get_if<SweepSettings>(&part.settings)) lines.push_back(sweep_line(part.name, *sweep));
+  for (const StudyPart& part : placed)
+    if (const auto* own = std::get_if<std::shared_ptr<const PartOfItsOwnKind>>(&part.settings))
+      lines.push_back((*own)->kind() + " \"" + part.name +
+                      "\": " + (*own)->plan(folder_of(**own, part.name, settings)));
   return lines;
 }
 
