@@ -62,6 +62,37 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+// cvode_run.json: what ran, its cost (the median of the timed integrations) and its solver's counts.
+nlohmann::ordered_json run_summary(const ib::bench::ModalModel& model, const std::string& model_path,
+                                   const ib::bench::CvodeSettings& settings, const CvodeResult& result,
+                                   const std::vector<double>& cpu, const std::vector<double>& wall) {
+  const double cpu_s = cpu.empty() ? result.cpu_time_s : median(cpu);
+  nlohmann::ordered_json j;
+  j["status"] = result.ok ? "ok" : "failed";
+  j["reason"] = result.reason;
+  j["model"] = std::filesystem::absolute(model_path).string();
+  j["scenario"] = model.scenario;
+  j["law"] = model.law.name;
+  j["method"] = settings.method;
+  j["rtol"] = settings.rtol;
+  j["atol_m_sqrt_kg"] = settings.atol;
+  j["duration_s"] = model.duration;
+  j["modes"] = model.modes();
+  j["integration_cpu_time_s"] = cpu_s;
+  j["integration_cpu_times_s"] = cpu;
+  j["integration_wall_time_s"] = wall.empty() ? result.wall_time_s : median(wall);
+  j["cpu_time_per_simulated_s"] = cpu_s / model.duration;
+  j["steps"] = result.steps;
+  j["rhs_evaluations"] = result.rhs_evaluations;
+  j["root_function_evaluations"] = result.root_evaluations;
+  j["nonlinear_iterations"] = result.nonlinear_iterations;
+  j["jacobian_evaluations"] = result.jacobian_evaluations;
+  j["phases"] = result.phases;
+  j["contact_episodes"] = result.events.size();
+  j["versions"] = {{"sundials", ib::bench::sundials_version()}};
+  return j;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,29 +138,7 @@ int main(int argc, char** argv) {
       if (samples) write_samples(out + "/samples.csv", result);
     }
     const double cpu_s = cpu.empty() ? result.cpu_time_s : median(cpu);
-    nlohmann::ordered_json j;
-    j["status"] = result.ok ? "ok" : "failed";
-    j["reason"] = result.reason;
-    j["model"] = std::filesystem::absolute(model_path).string();
-    j["scenario"] = model.scenario;
-    j["law"] = model.law.name;
-    j["method"] = settings.method;
-    j["rtol"] = settings.rtol;
-    j["atol_m_sqrt_kg"] = settings.atol;
-    j["duration_s"] = model.duration;
-    j["modes"] = model.modes();
-    j["integration_cpu_time_s"] = cpu_s;
-    j["integration_cpu_times_s"] = cpu;
-    j["integration_wall_time_s"] = wall.empty() ? result.wall_time_s : median(wall);
-    j["cpu_time_per_simulated_s"] = cpu_s / model.duration;
-    j["steps"] = result.steps;
-    j["rhs_evaluations"] = result.rhs_evaluations;
-    j["root_function_evaluations"] = result.root_evaluations;
-    j["nonlinear_iterations"] = result.nonlinear_iterations;
-    j["jacobian_evaluations"] = result.jacobian_evaluations;
-    j["phases"] = result.phases;
-    j["contact_episodes"] = result.events.size();
-    j["versions"] = {{"sundials", ib::bench::sundials_version()}};
+    const nlohmann::ordered_json j = run_summary(model, model_path, settings, result, cpu, wall);
     std::ofstream summary(out + "/cvode_run.json");
     summary << j.dump(2) << "\n";
     if (!summary) throw std::runtime_error(out + "/cvode_run.json: cannot write");
