@@ -99,7 +99,13 @@ class SweepRunner : public SweepSource {
   Scenario scenario_;
   std::vector<SweepChain> all_, mine_;
   std::vector<std::string> my_row_ids_;
-  std::vector<const SweepChain*> pending_;
+  // A chain to run, with the work of its rows not done yet (known when the sweep begins: only its own process
+  // records its rows).
+  struct Pending {
+    const SweepChain* chain;
+    JobWork work;
+  };
+  std::vector<Pending> pending_;
   std::size_t next_ = 0;                    // the pending chain next_cost chose, which start_next starts
   std::map<std::string, Running> running_;  // by unit id
   RemainingTime estimate_;                  // the chains' costs, as a suite's jobs' (by chain id)
@@ -188,16 +194,16 @@ JobWork SweepRunner::work_left(const SweepChain& chain) const {
 std::optional<double> SweepRunner::next_cost() {
   if (pending_.empty()) return std::nullopt;
   std::vector<JobWork> work;
-  for (const SweepChain* chain : pending_) work.push_back(work_left(*chain));
+  for (const Pending& pending : pending_) work.push_back(pending.work);
   const NextUnit chosen = choose_next(estimate_, work);
   next_ = chosen.index;
   return chosen.cost_s;
 }
 
 std::string SweepRunner::start_next(ProcessPool& pool) {
-  const SweepChain& chain = *pending_[next_];
+  const SweepChain& chain = *pending_[next_].chain;
+  const JobWork work = pending_[next_].work;
   pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(next_));
-  const JobWork work = work_left(chain);
   estimate_.plan(chain.id, work);
   estimate_.start(chain.id, now_s());
   std::filesystem::create_directories(s_.out + "/runs/" + chain.id);
@@ -282,7 +288,7 @@ void SweepRunner::begin() {
   for (const SweepChain& chain : mine_) {
     const int done = rows_done(chain);
     outcome_.rows_skipped += done;
-    if (done < static_cast<int>(chain.rows.size())) pending_.push_back(&chain);
+    if (done < static_cast<int>(chain.rows.size())) pending_.push_back({&chain, work_left(chain)});
   }
   std::fprintf(stderr, "sweep: %s, %zu ratios x %zu chains%s: %d rows to run (%d recorded already)\n",
                scenario_.name.c_str(), s_.ratios.size(), mine_.size(),
