@@ -1,5 +1,6 @@
 // A campaign's folder (harness/jobs/campaign_folder.h), the one policy of suites and sweeps: it is created and
-// locked, a folder of the other kind or of another shard is refused, and how a campaign ended decides its status.
+// locked, a folder of the other kind or of another shard is refused, results are continued by the same
+// settings' --resume only, and how a campaign ended decides its status.
 #include "harness/jobs/campaign_folder.h"
 #include "harness/study/study.h"
 
@@ -71,6 +72,39 @@ TEST_F(CampaignFolder, AShardsFolderHoldsThatShardAlone) {
     ADD_FAILURE() << "a whole suite into a shard's folder";
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), root_ + " holds shard 1/2 of a suite (shard.jsonl): resume it with --shard 1/2");
+  }
+}
+
+// One refusal for both kinds: results in the folder need --resume, and --resume needs the same settings.
+TEST_F(CampaignFolder, ResultsAreContinuedByResumeWithTheSameSettingsOnly) {
+  fs::create_directories(root_);
+  EXPECT_NO_THROW(refuse_results_without_resume(root_, CampaignKind::sweep, "sweep.json", false)) << "none yet";
+  std::ofstream(root_ + "/sweep.json") << "{}\n";
+  EXPECT_NO_THROW(refuse_results_without_resume(root_, CampaignKind::sweep, "sweep.json", true));
+  try {
+    refuse_results_without_resume(root_, CampaignKind::sweep, "sweep.json", false);
+    ADD_FAILURE() << "a sweep run again into its results without --resume";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), root_ +
+                                         " already holds a sweep's results (sweep.json): pass --resume to "
+                                         "continue it, or choose another --out");
+  }
+  try {
+    refuse_other_settings(root_, CampaignKind::suite, "window_s", "suite.jsonl", "impactbench suite --window 2", true);
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), root_ +
+                                         " holds a suite with other settings (window_s differ from: impactbench "
+                                         "suite --window 2, see " +
+                                         root_ +
+                                         "/suite.jsonl): --resume continues "
+                                         "the same suite only; add --extend to add this suite to the folder, or "
+                                         "choose another --out");
+  }
+  try {
+    refuse_other_settings(root_, CampaignKind::sweep, "ratios", "sweep.json", "", false);
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), root_ + " holds a sweep with other settings (ratios differ, see " + root_ +
+                                         "/sweep.json): --resume continues the same sweep only; choose another --out");
   }
 }
 

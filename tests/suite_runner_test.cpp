@@ -144,7 +144,7 @@ TEST_F(SuiteRunner, ResumeRepeatsNoFinishedJob) {
     return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   }();
   // without --resume an existing suite is not overwritten
-  EXPECT_THROW(run_suite(settings_), std::runtime_error);
+  EXPECT_THROW(run_suite(settings_), std::invalid_argument);
   settings_.resume = true;
   SuiteOutcome again = run_suite(settings_);
   EXPECT_EQ(again.jobs_run, 0);

@@ -64,6 +64,23 @@ void check_same_shard(const std::string& dir, CampaignKind kind, const std::opti
                                   to_string(p.shard) + ", or choose another --out for this shard");
 }
 
+void refuse_results_without_resume(const std::string& dir, CampaignKind kind, const std::string& results_file,
+                                   bool resume) {
+  if (resume || !fs::exists(dir + "/" + results_file)) return;
+  throw std::invalid_argument(dir + " already holds a " + to_string(kind) + "'s results (" + results_file +
+                              "): pass --resume to continue it, or choose another --out");
+}
+
+void refuse_other_settings(const std::string& dir, CampaignKind kind, const std::string& keys,
+                           const std::string& settings_file, const std::string& recorded_by, bool can_extend) {
+  const std::string what = to_string(kind);
+  throw std::invalid_argument(dir + " holds a " + what + " with other settings (" + keys + " differ" +
+                              (recorded_by.empty() ? "" : " from: " + recorded_by) + ", see " + dir + "/" +
+                              settings_file + "): --resume continues the same " + what + " only; " +
+                              (can_extend ? "add --extend to add this " + what + " to the folder, or " : "") +
+                              "choose another --out");
+}
+
 CampaignResult result_of(const CampaignEnd& end) {
   if (end.interrupted_by != 0) return {CampaignStatus::stopped, end.interrupted_by};
   if (end.units_stopped > 0) return {CampaignStatus::stopped, end.stopped_by};

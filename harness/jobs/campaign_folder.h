@@ -1,9 +1,10 @@
 // A campaign's folder: what a suite and a sweep (and so every part of a study) do with their output folder the
 // same way, in one place. A campaign creates its folder and holds its lock while it writes; it refuses a folder
 // that holds the other kind's results, or another shard's; its settings record decides what --resume continues
-// (a suite's suite.jsonl, a sweep's sweep.json: their keys are their own); a shard records its plan for merge
-// (shard_plan.h); when it returns it writes engines.json and provenance.json (records/engines_file.h); and its
-// outcome ends in one of the statuses below, which the command line turns into its exit code.
+// (a suite's suite.jsonl, a sweep's sweep.json: their keys are their own, the refusals below are shared); a shard
+// records its plan for merge (shard_plan.h); when it returns it writes engines.json and provenance.json
+// (records/engines_file.h); and its outcome ends in one of the statuses below, which the command line turns into its
+// exit code.
 #pragma once
 
 #include <memory>
@@ -28,6 +29,19 @@ std::unique_ptr<FolderLock> open_campaign_folder(const std::string& dir, Campaig
 // whole campaign's results) in the same folder would leave it holding neither. Throws std::invalid_argument
 // naming the shard the folder holds and how to resume it. holds_results: the folder has results recorded.
 void check_same_shard(const std::string& dir, CampaignKind kind, const std::optional<Shard>& shard, bool holds_results);
+
+// A folder holding this kind's results (results_file, in DIR, holds them) is continued by --resume only (or a
+// suite's --extend, which the caller passes as `resume`): run into without it, the campaign would run twice what
+// the folder holds. Throws std::invalid_argument saying so.
+void refuse_results_without_resume(const std::string& dir, CampaignKind kind, const std::string& results_file,
+                                   bool resume);
+
+// A --resume continues the same campaign only. Throws std::invalid_argument naming the settings record's keys
+// that differ from the folder's (differing_keys, jsonl_table.h), the command that recorded those (when known),
+// the record's file in DIR, and the way out (a suite's --extend when can_extend).
+[[noreturn]] void refuse_other_settings(const std::string& dir, CampaignKind kind, const std::string& keys,
+                                        const std::string& settings_file, const std::string& recorded_by,
+                                        bool can_extend);
 
 // How a campaign (or a whole study: the worst of its parts) ended, for its exit code: interrupted by a signal
 // to the campaign (SIGINT, SIGTERM: --resume continues), some units stopped by a signal from outside (not

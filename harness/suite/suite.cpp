@@ -52,10 +52,8 @@ void SuiteRunner::begin() {
     std::vector<std::string> repairs;
     recorded_ = repair_and_list_runs(settings_.out, &repairs);
     for (const std::string& repair : repairs) std::fprintf(stderr, "suite: repaired %s\n", repair.c_str());
-  } else if (fs::exists(settings_.out + "/runs.jsonl"))
-    throw std::runtime_error(
-        settings_.out +
-        " already holds a suite's results (runs.jsonl): pass --resume to continue it, or choose another --out");
+  }
+  refuse_results_without_resume(settings_.out, CampaignKind::suite, "runs.jsonl", settings_.resume || settings_.extend);
   for (std::size_t part = 0; part < plan_.parts.size(); ++part) check_and_record_settings(part);
   if (settings_.shard) record_plan();
   for (const PlannedJob& job : plan_.jobs)

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/jobs/campaign_folder.h"
 #include "harness/records/jsonl_table.h"
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
@@ -226,10 +227,7 @@ bool replace_a_fixed_suite(const std::string& folder, std::vector<SuitePart>& pa
     if (keys.empty() || std::count(k.begin(), k.end(), ',') < std::count(keys.begin(), keys.end(), ','))
       keys = k, command = part.command;
   }
-  throw std::invalid_argument(folder + " holds a suite with other settings (" + keys + " differ" +
-                              (command.empty() ? "" : " from: " + command) + ", see " + folder + kSettingsFile +
-                              "): --resume continues the same suite only; add --extend to add this suite to the "
-                              "folder, or choose another --out");
+  refuse_other_settings(folder, CampaignKind::suite, keys, kSettingsFile + 1, command, /*can_extend=*/true);
 }
 
 // --extend: a job this suite shares with the folder must have been recorded under the same result-deciding
