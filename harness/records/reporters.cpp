@@ -42,12 +42,9 @@ void write_summary_json(const std::string& path, const RunRecord& record) {
   write_text_file(path, to_json(record).dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
 }
 
-void append_rows(const std::string& folder, const std::string& csv_row_text, const std::string& json_line_text) {
-  append_table_row(folder + "/runs.jsonl", folder + "/runs.csv", csv_header(RunRecord{}), csv_row_text, json_line_text);
-}
-
 void append_run(const std::string& folder, const RunRecord& record) {
-  append_rows(folder, csv_row(record), json_line(record));
+  append_table_row(folder + "/runs.jsonl", folder + "/runs.csv", csv_header(RunRecord{}), csv_row(record),
+                   json_line(record));
 }
 
 static KeyOf run_key_of(const std::string& folder) {

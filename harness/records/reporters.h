@@ -19,10 +19,9 @@ std::string json_line(const RunRecord& record);
 void write_summary_json(const std::string& path, const RunRecord& record);
 
 // Appends one run to DIR/runs.jsonl and DIR/runs.csv (writing the header first if the file is new),
-// flushed at once, so that nothing finished is lost. Throws OutputError (run_files.h) naming the file.
+// flushed at once, so that nothing finished is lost. Throws OutputError (run_files.h) naming the file. (A row a
+// job's own process rendered is collected by the recorder, jobs/recorder.h.)
 void append_run(const std::string& folder, const RunRecord& record);
-// The same with the row and line already rendered (by a job's own process).
-void append_rows(const std::string& folder, const std::string& csv_row_text, const std::string& json_line_text);
 
 // For --resume: runs.jsonl is the record of what finished. One record per job, always: drops a line a
 // kill cut short, a line with a value of the wrong type, a record whose run folder is gone, a job

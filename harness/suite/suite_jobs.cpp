@@ -21,6 +21,7 @@
 #include <sstream>
 #include <stdexcept>
 #include "harness/jobs/progress.h"
+#include "harness/jobs/recorder.h"
 #include "harness/jobs/reference_cache.h"
 #include "harness/records/number_text.h"
 #include "harness/records/recorded_run.h"
@@ -231,8 +232,7 @@ std::vector<const PlannedJob*> SuiteRunner::unrecorded_scored_from(const Planned
 // from another's run did none of its own, and its time is that run's).
 std::string SuiteRunner::append_row_of(const PlannedJob& job) {
   const std::string folder = folder_of(job);
-  const std::string json = read_text_file(folder + "/row.jsonl"), csv = read_text_file(folder + "/row.csv");
-  append_rows(settings_.out, csv, json);
+  const std::string json = collect_row(ResultTable{settings_.out, "runs"}, csv_header(RunRecord{}), folder);
   recorded_.insert(job.id);
   // what the progress estimate reads back: the steps taken (fewer than planned when it stopped
   // unstable) and the simulator's own time
@@ -241,14 +241,7 @@ std::string SuiteRunner::append_row_of(const PlannedJob& job) {
   const double steps = own_run && job.spec.settings.time_step_s > 0 && recorded.steps > 0 ? recorded.steps : -1;
   const double wall_time_s = std::isnan(recorded.wall_time_s) ? -1 : recorded.wall_time_s;
   count_and_show(job.id, recorded.verdict, own_run ? steps : 0, own_run ? wall_time_s : -1);
-  remove_row_files(folder);
   return json;
-}
-
-void SuiteRunner::remove_row_files(const std::string& folder) {
-  std::error_code error;
-  fs::remove(folder + "/row.jsonl", error);
-  fs::remove(folder + "/row.csv", error);
 }
 
 void SuiteRunner::finish(const RunRecord& record) {

@@ -156,12 +156,10 @@ class SuiteRunner : public SuiteSource {
   // The jobs scored from this job's run that are not recorded yet.
   std::vector<const PlannedJob*> unrecorded_scored_from(const PlannedJob& job) const;
 
-  // Appends the record a job's process left in its folder (row.csv, row.jsonl), shows it and returns its
-  // runs.jsonl line. The work done, for the cost per step: the steps an engine run took (a job scored
+  // Collects the record a job's process left in its folder into runs.jsonl and runs.csv (recorder.h), shows it
+  // and returns its runs.jsonl line. The work done, for the cost per step: the steps an engine run took (a job scored
   // from another's run did none of its own, and its time is that run's).
   std::string append_row_of(const PlannedJob& job);
-
-  static void remove_row_files(const std::string& folder);
 
   void finish(const RunRecord& record);
 

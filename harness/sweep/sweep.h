@@ -103,8 +103,8 @@ std::string ratio_text(double ratio);  // "0.95", as row ids and tables print a 
 // ratios in ascending order, each one a ratio of `sweep_ratios` (std::invalid_argument naming one that is not).
 std::vector<double> parse_ensemble_ratios(const std::string& text, const std::vector<double>& sweep_ratios);
 
-// The tables (sweep.jsonl, sweep.csv, poincare.csv) made again from the row folders of `rows`, in their order;
-// rows without a folder's row.json are left out. Returns the number of rows written.
+// The tables (sweep.jsonl, sweep.csv, poincare.csv) made again from the row folders of `rows`, in their order, by
+// the recorder (jobs/recorder.h); rows without a folder's row.json are left out. Returns the number of rows written.
 int write_sweep_tables(const std::string& folder, const std::vector<std::string>& row_ids);
 
 }  // namespace ib

@@ -1,7 +1,7 @@
 // The sweep's stages, internal to the harness (sweep.h is the interface):
 //   sweep_plan.cpp    the ratios, chains and rows in planned order
-//   sweep_row.cpp     one ratio run and recorded in its folder (row.json, poincare.csv, state.txt)
-//   sweep_tables.cpp  sweep.jsonl, sweep.csv and poincare.csv made from the row folders
+//   sweep_row.cpp     one ratio run and recorded in its folder (row.json, poincare.csv, state.txt); the tables
+//                     (sweep.jsonl, sweep.csv, poincare.csv) the recorder (jobs/recorder.h) makes from the folders
 //   sweep_runner.cpp  the chains' processes, resume, shards, time limits, signals
 #pragma once
 

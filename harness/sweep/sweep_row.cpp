@@ -1,10 +1,12 @@
-// One ratio of a sweep: run, measured, its Poincare samples and regime, recorded in its folder.
+// One ratio of a sweep: run, measured, its Poincare samples and regime, recorded in its folder; and the sweep's
+// tables made from the row folders.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
+#include "harness/jobs/recorder.h"
 #include "harness/records/jsonl_table.h"
 #include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
@@ -200,3 +202,13 @@ std::optional<SavedState> read_row_state(const std::string& folder) {
 bool row_done(const std::string& folder) { return std::filesystem::exists(folder + "/row.json"); }
 
 }  // namespace ib::sweep_internal
+
+namespace ib {
+
+int write_sweep_tables(const std::string& folder, const std::vector<std::string>& row_ids) {
+  std::vector<std::string> row_folders;
+  for (const std::string& id : row_ids) row_folders.push_back(folder + "/runs/" + id);
+  return write_table_in_plan_order(ResultTable{folder, "sweep"}, row_folders, "row.json", {"poincare.csv"});
+}
+
+}  // namespace ib
