@@ -43,15 +43,16 @@ class TallySource final : public UnitSource {
       const double start_s = steady_now_s();
       std::this_thread::sleep_for(std::chrono::duration<double>(unit_s));
       { std::ofstream(file) << start_s << " " << steady_now_s() << "\n"; }
-      _exit(0);
+      _exit(unit_s > 0 ? 0 : 1);  // a unit of no duration fails: how the test makes a part end not ok
     });
     return id;
   }
-  void ended(const ProcessEnd&) override {}
+  void ended(const ProcessEnd& end) override { failed_ += end.status != 0; }
+  int failed() const { return failed_; }
 
  private:
   std::string folder_;
-  int units_, next_ = 0;
+  int units_, next_ = 0, failed_ = 0;
   double unit_s_;
 };
 
@@ -66,6 +67,11 @@ class Tally final : public PartOfItsOwnKind {
     return std::make_unique<TallySource>(folder, units_, unit_s_);
   }
   std::string plan(const std::string& folder) const override { return std::to_string(units_) + " units -> " + folder; }
+  CampaignEnd finish(UnitSource& source) const override {
+    CampaignEnd end;
+    end.not_ok_recorded = static_cast<TallySource&>(source).failed();
+    return end;
+  }
 
  private:
   int units_;
@@ -96,7 +102,9 @@ class StudyPartKindTest : public ::testing::Test {
 
 TEST_F(StudyPartKindTest, AToyKindRunsInItsFolderOnTheStudysPoolBesideASuite) {
   const StudyOutcome outcome = run_study(parts_, settings_);
-  EXPECT_EQ(outcome.others, std::vector<std::string>{"count"});
+  ASSERT_EQ(outcome.others.size(), 1u);
+  EXPECT_EQ(outcome.others[0].name, "count");
+  EXPECT_EQ(result_of(outcome).status, CampaignStatus::ok);
   ASSERT_TRUE(outcome.suites);
   EXPECT_EQ(test::line_count(fs::path(settings_.out) / "runs.jsonl"), 2u);
   const fs::path folder = fs::path(settings_.out) / "tally" / "count";
@@ -113,6 +121,15 @@ TEST_F(StudyPartKindTest, AToyKindRunsInItsFolderOnTheStudysPoolBesideASuite) {
     for (const auto& u : units) running += u.first <= at.first && at.first < u.second;
     EXPECT_LE(running, settings_.jobs);
   }
+}
+
+TEST_F(StudyPartKindTest, HowItEndedCountsInTheStudysEnd) {
+  parts_[1].settings = std::make_shared<const Tally>(2, 0.0);  // units that fail
+  const StudyOutcome outcome = run_study(parts_, settings_);
+  ASSERT_EQ(outcome.others.size(), 1u);
+  EXPECT_EQ(outcome.others[0].end.not_ok_recorded, 2);
+  EXPECT_EQ(outcome.suites->not_ok_recorded, 0) << "the suite's runs are ok";
+  EXPECT_EQ(result_of(outcome).status, CampaignStatus::not_ok);
 }
 
 TEST_F(StudyPartKindTest, ThePlanDescribesItAfterTheOthers) {

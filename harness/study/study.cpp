@@ -89,7 +89,10 @@ StudyOutcome run_study(const std::vector<StudyPart>& parts, const StudySettings&
     outcome.sweeps.push_back(
         {sweeps[i]->name, with_engines_file(sweep.out, sweep.simulators, sweep_sources[i]->finish())});
   }
-  for (const StudyPart* other : others) outcome.others.push_back(other->name);
+  for (std::size_t i = 0; i < others.size(); ++i) {
+    const auto& own = *std::get<std::shared_ptr<const PartOfItsOwnKind>>(others[i]->settings);
+    outcome.others.push_back({others[i]->name, own.finish(*other_sources[i])});
+  }
   return outcome;
 }
 
@@ -97,6 +100,7 @@ CampaignResult result_of(const StudyOutcome& outcome) {
   CampaignResult result;
   if (outcome.suites) result = worse(result, result_of(end_of(*outcome.suites)));
   for (const StudyOutcome::Sweep& sweep : outcome.sweeps) result = worse(result, result_of(end_of(sweep.outcome)));
+  for (const StudyOutcome::Other& other : outcome.others) result = worse(result, result_of(other.end));
   return result;
 }
 

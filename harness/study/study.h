@@ -2,10 +2,10 @@
 // one plan on one pool of workers. The command line reads a study file into these typed parts
 // (cli/study_file.h); what runs them is here, so that no option text reaches the harness.
 //
-// A new kind of part is a class implementing PartOfItsOwnKind (below): its settings, its source of units and its
-// plan line; this file places it and runs it with the others, unchanged (tests/study_part_kind_test.cpp adds a
-// toy). On the command line it is its table's keys (cli/study_keys.*), its reader (cli/study_file.cpp) and its
-// exit code (cli/command_study.cpp).
+// A new kind of part is a class implementing PartOfItsOwnKind (below): its settings, its source of units, its
+// plan line and how it ended; this file places it, runs it with the others and counts its end in the study's,
+// unchanged (tests/study_part_kind_test.cpp adds a toy). On the command line it is its table's keys
+// (cli/study_keys.*) and its reader (cli/study_file.cpp).
 #pragma once
 
 #include <memory>
@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "harness/jobs/campaign_folder.h"
 #include "harness/jobs/shard_plan.h"
 #include "harness/jobs/unit_source.h"
 #include "harness/suite/suite.h"
@@ -37,6 +38,9 @@ class PartOfItsOwnKind {
   // runs; its units then run on the study's pool with every other part's (study: workers, shard, resume).
   virtual std::unique_ptr<UnitSource> prepare(const std::string& folder, const StudySettings& study) const = 0;
   virtual std::string plan(const std::string& folder) const = 0;  // --plan's line after `KIND "NAME": `
+  // How it ended (campaign_folder.h), asked once the study's units have run, with the source prepare made: the
+  // study's exit code counts it as it counts a suite's or a sweep's.
+  virtual CampaignEnd finish(UnitSource& source) const = 0;
 };
 
 // One part: a suite and a search run SuiteSettings (a search's step_search set), a sweep SweepSettings, a part of
@@ -71,12 +75,16 @@ struct StudyOutcome {
     std::string name;
     SweepOutcome outcome;
   };
-  std::vector<Sweep> sweeps;        // in the parts' order
-  std::vector<std::string> others;  // the parts of kinds of their own that ran, by name (each source its outcome)
+  std::vector<Sweep> sweeps;  // in the parts' order
+  struct Other {              // a part of a kind of its own that ran
+    std::string name;
+    CampaignEnd end;  // PartOfItsOwnKind::finish
+  };
+  std::vector<Other> others;  // in the parts' order
 };
 
 // How the study ended: the worst of its parts' ends (campaign_folder.h), which the command line turns into its
-// exit code. (A part of a kind of its own keeps its end in its own source.)
+// exit code.
 CampaignResult result_of(const StudyOutcome& outcome);
 
 // The folder of a part of a kind of its own: OUT/KIND/NAME.
