@@ -78,11 +78,11 @@ TEST_F(CampaignFolder, AShardsFolderHoldsThatShardAlone) {
 // One refusal for both kinds: results in the folder need --resume, and --resume needs the same settings.
 TEST_F(CampaignFolder, ResultsAreContinuedByResumeWithTheSameSettingsOnly) {
   fs::create_directories(root_);
-  EXPECT_NO_THROW(refuse_results_without_resume(root_, CampaignKind::sweep, "sweep.json", false)) << "none yet";
+  EXPECT_NO_THROW(refuse_results_without_resume(root_, CampaignKind::sweep, false)) << "none yet";
   std::ofstream(root_ + "/sweep.json") << "{}\n";
-  EXPECT_NO_THROW(refuse_results_without_resume(root_, CampaignKind::sweep, "sweep.json", true));
+  EXPECT_NO_THROW(refuse_results_without_resume(root_, CampaignKind::sweep, true));
   try {
-    refuse_results_without_resume(root_, CampaignKind::sweep, "sweep.json", false);
+    refuse_results_without_resume(root_, CampaignKind::sweep, false);
     ADD_FAILURE() << "a sweep run again into its results without --resume";
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), root_ +
@@ -90,7 +90,7 @@ TEST_F(CampaignFolder, ResultsAreContinuedByResumeWithTheSameSettingsOnly) {
                                          "continue it, or choose another --out");
   }
   try {
-    refuse_other_settings(root_, CampaignKind::suite, "window_s", "suite.jsonl", "impactbench suite --window 2", true);
+    refuse_other_settings(root_, CampaignKind::suite, "window_s", "impactbench suite --window 2");
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), root_ +
                                          " holds a suite with other settings (window_s differ from: impactbench "
@@ -101,7 +101,7 @@ TEST_F(CampaignFolder, ResultsAreContinuedByResumeWithTheSameSettingsOnly) {
                                          "choose another --out");
   }
   try {
-    refuse_other_settings(root_, CampaignKind::sweep, "ratios", "sweep.json", "", false);
+    refuse_other_settings(root_, CampaignKind::sweep, "ratios", "");
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), root_ + " holds a sweep with other settings (ratios differ, see " + root_ +
                                          "/sweep.json): --resume continues the same sweep only; choose another --out");

@@ -15,10 +15,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The file whose presence says the folder holds this kind's results: a suite's runs.jsonl, a sweep's settings
+// record (its rows are in their folders).
+std::string results_file(CampaignKind kind) { return kind == CampaignKind::suite ? "runs.jsonl" : "sweep.json"; }
+// The file of the settings record that --resume is checked against.
+std::string settings_file(CampaignKind kind) { return kind == CampaignKind::suite ? "suite.jsonl" : "sweep.json"; }
+
 // The files that say a folder holds a campaign of this kind (its settings record, or results of an older one).
 bool holds_kind(const std::string& dir, CampaignKind kind) {
-  if (kind == CampaignKind::sweep) return fs::exists(dir + "/sweep.json");
-  return fs::exists(dir + "/runs.jsonl") || fs::exists(dir + "/suite.jsonl");
+  return fs::exists(dir + "/" + results_file(kind)) || fs::exists(dir + "/" + settings_file(kind));
 }
 
 }  // namespace
@@ -64,19 +69,19 @@ void check_same_shard(const std::string& dir, CampaignKind kind, const std::opti
                                   to_string(p.shard) + ", or choose another --out for this shard");
 }
 
-void refuse_results_without_resume(const std::string& dir, CampaignKind kind, const std::string& results_file,
-                                   bool resume) {
-  if (resume || !fs::exists(dir + "/" + results_file)) return;
-  throw std::invalid_argument(dir + " already holds a " + to_string(kind) + "'s results (" + results_file +
+void refuse_results_without_resume(const std::string& dir, CampaignKind kind, bool resume) {
+  if (resume || !fs::exists(dir + "/" + results_file(kind))) return;
+  throw std::invalid_argument(dir + " already holds a " + to_string(kind) + "'s results (" + results_file(kind) +
                               "): pass --resume to continue it, or choose another --out");
 }
 
 void refuse_other_settings(const std::string& dir, CampaignKind kind, const std::string& keys,
-                           const std::string& settings_file, const std::string& recorded_by, bool can_extend) {
+                           const std::string& recorded_by) {
   const std::string what = to_string(kind);
+  const bool can_extend = kind == CampaignKind::suite;  // a suite's --extend adds another suite to its folder
   throw std::invalid_argument(dir + " holds a " + what + " with other settings (" + keys + " differ" +
                               (recorded_by.empty() ? "" : " from: " + recorded_by) + ", see " + dir + "/" +
-                              settings_file + "): --resume continues the same " + what + " only; " +
+                              settings_file(kind) + "): --resume continues the same " + what + " only; " +
                               (can_extend ? "add --extend to add this " + what + " to the folder, or " : "") +
                               "choose another --out");
 }

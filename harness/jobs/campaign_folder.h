@@ -30,18 +30,16 @@ std::unique_ptr<FolderLock> open_campaign_folder(const std::string& dir, Campaig
 // naming the shard the folder holds and how to resume it. holds_results: the folder has results recorded.
 void check_same_shard(const std::string& dir, CampaignKind kind, const std::optional<Shard>& shard, bool holds_results);
 
-// A folder holding this kind's results (results_file, in DIR, holds them) is continued by --resume only (or a
-// suite's --extend, which the caller passes as `resume`): run into without it, the campaign would run twice what
-// the folder holds. Throws std::invalid_argument saying so.
-void refuse_results_without_resume(const std::string& dir, CampaignKind kind, const std::string& results_file,
-                                   bool resume);
+// A folder holding this kind's results (a suite's runs.jsonl, a sweep's sweep.json) is continued by --resume only
+// (or a suite's --extend, which the caller passes as `resume`): run into without it, the campaign would run twice
+// what the folder holds. Throws std::invalid_argument saying so.
+void refuse_results_without_resume(const std::string& dir, CampaignKind kind, bool resume);
 
 // A --resume continues the same campaign only. Throws std::invalid_argument naming the settings record's keys
 // that differ from the folder's (differing_keys, jsonl_table.h), the command that recorded those (when known),
-// the record's file in DIR, and the way out (a suite's --extend when can_extend).
+// the record's file in DIR (suite.jsonl, sweep.json), and the way out (for a suite, --extend).
 [[noreturn]] void refuse_other_settings(const std::string& dir, CampaignKind kind, const std::string& keys,
-                                        const std::string& settings_file, const std::string& recorded_by,
-                                        bool can_extend);
+                                        const std::string& recorded_by);
 
 // How a campaign (or a whole study: the worst of its parts) ended, for its exit code: interrupted by a signal
 // to the campaign (SIGINT, SIGTERM: --resume continues), some units stopped by a signal from outside (not

@@ -53,7 +53,7 @@ void SuiteRunner::begin() {
     recorded_ = repair_and_list_runs(settings_.out, &repairs);
     for (const std::string& repair : repairs) std::fprintf(stderr, "suite: repaired %s\n", repair.c_str());
   }
-  refuse_results_without_resume(settings_.out, CampaignKind::suite, "runs.jsonl", settings_.resume || settings_.extend);
+  refuse_results_without_resume(settings_.out, CampaignKind::suite, settings_.resume || settings_.extend);
   for (std::size_t part = 0; part < plan_.parts.size(); ++part) check_and_record_settings(part);
   if (settings_.shard) record_plan();
   for (const PlannedJob& job : plan_.jobs)

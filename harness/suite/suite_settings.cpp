@@ -227,7 +227,7 @@ bool replace_a_fixed_suite(const std::string& folder, std::vector<SuitePart>& pa
     if (keys.empty() || std::count(k.begin(), k.end(), ',') < std::count(keys.begin(), keys.end(), ','))
       keys = k, command = part.command;
   }
-  refuse_other_settings(folder, CampaignKind::suite, keys, kSettingsFile + 1, command, /*can_extend=*/true);
+  refuse_other_settings(folder, CampaignKind::suite, keys, command);
 }
 
 // --extend: a job this suite shares with the folder must have been recorded under the same result-deciding

@@ -122,7 +122,7 @@ void SweepRunner::prepare_folder() {
                    std::filesystem::exists(rows) && std::filesystem::file_size(rows) > 0);
   const nlohmann::ordered_json record = settings_record(s_, scenario_);
   const std::string path = s_.out + "/sweep.json";
-  refuse_results_without_resume(s_.out, CampaignKind::sweep, "sweep.json", s_.resume);
+  refuse_results_without_resume(s_.out, CampaignKind::sweep, s_.resume);
   if (std::filesystem::exists(path)) {
     const auto held = nlohmann::ordered_json::parse(read_text_file(path), nullptr, false);
     if (held.is_discarded())
@@ -131,7 +131,7 @@ void SweepRunner::prepare_folder() {
     nlohmann::ordered_json now = record;
     if (!held.contains("scenario_digest")) now.erase("scenario_digest");
     const std::string keys = differing_keys(held, now);
-    if (!keys.empty()) refuse_other_settings(s_.out, CampaignKind::sweep, keys, "sweep.json", "", false);
+    if (!keys.empty()) refuse_other_settings(s_.out, CampaignKind::sweep, keys, "");
   } else {
     replace_text_file(path, record.dump(2) + "\n");
   }
