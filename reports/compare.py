@@ -4,13 +4,17 @@
     reports/compare.py BASE NEW [MORE ...] [--json FILE] [--markdown FILE] [--html DIR] [--cost-across-machines]
                        [--cost-noise FRACTION]
 
-prints what differs between what made the folders (provenance.json, engine versions, scenario files), then
-what moved beyond the noise, by job (impactbench_compare/changes.py says which noise); writes the JSON, the
-Markdown, and an HTML page with a figure per moved configuration (DIR/compare.html, DIR/compare.md).
+prints what differs between what made the folders (provenance.json, engine versions, scenario files) and
+how they were run (alike.py), then what moved beyond the noise, by job (impactbench_compare/changes.py says
+which noise), each judged improved, regressed or neither (judgement.py); writes the JSON, the Markdown, and
+an HTML page with a figure per moved configuration (DIR/compare.html, DIR/compare.md).
 With more than two folders (a history: one per engine version, say), each folder is compared with the next,
 and --html draws each configuration that moved along them (DIR/history.html; impactbench_compare/history.py).
-Exit 0: nothing moved; 1: something moved beyond the noise (a metric, a cost, a verdict, a configuration
-that appeared or disappeared); 2: bad input (a folder that is not a result folder, a damaged record: named)."""
+Exit 0: nothing moved; 1: something moved beyond the noise and nothing regressed (improved, or moves that
+are neither: an appeared configuration, a per-impact distribution, an error as large); 2: bad input (a
+folder that is not a result folder, a damaged record, folders of different kinds, or folders whose every
+shared configuration was run otherwise: named); 3: a file could not be written; 4: something regressed (a
+CI job gates on 4); 70: this script failed."""
 
 import argparse
 import json
@@ -19,11 +23,31 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from impactbench_compare import changes, folders, writers  # noqa: E402
+from impactbench_compare import alike, changes, folders, judgement, writers  # noqa: E402
 from impactbench_report import metric_catalog  # noqa: E402
 
 # a failure of this script itself exits otherwise (an uncaught exception: 1 would read as "moved")
-EXIT_NOTHING_MOVED, EXIT_MOVED, EXIT_BAD_INPUT, EXIT_OUTPUT_ERROR, EXIT_FAILED = 0, 1, 2, 3, 70
+EXIT_NOTHING_MOVED, EXIT_MOVED, EXIT_BAD_INPUT, EXIT_OUTPUT_ERROR, EXIT_REGRESSED, EXIT_FAILED = 0, 1, 2, 3, 4, 70
+
+
+def exit_code(found, refused=()):
+    """found: every configuration judged (changes.compare), of one comparison or of each step of a history;
+    refused: the (base, new) pairs of folders whose configurations were all run otherwise (alike.py)."""
+    for base, new in refused:
+        print(f"impactbench: {base.path} and {new.path} were run otherwise (listed above: not comparable): no "
+              "configuration of both was run alike, nothing was compared", file=sys.stderr)
+    if refused:
+        return EXIT_BAD_INPUT
+    if judgement.regressed(found):
+        return EXIT_REGRESSED
+    return EXIT_MOVED if any(c.moved for c in found) else EXIT_NOTHING_MOVED
+
+
+def compare_pair(arguments, base, new):
+    """(what differs between what made the folders and how they were run, the configurations judged)."""
+    comparable = arguments.cost_across_machines or folders.same_machine(base, new)
+    found = changes.compare(base, new, comparable, arguments.cost_noise)
+    return folders.differences(base, new) + alike.folder_differences(found), found
 
 
 def cost_noise(text):
@@ -58,22 +82,22 @@ def main(argv):
     try:
         read = [folders.read_folder(path) for path in arguments.folders]
         metric_catalog.use(*arguments.folders)  # the metrics every folder was scored on (metrics.json)
+        for base, new in zip(read, read[1:]):
+            alike.refuse(base, new)
     except (folders.CompareInputError, metric_catalog.MetricsFileError) as e:
         print(f"impactbench: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT
     if len(read) > 2:
         return compare_history(arguments, read)
     base, new = read
-    differences = folders.differences(base, new)
-    comparable = arguments.cost_across_machines or folders.same_machine(base, new)
-    found = changes.compare(base, new, comparable, arguments.cost_noise)
+    differences, found = compare_pair(arguments, base, new)
     print("\n".join(writers.summary_lines(base, new, differences, found)), flush=True)
     try:
         write_files(arguments, base, new, differences, found)
     except OSError as e:
         print(f"impactbench: {e.filename}: could not write the comparison ({e.strerror})", file=sys.stderr)
         return EXIT_OUTPUT_ERROR
-    return EXIT_MOVED if any(c.moved for c in found) else EXIT_NOTHING_MOVED
+    return exit_code(found, [(base, new)] if alike.nothing_alike(found) else [])
 
 
 def compare_history(arguments, read):
@@ -81,8 +105,7 @@ def compare_history(arguments, read):
     from impactbench_compare import history
     steps = []
     for base, new in zip(read, read[1:]):
-        comparable = arguments.cost_across_machines or folders.same_machine(base, new)
-        steps.append((base, new, folders.differences(base, new), changes.compare(base, new, comparable, arguments.cost_noise)))
+        steps.append((base, new, *compare_pair(arguments, base, new)))
     print("\n".join(history.summary_lines(read, steps)), flush=True)
     try:
         if arguments.json:
@@ -98,7 +121,8 @@ def compare_history(arguments, read):
     except OSError as e:
         print(f"impactbench: {e.filename}: could not write the comparison ({e.strerror})", file=sys.stderr)
         return EXIT_OUTPUT_ERROR
-    return EXIT_MOVED if any(c.moved for *_, found in steps for c in found) else EXIT_NOTHING_MOVED
+    return exit_code([c for *_, found in steps for c in found],
+                     [(base, new) for base, new, _, found in steps if alike.nothing_alike(found)])
 
 
 def write_files(arguments, base, new, differences, found):

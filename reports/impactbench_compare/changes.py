@@ -5,19 +5,28 @@ appeared or disappeared.
 The noise a metric's change is judged against, in this order:
 - both folders ran the configuration as an ensemble: Welch's 95 % interval of the difference of the means;
 - single runs of a case whose reference ran as an ensemble: the reference's scatter of one start (95 %
-  prediction half-width) on each side, sqrt(2) of it for the difference of two single runs;
+  prediction half-width) on each side, sqrt(2) of it for the difference of two single runs; but never a
+  noise wider than the metric itself: where that noise exceeds |the base value|, or the metric is one the
+  case needs an ensemble for (its one-start scatter above ENSEMBLE_NEED_FRACTION_OF_TOLERANCE of its
+  default tolerance, ensembles.py's rule), the metric is "not judged" (listed, neither moved nor regressed);
 - single runs and nothing measured: the runs are deterministic (the same build and inputs give the same
   numbers to the bit), so a change beyond rounding is a change.
 The cost's noise: the spread of a run's repeated timings (--repeat) or of an ensemble's starts, and at least
 COST_NOISE_FLOOR, the drift between identical runs on a shared machine; costs timed on other machines are
-not comparable unless asked, and a run under MIN_TIMED_CPU_S is too short to time."""
+not comparable unless asked, and a run under MIN_TIMED_CPU_S is too short to time.
+
+Before any of it: a configuration run otherwise in the two folders (alike.py) is not comparable, and one
+unstable in both is compared by when and why (instability.py). After it: the per-impact distributions
+(impacts.py), then each metric and configuration judged better or worse (judgement.py)."""
 
 import math
 from collections import Counter
 from dataclasses import dataclass, field
 
-from impactbench_report import analysis, ensemble_groups, ensembles, metric_catalog
-from impactbench_report.ensembles import Interval
+from impactbench_report import ensemble_groups, ensembles, metric_catalog
+from impactbench_report.ensembles import ENSEMBLE_NEED_FRACTION_OF_TOLERANCE, Interval
+
+from . import alike, impacts, instability, judgement
 
 # The relative drift of the same run's CPU time between two runs of a study on a shared machine: 15 to 30 %
 # (docs/budgets.md). A smaller change of cost is not told apart from it without instruction counts.
@@ -41,8 +50,11 @@ class MetricChange:
     noise: float  # the half-width the change is judged against, in the change's unit
     noise_method: str
     moved: bool
-    base_error: float  # the error against the beam, base and new (NaN where not defined)
-    new_error: float
+    not_judged: str = ""  # why the metric is not judged: a noise wider than itself (then not moved)
+    base_errors: dict = field(default_factory=dict)  # {"beam", "own chain": signed error} (NaN where not defined)
+    new_errors: dict = field(default_factory=dict)
+    against: str = None  # the reference it is judged against (judgement.judged_against), None without an error
+    judgement: str = ""  # judgement.judge_metric's
 
 
 @dataclass
@@ -69,19 +81,35 @@ class ConfigurationChange:
     newly_failing: bool = False
     metrics: list = field(default_factory=list)
     cost: CostChange = None
+    not_comparable: list = field(default_factory=list)  # [(setting, base's, new's)] run otherwise (alike.py)
+    instability: "instability.InstabilityChange" = None  # unstable in both folders: when and why
+    impacts: list = field(default_factory=list)  # impacts.ImpactChange per per-impact distribution tested
+    judgement: str = ""  # judgement.judge_configuration's
+    why: str = ""  # why a configuration disappeared
 
     @property
     def moved_metrics(self):
         return [m for m in self.metrics if m.moved]
 
     @property
+    def not_judged_metrics(self):
+        return [m for m in self.metrics if m.not_judged]
+
+    @property
+    def moved_impacts(self):
+        return [i for i in self.impacts if i.moved]
+
+    @property
     def verdicts_changed(self):
-        return self.presence == "both" and self.base_verdicts != self.new_verdicts
+        return self.presence == "both" and not self.not_comparable and self.base_verdicts != self.new_verdicts
 
     @property
     def moved(self):
+        if self.not_comparable:
+            return False
         return (self.presence != "both" or self.verdicts_changed or bool(self.moved_metrics)
-                or (self.cost is not None and self.cost.moved))
+                or (self.cost is not None and self.cost.moved) or bool(self.moved_impacts)
+                or (self.instability is not None and self.instability.moved))
 
 
 def metric_interval(run, column):
@@ -102,42 +130,64 @@ def case_noise(suite):
     return cases
 
 
-def single_run_noise(cases, run, column, kind):
-    """The reference's one-start scatter of a metric in the run's case (cases: case_noise), as an absolute
-    half-width around the run's value; None when the case's reference ran once."""
-    interval = cases.get((run["scenario"], run["law"]), {}).get(column)
-    half = ensembles.single_run_noise(interval, kind) if interval is not None else None
+@dataclass
+class SingleRunNoise:
+    half_width: float  # the reference's one-start scatter, absolute, around its mean
+    needs_ensemble: bool  # the case needs an ensemble for this metric (ensembles.py's rule)
+
+
+def single_run_noise(cases, run, metric):
+    """The reference's one-start scatter of a metric in the run's case (cases: case_noise) as a
+    SingleRunNoise; None when the case's reference ran once."""
+    interval = cases.get((run["scenario"], run["law"]), {}).get(metric.column)
+    half = ensembles.single_run_noise(interval, metric.kind) if interval is not None else None
     if half is None:
         return None
-    return half * abs(interval.mean) if kind == "relative" else half
+    tolerance = metric_catalog.DEFAULT_TOLERANCES.get(metric.tolerance_key, math.inf)
+    needs = half > ENSEMBLE_NEED_FRACTION_OF_TOLERANCE * tolerance
+    return SingleRunNoise(half * abs(interval.mean) if metric.kind == "relative" else half, needs)
 
 
-def judge(label, column, kind, a, b, single_run_halves=(), errors=(math.nan, math.nan)):
+def noise_text(kind, half_width):
+    return f"±{100 * half_width:.3g} %" if kind == "relative" else f"±{half_width:.3g}"
+
+
+def judge(label, column, kind, a, b, single_runs=()):
     """A metric's change from Interval a to Interval b against its noise (the module's rules, in order);
-    single_run_halves: the cases' one-start scatter where the runs are single. None when neither has it."""
+    single_runs: the cases' SingleRunNoise where the runs are single. None when neither has it."""
     if math.isnan(a.mean) and math.isnan(b.mean):
         return None
     if math.isnan(a.mean) != math.isnan(b.mean):  # measured in one folder only (impacts that stopped, say)
-        return MetricChange(label, column, kind, a.mean, b.mean, math.nan, 0.0, "defined in one folder only", True, *errors)
+        return MetricChange(label, column, kind, a.mean, b.mean, math.nan, 0.0, "defined in one folder only", True)
     scale = abs(a.mean) if kind == "relative" and a.mean else 1.0
     change = (b.mean - a.mean) / scale
     difference = ensembles.welch_difference(b, a)
-    halves = [h for h in single_run_halves if h is not None]
+    single_runs = [s for s in single_runs if s is not None]
     if difference is not None:
         noise, method = difference.half_width / scale, "the ensembles' 95 % intervals (Welch)"
-    elif halves:
-        noise, method = math.sqrt(2) * max(halves) / scale, "the reference's one-start scatter, for two single runs (95 %)"
+    elif single_runs:
+        half = math.sqrt(2) * max(s.half_width for s in single_runs)
+        noise, method = half / scale, "the reference's one-start scatter, for two single runs (95 %)"
+        if half > abs(a.mean) or any(s.needs_ensemble for s in single_runs):  # a noise wider than the metric
+            why = (f"not judged: a single run of a case that needs an ensemble (noise {noise_text(kind, noise)})"
+                   if any(s.needs_ensemble for s in single_runs) else
+                   f"not judged: a single run whose noise is wider than the metric (noise {noise_text(kind, noise)})")
+            return MetricChange(label, column, kind, a.mean, b.mean, change, noise, method, False, why)
     else:
         noise = ROUNDING * max(abs(a.mean), abs(b.mean)) / scale
         method = "none measured: deterministic single runs, any change beyond rounding"
-    return MetricChange(label, column, kind, a.mean, b.mean, change, noise, method, abs(change) > noise, *errors)
+    return MetricChange(label, column, kind, a.mean, b.mean, change, noise, method, abs(change) > noise)
 
 
-def judge_metric(base_cases, base_run, new_cases, new_run, label, column, error_column, kind):
-    a, b = metric_interval(base_run, column), metric_interval(new_run, column)
-    halves = (single_run_noise(base_cases, base_run, column, kind), single_run_noise(new_cases, new_run, column, kind))
-    errors = [analysis.signed_error(r, error_column, "beam") for r in (base_run, new_run)]
-    return judge(label, column, kind, a, b, halves, errors)
+def judge_metric(base_cases, base_run, new_cases, new_run, metric):
+    a, b = metric_interval(base_run, metric.column), metric_interval(new_run, metric.column)
+    single_runs = (single_run_noise(base_cases, base_run, metric), single_run_noise(new_cases, new_run, metric))
+    change = judge(metric.label, metric.column, metric.kind, a, b, single_runs)
+    if change is not None:
+        change.base_errors = judgement.errors(base_run, metric.error_column)
+        change.new_errors = judgement.errors(new_run, metric.error_column)
+        change.against = judgement.judged_against(change.base_errors, change.new_errors)
+    return change
 
 
 def run_cost(suite, run):
@@ -179,13 +229,21 @@ def configuration(run, presence):
                                run["options"], presence)
 
 
+ORDER = {judgement.REGRESSED: 0, judgement.IMPROVED: 1, judgement.MOVED: 2, "appeared": 2, "not comparable": 3}
+
+
 def compare(base, new, comparable_cost, cost_floor=COST_NOISE_FLOOR):
-    """Every configuration of either folder (folders.ResultFolder) as a ConfigurationChange, moved ones first:
-    the suite's runs, then each sweep's rows."""
-    found = compare_runs(base, new, comparable_cost, cost_floor) if base.suite and new.suite else []
+    """Every configuration of either folder (folders.ResultFolder) as a ConfigurationChange, judged: the
+    regressed first, then the improved, the other moves, the not comparable, the rest. The suite's runs,
+    then each sweep's rows."""
+    settings = alike.Settings(base, new)
+    found = compare_runs(base, new, comparable_cost, cost_floor, settings) if base.suite and new.suite else []
     for prefix in sorted(set(base.sweeps) | set(new.sweeps)):
-        found += compare_sweep_rows(prefix, base.sweeps.get(prefix), new.sweeps.get(prefix), comparable_cost, cost_floor)
-    found.sort(key=lambda c: (not c.moved, c.job_id))
+        a, b = base.sweeps.get(prefix), new.sweeps.get(prefix)
+        not_comparable = settings.of_sweeps(a, b) if a and b else []
+        found += compare_sweep_rows(prefix, a, b, comparable_cost, cost_floor, not_comparable)
+    judgement.judge_all(found, new)
+    found.sort(key=lambda c: (ORDER.get(c.judgement, 4), c.job_id))
     return found
 
 
@@ -198,7 +256,7 @@ def sweep_verdict(row):
     return {f"{row['verdict']}, {row['regime'] or 'no regime'}": 1} if row else {}
 
 
-def compare_sweep_rows(prefix, base_sweep, new_sweep, comparable, floor):
+def compare_sweep_rows(prefix, base_sweep, new_sweep, comparable, floor, not_comparable):
     """Each row of a sweep (an id: configuration, start and ratio) as a ConfigurationChange; its regime is part
     of its verdict (a row that changed regime moved). Its metrics are sweep.csv's measured numbers
     (metric_catalog.SWEEP): single, deterministic runs continued from ratio to ratio."""
@@ -213,7 +271,8 @@ def compare_sweep_rows(prefix, base_sweep, new_sweep, comparable, floor):
                                      row["options"], presence)
         change.base_verdicts, change.new_verdicts = sweep_verdict(a), sweep_verdict(b)
         change.newly_failing = bool(b) and b["verdict"] in FAILING and not (a and a["verdict"] in FAILING)
-        if a and b:
+        change.not_comparable = list(not_comparable) if a and b else []
+        if a and b and not change.not_comparable:
             metrics = (judge(m.label, m.column, m.kind, Interval(a.get(m.column, math.nan), 1, "single run"),
                              Interval(b.get(m.column, math.nan), 1, "single run")) for m in metric_catalog.SWEEP)
             change.metrics = [m for m in metrics if m is not None]
@@ -222,31 +281,58 @@ def compare_sweep_rows(prefix, base_sweep, new_sweep, comparable, floor):
     return found
 
 
-def compare_runs(base, new, comparable_cost, cost_floor):
+def one_side(base, new, a, b):
+    """A configuration in one folder only."""
+    change = configuration(a or b, "disappeared" if b is None else "appeared")
+    if a is not None:
+        change.base_verdicts = verdict_counts(base.suite, a)
+    if b is not None:
+        change.new_verdicts = verdict_counts(new.suite, b)
+        change.newly_failing = any(v in FAILING for v in change.new_verdicts)
+    return change
+
+
+def stable_members(suite, run):
+    """The members whose impacts mean something: every member of a reference, the stable ones of an engine."""
+    return [m for m in suite.members.get(run["job_id"], [run]) if run["engine"] == "reference" or m.stable]
+
+
+def in_both(base, new, a, b, cases, comparable_cost, cost_floor):
+    """A configuration in both folders, run alike: its metrics, instability and cost judged against their noise."""
+    change = configuration(a, "both")
+    change.base_verdicts, change.new_verdicts = verdict_counts(base.suite, a), verdict_counts(new.suite, b)
+    change.newly_failing = (sum(n for v, n in change.new_verdicts.items() if v in FAILING) >
+                            sum(n for v, n in change.base_verdicts.items() if v in FAILING))
+    change.instability = instability.compare(base.suite.members.get(a["job_id"], [a]),
+                                             new.suite.members.get(b["job_id"], [b]))
+    if a.stable or b.stable or a["engine"] == "reference":
+        metrics = (judge_metric(cases[0], a, cases[1], b, m) for m in metric_catalog.SCORED)
+        change.metrics = [m for m in metrics if m is not None]
+    change.cost = judge_cost(run_cost(base.suite, a), run_cost(new.suite, b), comparable_cost, cost_floor)
+    return change
+
+
+def compare_runs(base, new, comparable_cost, cost_floor, settings):
+    """Each suite configuration of either folder; the per-impact distributions of those stable in both."""
     base_runs = {r["job_id"]: r for r in base.suite.runs if r["engine"]}
     new_runs = {r["job_id"]: r for r in new.suite.runs if r["engine"]}
-    base_cases, new_cases = case_noise(base.suite), case_noise(new.suite)
-    found = []
+    cases = case_noise(base.suite), case_noise(new.suite)
+    found, impact_pairs = [], []
     for job_id in sorted(set(base_runs) | set(new_runs)):
         a, b = base_runs.get(job_id), new_runs.get(job_id)
         if a is None or b is None:
-            change = configuration(a or b, "disappeared" if b is None else "appeared")
-            if a is not None:
-                change.base_verdicts = verdict_counts(base.suite, a)
-            if b is not None:
-                change.new_verdicts = verdict_counts(new.suite, b)
-                change.newly_failing = any(v in FAILING for v in change.new_verdicts)
+            found.append(one_side(base, new, a, b))
+            continue
+        not_comparable = settings.of_runs(a, b)
+        if not_comparable:
+            change = configuration(a, "both")
+            change.base_verdicts, change.new_verdicts = verdict_counts(base.suite, a), verdict_counts(new.suite, b)
+            change.not_comparable = not_comparable
             found.append(change)
             continue
-        change = configuration(a, "both")
-        change.base_verdicts, change.new_verdicts = verdict_counts(base.suite, a), verdict_counts(new.suite, b)
-        change.newly_failing = (sum(n for v, n in change.new_verdicts.items() if v in FAILING) >
-                                sum(n for v, n in change.base_verdicts.items() if v in FAILING))
-        if a.stable or b.stable or a["engine"] == "reference":
-            for m in metric_catalog.SCORED:
-                metric = judge_metric(base_cases, a, new_cases, b, m.label, m.column, m.error_column, m.kind)
-                if metric is not None:
-                    change.metrics.append(metric)
-        change.cost = judge_cost(run_cost(base.suite, a), run_cost(new.suite, b), comparable_cost, cost_floor)
-        found.append(change)
+        found.append(in_both(base, new, a, b, cases, comparable_cost, cost_floor))
+        members = stable_members(base.suite, a), stable_members(new.suite, b)
+        if all(members):
+            impact_pairs.append((found[-1], *members))
+    impacts.compare(base, new, impact_pairs)
     return found
