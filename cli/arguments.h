@@ -20,6 +20,8 @@
 namespace cli {
 
 constexpr int kExitOk = 0, kExitRunNotOk = 1, kExitBadInput = 2, kExitOutputError = 3, kExitIncompleteMerge = 4;
+// `compare`'s: something regressed (reports/compare.py; 1 is a move that did not)
+constexpr int kExitCompareRegressed = 4;
 constexpr int kExitInterrupted = 128;  // + the signal's number, as a shell reports a process it stopped
 
 // A campaign's exit code (a suite's, a sweep's, a study's): 0 every result ok, 1 one not ok, 128 + the signal

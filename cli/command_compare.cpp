@@ -19,7 +19,8 @@ namespace {
 
 // `compare BASE NEW [MORE ...]`: result folders side by side, made by reports/compare.py (docs/compare.md):
 // what differs between what made them, then what moved beyond the noise; with more than two, each folder
-// against the next (a history). Its exit code: 0 nothing moved, 1 something moved, 2 bad input.
+// against the next (a history). Its exit code: 0 nothing moved, 1 something moved and nothing regressed, 2 bad
+// input, 3 a file it could not write, 4 something regressed.
 struct CompareOptions {
   std::vector<std::string> folders;  // the baseline first, each next one judged against the one before
   std::string json, markdown, html;  // files to write (html: a folder), none when empty
@@ -47,8 +48,9 @@ int command_compare(const CompareOptions& o) {
   int status = 0;
   while (waitpid(child, &status, 0) < 0) {
   }
-  // 0 nothing moved, 1 moved, 2 bad input, 3 a file it could not write (said by it); anything else is its failure
-  if (!WIFEXITED(status) || WEXITSTATUS(status) > kExitOutputError)
+  // 0 nothing moved, 1 moved, 2 bad input, 3 a file it could not write (said by it), 4 regressed; anything else
+  // is its failure
+  if (!WIFEXITED(status) || WEXITSTATUS(status) > kExitCompareRegressed)
     throw std::runtime_error("the comparison could not be made (reports/compare.py failed)");
   return WEXITSTATUS(status);
 }
@@ -59,7 +61,8 @@ Command add_compare_command(CLI::App& app) {
   auto o = std::make_shared<CompareOptions>();
   CLI::App* compare = app.add_subcommand("compare",
                                          "put two result folders side by side: what differs between what made "
-                                         "them, then what moved beyond the noise (exit 1 when something did)");
+                                         "them, then what moved beyond the noise (exit 1 when something did, 4 when "
+                                         "something regressed)");
   compare
       ->add_option("folders", o->folders,
                    "BASE NEW: the baseline result folder (a suite's or a study's) and the one judged against it; "
