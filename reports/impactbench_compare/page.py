@@ -26,6 +26,13 @@ def moved_figure(change):
         rows.append((m.label + (" [%]" if m.kind == "relative" else ""), scale * m.change, scale * m.noise))
     if change.cost is not None and change.cost.moved:
         rows.append(("CPU cost [%]", 100 * (change.cost.ratio - 1), 100 * change.cost.noise))
+    for i in change.moved_impacts:  # the medians' change; the test's noise is no band
+        if i.base_median:
+            rows.append((f"per-impact {i.label}, median [%]", 100 * (i.new_median / i.base_median - 1), 0.0))
+    moved_instability = change.instability is not None and change.instability.moved
+    if moved_instability and not math.isnan(change.instability.new_time_s - change.instability.base_time_s):
+        rows.append(("unstable at t, change [s]", change.instability.new_time_s - change.instability.base_time_s,
+                     change.instability.slack_s))
     if not rows:
         return ""
     figure, axes = plt.subplots(figsize=(6.4, 1.1 + 0.45 * len(rows)))
@@ -73,13 +80,17 @@ def write_page(folder, base, new, differences, changes):
     for c in moved:
         parts.append(f"<h3 class='moved'>{e(writers.what_moved(c))}</h3>")
         parts.append(moved_figure(c))
-    parts.append("<h2>Every configuration</h2><table><tr><th>job</th><th>presence</th><th>verdicts</th>"
+    others = writers.listed("Not comparable (run otherwise):", [writers.what_moved(c) for c in changes if c.not_comparable])
+    others += writers.listed("Not judged (a noise wider than the metric):", writers.not_judged_lines(changes))
+    if others:
+        parts.append("<h2>Not compared</h2><pre>" + e("\n".join(others)) + "</pre>")
+    parts.append("<h2>Every configuration</h2><table><tr><th>job</th><th>judgement</th><th>presence</th><th>verdicts</th>"
                  "<th>metrics (noise)</th><th>cost</th></tr>")
     for c in changes:
         metrics = "<br>".join(("<b class='moved'>" if m.moved else "") + e(writers.change_text(m)) + ("</b>" if m.moved else "")
                               for m in c.metrics)
         cost = e(f"{writers.number(c.cost.base_s_per_s)} -> {writers.number(c.cost.new_s_per_s)} s/s: {c.cost.judgement}") if c.cost else ""
-        parts.append(f"<tr><td>{e(c.job_id)}</td><td>{c.presence}</td><td>{e(writers.verdicts_text(c.base_verdicts))} -> "
+        parts.append(f"<tr><td>{e(c.job_id)}</td><td>{e(c.judgement)}</td><td>{c.presence}</td><td>{e(writers.verdicts_text(c.base_verdicts))} -> "
                      f"{e(writers.verdicts_text(c.new_verdicts))}</td><td>{metrics}</td><td>{cost}</td></tr>")
     parts.append("</table></body></html>\n")
     with open(os.path.join(folder, "compare.html"), "w") as f:
