@@ -1,9 +1,6 @@
 #include "cli/commands.h"
 
-#include <unistd.h>
-
 #include <cerrno>
-#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/jobs/shard_plan.h"
 #include "harness/records/number_text.h"
 #include "harness/records/run_files.h"
 #include "model/scenario_toml.h"
@@ -61,11 +59,45 @@ std::string quoted(const std::string& text) {
   return out + "'";
 }
 
-std::string this_executable() {
-  char path[PATH_MAX];
-  const ssize_t length = readlink("/proc/self/exe", path, sizeof path - 1);
-  return length > 0 ? std::string(path, static_cast<std::size_t>(length)) : "impactbench";
+// The scenario file to rerun: --scenario, else the run's own as recorded (a path as the suite was given it,
+// so relative to where the suite ran), else its absolute path at run time: repro works from any folder.
+std::string scenario_file_of(const Json& summary, const std::string& run_folder, const std::string& given) {
+  if (!given.empty()) {
+    if (!fs::exists(given)) throw std::invalid_argument("--scenario " + given + ": no such file");
+    return given;
+  }
+  const std::string recorded = text_of(summary, "scenario_file"), absolute = text_of(summary, "scenario_file_absolute");
+  if (fs::exists(recorded)) return recorded;
+  if (!absolute.empty() && fs::exists(absolute)) return absolute;
+  throw std::invalid_argument(run_folder + "/summary.json: scenario_file '" + recorded + "' is not there" +
+                              (absolute.empty() ? "" : " (nor " + absolute + ")") + "; name it with --scenario");
 }
+
+// The run's scenario, refused when the file is not the one the run ran: another scenario (its name), or the
+// same name with other content (the digest the run recorded; a run recorded before digests: its name alone).
+ib::Scenario checked_scenario(const Json& summary, const std::string& run_folder, const std::string& file) {
+  const ib::Scenario scenario = ib::load_scenario(file);
+  const std::string ran = text_of(summary, "scenario"), digest = text_of(summary, "scenario_digest");
+  if (!ran.empty() && scenario.name != ran)
+    throw std::invalid_argument(file + ": scenario '" + scenario.name + "', but " + run_folder + " ran '" + ran +
+                                "'; allowed: the scenario file the run ran (its summary.json: scenario_file)");
+  if (!digest.empty() && digest != "unreadable" && ib::file_digest(file) != digest)
+    throw std::invalid_argument(file + ": its content (digest " + ib::file_digest(file) + ") is not the file " +
+                                run_folder + " ran (summary.json scenario_digest " + digest +
+                                "); allowed: that file as it was, unchanged");
+  return scenario;
+}
+
+// repro.sh's lines that find impactbench: $IMPACTBENCH, else next to the script, else on PATH, so the folder
+// runs on another machine and after a rebuild elsewhere.
+const char* const kFindImpactbench =
+    "if [ -n \"$IMPACTBENCH\" ]; then impactbench=$IMPACTBENCH\n"
+    "elif [ -x ./impactbench ]; then impactbench=./impactbench\n"
+    "elif command -v impactbench >/dev/null 2>&1; then impactbench=impactbench\n"
+    "else\n"
+    "  echo \"repro.sh: impactbench not found: put it on PATH or next to this script, or set IMPACTBENCH\" >&2\n"
+    "  exit 127\n"
+    "fi\n";
 
 void write_file(const std::string& path, const std::string& text) {
   std::ofstream file(path);
@@ -100,7 +132,7 @@ std::vector<std::string> rerun_arguments(const Json& summary, const ib::Scenario
   const double offset_m = number_of(summary, "initial_displacement_offset_m");
   if (offset_m != 0 && std::isfinite(offset_m))
     arguments.insert(arguments.end(), {"--start-offset", ib::exact_number_text(offset_m)});
-  arguments.insert(arguments.end(), {"--out", "rerun"});
+  arguments.insert(arguments.end(), {"--out", "rerun", "--force"});  // its own scratch folder: each rerun replaces it
   return arguments;
 }
 
@@ -111,12 +143,8 @@ std::vector<std::string> rerun_arguments(const Json& summary, const ib::Scenario
 // scenario_path: the scenario file where the run's own record names one that is no longer there.
 int command_repro(const std::string& run_folder, const std::string& out, const std::string& scenario_path) {
   const Json summary = read_summary(run_folder);
-  const std::string recorded = text_of(summary, "scenario_file");
-  const std::string scenario_file = scenario_path.empty() ? recorded : scenario_path;
-  if (!fs::exists(scenario_file))
-    throw std::invalid_argument(run_folder + "/summary.json: scenario_file '" + recorded +
-                                "' is not there (a path as the suite was given it); name it with --scenario");
-  const ib::Scenario scenario = ib::load_scenario(scenario_file);
+  const std::string scenario_file = scenario_file_of(summary, run_folder, scenario_path);
+  const ib::Scenario scenario = checked_scenario(summary, run_folder, scenario_file);
   const std::string engine = text_of(summary, "engine");
   require_engine(engine);
 
@@ -129,20 +157,19 @@ int command_repro(const std::string& run_folder, const std::string& out, const s
 
   const std::vector<std::string> option_pairs = option_pairs_of(summary);
   const std::vector<std::string> arguments = rerun_arguments(summary, scenario, option_pairs);
-  std::string command = quoted(this_executable());
+  std::string command = "exec \"$impactbench\"";
   for (const std::string& a : arguments) command += " " + quoted(a);
-  write_file(out + "/repro.sh",
-             "#!/bin/sh\n# Reruns " + text_of(summary, "job_id") +
-                 " alone (impactbench repro; repro.json "
-                 "says what it was). Run it in this folder: the run goes to ./rerun.\ncd \"$(dirname \"$0\")\"\n" +
-                 command + "\n");
+  write_file(out + "/repro.sh", "#!/bin/sh\n# Reruns " + text_of(summary, "job_id") +
+                                    " alone (impactbench repro; repro.json says what it was). The run goes to ./rerun,"
+                                    " replacing an earlier rerun.\ncd \"$(dirname \"$0\")\"\n" +
+                                    kFindImpactbench + command + "\n");
   fs::permissions(out + "/repro.sh", fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
                   fs::perm_options::add, error);
 
   ib::RunSettings settings;
   settings.law = parse_law(text_of(summary, "law"));
   settings.time_step_s = std::max(0.0, number_of(summary, "time_step_s"));
-  settings.options = parse_options(option_pairs);
+  settings.options = parse_engine_options(option_pairs, engine);
   const std::string model = ib::make_simulator(engine)->export_model(scenario, settings);
   const std::string model_file = model.empty() ? "" : model.front() == '<' ? "model.xml" : "model.json";
   if (!model.empty()) write_file(out + "/" + model_file, model);
@@ -154,13 +181,18 @@ int command_repro(const std::string& run_folder, const std::string& out, const s
                        {"reason", text_of(summary, "reason")},
                        {"from_run_folder", fs::absolute(run_folder).lexically_normal().string()},
                        {"scenario_file", scenario_file},
+                       {"scenario_digest", ib::file_digest(scenario_file)},
                        {"command", arguments},
                        {"model_file", model_file}};
   write_file(out + "/repro.json", record.dump(2) + "\n");
-  std::printf("repro: %s (%s%s) in %s\n  rerun it with: sh %s/repro.sh\n", text_of(summary, "job_id").c_str(),
-              text_of(summary, "verdict").c_str(),
-              text_of(summary, "reason").empty() ? "" : (": " + text_of(summary, "reason")).c_str(), out.c_str(),
-              out.c_str());
+  std::error_code no_path;
+  const std::string executable = fs::read_symlink("/proc/self/exe", no_path).string();
+  std::printf(
+      "repro: %s (%s%s) in %s\n  rerun it with: IMPACTBENCH=%s sh %s/repro.sh (without IMPACTBENCH it finds "
+      "impactbench on PATH or next to itself)\n",
+      text_of(summary, "job_id").c_str(), text_of(summary, "verdict").c_str(),
+      text_of(summary, "reason").empty() ? "" : (": " + text_of(summary, "reason")).c_str(), out.c_str(),
+      quoted(executable.empty() ? "impactbench" : executable).c_str(), out.c_str());
   return kExitOk;
 }
 

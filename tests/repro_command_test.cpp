@@ -36,7 +36,8 @@ void expect_same_run(const fs::path& original, const fs::path& rerun) {
 
 // `sh OUT/repro.sh`, and the folder it ran into.
 fs::path rerun(const fs::path& out) {
-  const Output ran = ib::test::run_command("sh " + (out / "repro.sh").string() + " 2>&1");
+  const Output ran = ib::test::run_command("IMPACTBENCH=" + std::string(IMPACTBENCH_EXECUTABLE) + " sh " +
+                                           (out / "repro.sh").string() + " 2>&1");
   EXPECT_TRUE(ran.exit_code == 0 || ran.exit_code == 1) << ran.text;  // 1: the run's own verdict was not ok
   return out / "rerun";
 }

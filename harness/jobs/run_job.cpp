@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "harness/jobs/shard_plan.h"
 #include "harness/records/number_text.h"
 #include "harness/records/reporters.h"
 #include "harness/records/run_files.h"
@@ -185,6 +186,11 @@ RunRecord run_job(const Scenario& scenario_as_written, const JobSpec& job, const
   record.job_id = job_id(scenario.name, job);
   record.scenario = scenario.name;
   record.scenario_file = scenario.source_path;
+  if (!scenario.source_path.empty()) {
+    record.scenario_digest = file_digest(scenario.source_path);
+    std::error_code error;
+    record.scenario_file_absolute = std::filesystem::absolute(scenario.source_path, error).lexically_normal();
+  }
   record.engine = simulator->name();
   record.engine_version = simulator->version();
   record.law = to_string(settings.law);

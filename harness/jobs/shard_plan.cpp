@@ -49,6 +49,13 @@ bool in_shard(std::size_t unit, const Shard& shard) {
   return unit % static_cast<std::size_t>(shard.count) == static_cast<std::size_t>(shard.index - 1);
 }
 
+std::string file_digest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return in ? plan_digest({text.str()}) : "unreadable";
+}
+
 std::string plan_digest(const std::vector<std::string>& planned) {
   std::uint64_t hash = 14695981039346656037ull;  // FNV-1a offset basis
   for (const std::string& id : planned) {

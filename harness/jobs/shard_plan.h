@@ -40,6 +40,10 @@ struct ShardPlan {
 // The digest of a suite's planned job ids and step-search keys (FNV-1a, 64 bits, as 16 hex digits).
 std::string plan_digest(const std::vector<std::string>& planned);
 
+// The digest of a file's bytes (plan_digest of its text), "unreadable" when it cannot be read: what a suite's
+// settings and a run's record keep of its scenario file, so that another file of the same name is told apart.
+std::string file_digest(const std::string& path);
+
 // Appends `plan` to DIR/shard.jsonl unless a line for the same suite and shard is there already (a
 // --resume). Throws OutputError (run_files.h) naming the file.
 void record_shard_plan(const std::string& folder, const ShardPlan& plan);

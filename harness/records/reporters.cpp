@@ -18,6 +18,8 @@ using Json = nlohmann::ordered_json;
 Json to_json(const RunRecord& record) {
   Json j = json_object(fields(record));
   j["timed_out"] = record.timed_out;
+  j["scenario_digest"] = record.scenario_digest;
+  j["scenario_file_absolute"] = record.scenario_file_absolute;
   // A list, in the JSON records only (runs.csv has one line per run and no column for it): docs/results.md.
   j["warnings"] = record.warnings;
   Json diagnostics = Json::object();

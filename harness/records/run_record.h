@@ -28,6 +28,10 @@ struct EnsembleStart {
 struct RunRecord {
   std::string job_id;  // unique within a suite; names the run's folder
   std::string scenario, scenario_file, engine, engine_version, law;
+  // In the JSON records only (summary.json, runs.jsonl): the scenario file's digest as it was run (file_digest,
+  // harness/jobs/shard_plan.h) and its absolute path, so that `repro` refuses another file and works from any
+  // folder. "" for a scenario made in memory.
+  std::string scenario_digest, scenario_file_absolute;
   double time_step_s = 0;  // fixed-step engines [s]; 0 for the adaptive reference
   std::string options;     // simulator options as "name=value;name=value"
   // The job whose simulation this row scores against its own law's references ("" when it ran itself):

@@ -56,13 +56,6 @@ std::string differing_ensemble_step(const nlohmann::ordered_json& a, const nlohm
                                                                                       : "ensemble displacement_step_m";
 }
 
-std::string file_digest(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return in ? plan_digest({text.str()}) : "unreadable";
-}
-
 struct SuitePart {
   Json settings;
   std::set<std::string> jobs;
