@@ -41,6 +41,17 @@ std::string resume_command(int argc, char** argv) {
   return command + (resume ? "" : " --resume");
 }
 
+std::optional<std::string> unknown_command(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return std::nullopt;
+  const std::string name = argv[1];
+  std::string allowed;
+  for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (command->get_name() == name) return std::nullopt;
+    allowed += (allowed.empty() ? "" : ", ") + command->get_name();
+  }
+  return "unknown command '" + name + "'; allowed: " + allowed + " (impactbench --help says what each does)";
+}
+
 std::vector<std::string> split_list(const std::string& text, const std::string& option, const std::string& allowed) {
   std::vector<std::string> items;
   std::stringstream in(text);
@@ -69,15 +80,54 @@ std::string join_list(const std::vector<std::string>& items) {
   return text;
 }
 
-// "name=value" pairs from --option.
-std::map<std::string, std::string> parse_options(const std::vector<std::string>& pairs) {
+// One --option pair: (engine, name, value), engine "" when the pair is name=value. A dot before the '=' names
+// the engine (option names have none; values may: erp=0.2).
+struct OptionPair {
+  std::string engine, name, value;
+};
+
+OptionPair split_option(const std::string& pair) {
+  const auto eq = pair.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw std::invalid_argument("--option " + pair + ": expected name=value or engine.name=value");
+  const auto dot = pair.find('.');
+  if (dot == std::string::npos || dot > eq) return {"", pair.substr(0, eq), pair.substr(eq + 1)};
+  if (dot == 0 || dot + 1 == eq)
+    throw std::invalid_argument("--option " + pair + ": expected name=value or engine.name=value");
+  return {pair.substr(0, dot), pair.substr(dot + 1, eq - dot - 1), pair.substr(eq + 1)};
+}
+
+std::map<std::string, std::string> parse_engine_options(const std::vector<std::string>& pairs,
+                                                        const std::string& engine) {
   std::map<std::string, std::string> options;
   for (const std::string& pair : pairs) {
-    const auto eq = pair.find('=');
-    if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--option " + pair + ": expected name=value");
-    options[pair.substr(0, eq)] = pair.substr(eq + 1);
+    const OptionPair option = split_option(pair);
+    if (!option.engine.empty() && option.engine != engine)
+      throw std::invalid_argument("--option " + pair + ": names engine '" + option.engine + "', but this runs " +
+                                  engine + "; allowed: name=value or " + engine + ".name=value");
+    options[option.name] = option.value;
   }
   return options;
+}
+
+// --option pairs of a matrix (suite, sweep, a study's part) into s: engine.name=value for any engine of the build;
+// name=value where the engine is known, the one engine of `engines` (the reference when it lists no other).
+void matrix_options_from(const std::vector<std::string>& pairs, ib::MatrixSettings& s) {
+  std::vector<std::string> engines;
+  for (const auto& e : s.engines)
+    if (e != "reference") engines.push_back(e);
+  for (const std::string& pair : pairs) {
+    OptionPair option = split_option(pair);
+    if (option.engine.empty()) {
+      if (engines.size() > 1)
+        throw std::invalid_argument("--option " + pair + ": which engine? --engines lists " + join_list(engines) +
+                                    "; allowed: engine.name=value, e.g. " + engines.front() + "." + pair);
+      option.engine = engines.empty() ? "reference" : engines.front();
+    }
+    require_engine(option.engine);
+    auto& target = option.engine == "reference" ? s.reference_options : s.engine_options[option.engine];
+    target[option.name] = option.value;
+  }
 }
 
 ib::ContactLaw parse_law(const std::string& name) {
@@ -133,10 +183,12 @@ void matrix_settings_from(const MatrixOptions& o, const MeasurementOptions& meas
   s.simulators = ib::simulator_catalog();
   std::string engine_names;
   for (const auto& n : ib::simulator_names()) engine_names += (engine_names.empty() ? "" : ", ") + n;
-  s.engines = split_list(o.engines, "--engines", engine_names);
+  // "all", as a study file's engines and laws take it
+  s.engines = o.engines == "all" ? ib::simulator_names() : split_list(o.engines, "--engines", engine_names + " or all");
   for (const auto& e : s.engines) require_engine(e);
   s.laws.clear();
-  for (const auto& l : split_list(o.laws, "--laws", "hertz, viscoelastic, newton")) s.laws.push_back(parse_law(l));
+  const std::string laws = o.laws == "all" ? "hertz,viscoelastic,newton" : o.laws;
+  for (const auto& l : split_list(laws, "--laws", "hertz, viscoelastic, newton or all")) s.laws.push_back(parse_law(l));
   if (!o.time_steps.empty()) s.time_steps_s = parse_values(Shared::dt, o.time_steps);
   for (const auto& path :
        o.paths.empty() ? std::vector<std::string>{} : split_list(o.paths, "--paths", ib::contact_path_names())) {
@@ -144,15 +196,7 @@ void matrix_settings_from(const MatrixOptions& o, const MeasurementOptions& meas
       throw std::invalid_argument("--paths " + path + ": allowed: " + ib::contact_path_names() + ", comma-separated");
     s.contact_paths.push_back(path);
   }
-  for (const auto& pair : o.options) {
-    const auto dot = pair.find('.'), eq = pair.find('=');
-    if (dot == std::string::npos || eq == std::string::npos || dot > eq)
-      throw std::invalid_argument("--option " + pair + ": expected engine.name=value, e.g. reference.n=5");
-    const std::string engine = pair.substr(0, dot);
-    require_engine(engine);
-    auto& target = engine == "reference" ? s.reference_options : s.engine_options[engine];
-    target[pair.substr(dot + 1, eq - dot - 1)] = pair.substr(eq + 1);
-  }
+  matrix_options_from(o.options, s);
   for (const auto& engine : s.engines) {  // fail now, not in every job
     ib::RunSettings run;
     run.options = engine == "reference" ? s.reference_options : s.engine_options[engine];

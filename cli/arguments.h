@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,10 @@ extern char** g_argv;
 // The command line as typed, with --resume added when missing: what continues an interrupted suite.
 std::string resume_command(int argc, char** argv);
 
+// "unknown command 'X'; allowed: ..." when the first argument is neither an option nor one of app's commands
+// (CLI11 alone would say "A subcommand is required"); nullopt otherwise.
+std::optional<std::string> unknown_command(const CLI::App& app, int argc, char** argv);
+
 std::vector<std::string> split(const std::string& text, char separator);
 // The items as one comma-separated option value: what split(text, ',') reads back.
 std::string join_list(const std::vector<std::string>& items);
@@ -42,8 +47,10 @@ std::string join_list(const std::vector<std::string>& items);
 // the option, the value and what is allowed).
 std::vector<std::string> split_list(const std::string& text, const std::string& option, const std::string& allowed);
 
-// "name=value" pairs from --option.
-std::map<std::string, std::string> parse_options(const std::vector<std::string>& pairs);
+// --option pairs of a command that runs one engine: name=value, or engine.name=value naming that engine (the
+// syntax of a suite's, accepted everywhere); another engine's name is refused.
+std::map<std::string, std::string> parse_engine_options(const std::vector<std::string>& pairs,
+                                                        const std::string& engine);
 
 ib::ContactLaw parse_law(const std::string& name);
 
@@ -92,7 +99,7 @@ struct MeasurementOptions {
 // configurations run and how. A sweep's default law is hertz alone, a suite's every law (SuiteOptions).
 struct MatrixOptions {
   std::string engines = "reference", laws = "hertz", paths, time_steps, out;
-  std::vector<std::string> options;  // --option ENGINE.NAME=VALUE, repeatable
+  std::vector<std::string> options;  // --option ENGINE.NAME=VALUE, or NAME=VALUE with one engine; repeatable
   double rate_hz = 4096, time_limit_s = 600;
   int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   std::string shard;  // K/N, empty: the whole suite or sweep

@@ -31,7 +31,7 @@ int command_export(const std::string& path, const std::string& engine, const std
   settings.law = parse_law(law_name);
   settings.time_step_s = time_step_s;
   settings.output_rate_hz = rate_hz;
-  settings.options = parse_options(option_pairs);
+  settings.options = parse_engine_options(option_pairs, engine);
   require_engine(engine);
   const std::string text = ib::make_simulator(engine)->export_model(scenario, settings);
   if (text.empty()) {
@@ -69,7 +69,8 @@ Command add_export_command(CLI::App& app) {
   export_model->add_option("--engine", o->engine, "engine (engines --names)")->capture_default_str();
   export_model->add_option("--law", o->law, "contact law: hertz, viscoelastic or newton")->capture_default_str();
   add_shared_option(export_model, Shared::dt, o->time_step_s, "time step [s]; default: the engine's", false);
-  export_model->add_option("--option", o->option_pairs, "engine option name=value, repeatable");
+  export_model->add_option("--option", o->option_pairs,
+                           "engine option name=value or ENGINE.name=value (ENGINE: --engine's), repeatable");
   export_model->add_option("--out", o->out, "output file; default: standard output");
   add_shared_option(export_model, Shared::rate, o->rate_hz,
                     "reference: output sample rate of the run the model is for [Hz]");

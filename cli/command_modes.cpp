@@ -22,7 +22,8 @@ struct ModesOptions {
 
 int command_modes(const std::string& path, bool json, const std::vector<std::string>& option_pairs) {
   const ib::Scenario scenario = ib::load_scenario(path);
-  const ib::ReferenceSettings settings = ib::reference_settings_from_options(parse_options(option_pairs));
+  const ib::ReferenceSettings settings =
+      ib::reference_settings_from_options(parse_engine_options(option_pairs, "reference"));
   nlohmann::ordered_json out;
   out["scenario"] = scenario.name;
   out["mode_set"] = ib::to_string(settings.modes.set);

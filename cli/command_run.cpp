@@ -138,7 +138,28 @@ struct RunOptions {
   double time_limit_s = 600;
   double max_duration_s = 0;  // 0: the scenario's whole run
   double start_offset_m = 0;  // frame 1's initial tip displacement beyond the scenario's (an ensemble's start)
+  bool force = false;         // --force: write into a folder that already holds a run
 };
+
+// --dt names a fixed step; an adaptive simulator (descriptor default_time_step_s null: its own error control
+// chooses its steps) would ignore it, and its run would be labelled with a step it never took.
+void refuse_step_of_adaptive(const std::string& engine, double time_step_s) {
+  const ib::SimulatorDescriptor descriptor = ib::descriptor_of(ib::simulator_catalog(), engine);
+  if (time_step_s == 0 || descriptor.default_time_step_s > 0) return;
+  throw std::invalid_argument("--dt " + value_text(time_step_s) + ": " + engine + " takes no fixed step (" +
+                              descriptor.default_time_step_note + "); allowed: no --dt with --engine " + engine +
+                              ", or a fixed-step engine");
+}
+
+// A folder holding a run's files is another run's record: `run` replaces it only when asked (--force), as a
+// suite refuses a folder with results unless resumed.
+void refuse_existing_run_folder(const std::string& out, bool force) {
+  if (force) return;
+  for (const char* file : {"summary.json", "series.csv", "series.csv.gz", "events.csv"})
+    if (std::filesystem::exists(std::filesystem::path(out) / file))
+      throw std::invalid_argument("--out " + out + ": holds a run already (" + file +
+                                  "); allowed: a new or empty folder, or --force to replace that run");
+}
 
 int command_run(const RunOptions& o) {
   ib::Scenario scenario = ib::load_scenario(o.path);
@@ -153,6 +174,8 @@ int command_run(const RunOptions& o) {
                                 run_length);
   require_engine(o.engine);
   if (o.out.empty()) throw std::invalid_argument("--out '': allowed: a folder path");
+  refuse_step_of_adaptive(o.engine, o.time_step_s);
+  refuse_existing_run_folder(o.out, o.force);
   ib::JobSpec job;
   job.scenario_path = o.path;
   job.engine = o.engine;
@@ -160,7 +183,7 @@ int command_run(const RunOptions& o) {
   job.settings.output_rate_hz = o.rate_hz;
   job.settings.series_start_s = o.series_start_s;
   job.settings.time_step_s = o.time_step_s;
-  job.settings.options = parse_options(o.option_pairs);
+  job.settings.options = parse_engine_options(o.option_pairs, o.engine);
   // an ensemble's start (repro writes it): frame 1's tip displaced beyond the scenario's initial displacement
   job.start.initial_displacement_offset_m = o.start_offset_m;
   if (o.time_step_s != 0 || o.engine == "reference")
@@ -214,7 +237,10 @@ Command add_run_command(CLI::App& app) {
                     false);
   add_shared_option(run, Shared::duration, o->max_duration_s,
                     "run a scenario longer than this for this long only, keeping its scoring window [s]", false);
-  run->add_option("--option", o->option_pairs, "simulator option name=value, repeatable (see 'impactbench list')");
+  run->add_option("--option", o->option_pairs,
+                  "simulator option name=value or ENGINE.name=value (ENGINE: --engine's), repeatable (see "
+                  "'impactbench list')");
+  run->add_flag("--force", o->force, "replace the run a folder given to --out holds already");
   run->add_option("--start-offset", o->start_offset_m,
                   "frame 1's initial tip displacement beyond the scenario's, as an ensemble's start [m]")
       ->check(CLI::Range(-0.01, 0.01));

@@ -221,8 +221,12 @@ Command add_suite_command(CLI::App& app) {
                                        "run scenarios x laws x engines x time steps in worker processes; "
                                        "append DIR/runs.csv, DIR/runs.jsonl and DIR/runs/<job>/");
   suite->add_option("scenarios", o.inputs, "scenario files or folders; default: the published scenarios");
-  suite->add_option("--engines", o.engines, "comma-separated engines")->capture_default_str();
-  suite->add_option("--laws", o.laws, "comma-separated laws")->capture_default_str();
+  suite
+      ->add_option("--engines", o.engines,
+                   "comma-separated engines, or all; default: the reference alone, the yardstick every run is scored "
+                   "against (as sweep and a study part's default)")
+      ->capture_default_str();
+  suite->add_option("--laws", o.laws, "comma-separated laws, or all")->capture_default_str();
   add_shared_list_option(suite, Shared::dt, o.time_steps, "comma-separated time steps of fixed-step engines [s]");
   suite->add_option("--paths", o.paths,
                     "comma-separated contact paths of the engines: matched, injected, native; default: each engine's");
@@ -237,7 +241,8 @@ Command add_suite_command(CLI::App& app) {
   add_shared_option(suite, Shared::rate, o.rate_hz, "output series sample rate [Hz]");
   add_shared_option(suite, Shared::duration, o.max_duration_s,
                     "run scenarios longer than this for this long only, keeping their scoring window [s]", false);
-  suite->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.n=5)");
+  suite->add_option("--option", o.options,
+                    "engine.name=value, repeatable (e.g. reference.n=5); name=value when --engines lists one engine");
   suite->add_option("--reference-cache", o.reference_cache,
                     "a folder that shares reference runs between output folders: a reference it holds (same scenario "
                     "content, settings and executable) is copied, not solved; one solved is stored there");

@@ -95,12 +95,20 @@ Command add_sweep_command(CLI::App& app) {
                    "rest (each ratio from rest), up, down (continued from the previous ratio) or both (up and down), "
                    "comma-separated")
       ->capture_default_str();
-  command->add_option("--engines", o.engines, "comma-separated simulators")->capture_default_str();
-  command->add_option("--laws", o.laws, "comma-separated laws")->capture_default_str();
+  command
+      ->add_option("--engines", o.engines,
+                   "comma-separated simulators, or all; default: the reference alone (as suite's)")
+      ->capture_default_str();
+  command
+      ->add_option("--laws", o.laws,
+                   "comma-separated laws, or all; default: hertz alone, the published model (a suite runs every "
+                   "law: a sweep runs each over every ratio and start, so each law more is the sweep again)")
+      ->capture_default_str();
   command->add_option("--paths", o.paths, "comma-separated contact paths of the engines; default: each engine's");
   add_shared_list_option(command, Shared::dt, o.time_steps,
                          "comma-separated time steps of fixed-step engines [s]; default: each engine's");
-  command->add_option("--option", o.options, "engine.name=value, repeatable (e.g. reference.n=5)");
+  command->add_option("--option", o.options,
+                      "engine.name=value, repeatable (e.g. reference.n=5); name=value when --engines lists one engine");
   add_shared_option(command, Shared::duration, o.duration_s, "each continued ratio's run [s], whole motor periods");
   add_shared_option(command, Shared::rest_duration, o.rest_duration_s,
                     "a start from rest's run (also a continuation's first ratio) [s]; default: the scenario's duration",

@@ -9,11 +9,14 @@
 //   130  `suite` stopped by SIGINT (143: SIGTERM), every finished result kept; the message says how to resume
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include "cli/commands.h"
+#include "harness/records/provenance_file.h"
 #include "harness/records/run_files.h"
+#include "simulators/catalog.h"
 
 int main(int argc, char** argv) {
   using namespace cli;
@@ -27,6 +30,13 @@ int main(int argc, char** argv) {
                                          add_report_command(app),  add_repro_command(app),  add_compare_command(app),
                                          add_sweep_command(app),   add_study_command(app),  add_engines_command(app),
                                          add_metrics_command(app), add_list_command(app)};
+  app.set_version_flag(
+      "--version", [] { return ib::version_text(ib::simulator_catalog()); },
+      "impactbench's commit and build, and each engine's library version");
+  if (const std::optional<std::string> unknown = unknown_command(app, argc, argv)) {
+    std::fprintf(stderr, "impactbench: %s\n", unknown->c_str());
+    return kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -129,22 +129,6 @@ class PartReader {
   const toml::table* defaults_;
 };
 
-// "all" spelled out: every simulator of the build (less skip_engines), every law, every path.
-std::string expand_all(const std::string& key, const std::string& value, const std::vector<std::string>& engines) {
-  if (value != "all") return value;
-  if (key == "engines") return join_list(engines);
-  if (key == "laws") return "hertz,viscoelastic,newton";
-  return "matched,injected,native";
-}
-
-std::string without(const std::string& list, const std::string& skipped) {
-  std::vector<std::string> kept;
-  const std::vector<std::string> skip = split(skipped, ',');
-  for (const std::string& item : split(list, ','))
-    if (std::find(skip.begin(), skip.end(), item) == skip.end()) kept.push_back(item);
-  return join_list(kept);
-}
-
 // A relative scenario path: from the study file's folder if it names a file or folder there, else from the
 // project's folder.
 std::string scenario_path(const std::string& study_file, const std::string& path) {
@@ -187,9 +171,13 @@ void read_shared_keys(const Checker& checker, GivenKeys& given, const std::strin
       checker.fail(part.key_lines[key], dotted + "." + key, dotted + "." + key + ": " + error.what());
     }
   }
-  std::string engine_list = given.count("engines") ? expand_all("engines", given["engines"], engines) : "";
-  if (given.count("skip_engines"))
-    engine_list = without(engine_list.empty() ? join_list(engines) : engine_list, given["skip_engines"]);
+  std::string engine_list;
+  try {
+    engine_list = part_engines(given, engines);
+  } catch (const std::invalid_argument& error) {
+    const char* key = given.count("skip_engines") ? "skip_engines" : "engines";
+    checker.fail(part.key_lines[key], dotted + "." + key, dotted + "." + key + ": " + error.what());
+  }
   MeasurementOptions& m = part.measurement;
   if (given.count("sensor_rate_hz")) m.sensor_rate_hz = std::stod(given["sensor_rate_hz"]);
   if (given.count("series")) m.series = given["series"];

@@ -1,7 +1,11 @@
 // The keys of a study file's parts (study_keys.h).
 #include "cli/study_keys.h"
 
+#include "cli/arguments.h"
+
+#include <algorithm>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 namespace cli {
@@ -91,6 +95,38 @@ const KeySpec* key_of_message(ib::StudyPartKind kind, const std::map<std::string
   for (const KeySpec& k : keys[static_cast<int>(kind)])
     if (key_lines.count(k.key) && (starts_with(k.option) || starts_with(k.also))) return &k;
   return nullptr;
+}
+
+// "all" spelled out: every simulator of the build (less skip_engines), every law, every path.
+std::string expand_all(const std::string& key, const std::string& value, const std::vector<std::string>& engines) {
+  if (value != "all") return value;
+  if (key == "engines") return join_list(engines);
+  if (key == "laws") return "hertz,viscoelastic,newton";
+  return "matched,injected,native";
+}
+
+namespace {
+
+std::string without(const std::string& list, const std::string& skipped) {
+  std::vector<std::string> kept;
+  const std::vector<std::string> skip = split(skipped, ',');
+  for (const std::string& item : split(list, ','))
+    if (std::find(skip.begin(), skip.end(), item) == skip.end()) kept.push_back(item);
+  return join_list(kept);
+}
+
+}  // namespace
+
+std::string part_engines(const std::map<std::string, std::string>& given, const std::vector<std::string>& engines) {
+  if (!given.count("engines") && !given.count("skip_engines")) return "";
+  const std::string listed =
+      given.count("engines") ? expand_all("engines", given.at("engines"), engines) : join_list(engines);
+  const std::string kept = given.count("skip_engines") ? without(listed, given.at("skip_engines")) : listed;
+  if (kept.empty())
+    throw std::invalid_argument("leaves no engine to run (engines: [" + listed + "], skip_engines: [" +
+                                (given.count("skip_engines") ? given.at("skip_engines") : "") +
+                                "]); allowed: at least one engine of the build (" + join_list(engines) + ")");
+  return kept;
 }
 
 }  // namespace cli

@@ -32,4 +32,12 @@ std::vector<KeySpec> default_keys();
 const KeySpec* key_of_message(ib::StudyPartKind kind, const std::map<std::string, int>& key_lines,
                               const std::string& message);
 
+// "all" spelled out for the key (engines: every simulator of the build; laws; paths); any other value as it is.
+std::string expand_all(const std::string& key, const std::string& value, const std::vector<std::string>& engines);
+
+// A part's engines as --engines takes them: `engines` ("all", or not given: every engine of the build) less
+// `skip_engines`; "" when neither key is given (the command's default). Throws std::invalid_argument when the list
+// leaves no engine: a part with nothing to run is a mistake in the file, not a study that passed.
+std::string part_engines(const std::map<std::string, std::string>& given, const std::vector<std::string>& engines);
+
 }  // namespace cli

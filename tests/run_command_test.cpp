@@ -120,7 +120,9 @@ TEST(RunCommand, AWindowInTheStartUpTransientWarns) {
   EXPECT_EQ(
       summary["warnings"][0].get<std::string>().rfind("pre_resonance: the scoring window starts at 5 s, before", 0),
       0u);
-  out = impactbench("run " + paper("pre_resonance") + " --duration 30 --window 5 --series none --out " + dir.string());
+  // the same folder again: --force replaces the run, and its warnings with it
+  out = impactbench("run " + paper("pre_resonance") + " --duration 30 --window 5 --series none --force --out " +
+                    dir.string());
   ASSERT_EQ(out.exit_code, 0) << out.text;
   EXPECT_EQ(out.text.find("warning"), std::string::npos) << out.text;
   summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));

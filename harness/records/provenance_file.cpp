@@ -66,4 +66,12 @@ void write_provenance_file(const std::string& dir, const SimulatorCatalog& catal
   replace_text_file(dir + "/provenance.json", provenance_json(catalog));
 }
 
+std::string version_text(const SimulatorCatalog& catalog) {
+  std::string text = std::string("impactbench ") + build_info::kGitCommit +
+                     (build_info::kTrackedFilesModified ? " (tracked files modified)" : "") + ", " +
+                     build_info::kBuildType + " build\n";
+  for (const std::string& name : catalog.names) text += "  " + name + ": " + version_of(catalog, name) + "\n";
+  return text;
+}
+
 }  // namespace ib

@@ -19,4 +19,8 @@ std::string provenance_json(const SimulatorCatalog& catalog);
 // wrote into the folder). Throws OutputError when the file cannot be written.
 void write_provenance_file(const std::string& dir, const SimulatorCatalog& catalog);
 
+// `impactbench --version`: impactbench's commit (and whether tracked files were modified), its build type, and
+// each engine's library version, one per line: the short form of provenance.json.
+std::string version_text(const SimulatorCatalog& catalog);
+
 }  // namespace ib
