@@ -23,4 +23,9 @@ std::string version_of(const SimulatorCatalog& catalog, const std::string& name)
   return simulator ? simulator->version() : "";
 }
 
+LibraryBuild library_build_of(const SimulatorCatalog& catalog, const std::string& name) {
+  const std::unique_ptr<Simulator> simulator = catalog.make ? catalog.make(name) : nullptr;
+  return simulator ? simulator->library_build() : LibraryBuild{};
+}
+
 }  // namespace ib

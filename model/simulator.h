@@ -51,6 +51,19 @@ struct RunSettings {
 // start when that is < 0. The one place that resolves the default.
 double series_start_s(const RunSettings& settings, const Scenario& scenario);
 
+// Which build of an engine's library a simulator runs, as its adapter knows it: recorded in every result folder
+// (provenance.json) because two builds of one version string (a patched or rebuilt library) can differ in results.
+struct LibraryBuild {
+  // A function of the engine's library: the records find the file it was loaded from (dladdr) and hash it, so
+  // the answer is the file this process runs, not the one a search path would find. nullptr: no library of its
+  // own (the reference, built into impactbench).
+  const void* library_function = nullptr;
+  std::string install_prefix;  // the prefix the adapter was built against (adapters/CMakeLists.txt)
+  // The version macro of the headers the adapter was compiled with, as text ("not given by its headers" where
+  // there is none): a library loaded at run time other than the one compiled against shows as a difference.
+  std::string header_version;
+};
+
 class Simulator {
  public:
   virtual ~Simulator() = default;
@@ -70,6 +83,8 @@ class Simulator {
   // The model this simulator builds for a run, in its own format, for a person to open in the
   // simulator's own tools (MuJoCo: MJCF; the reference: its modal model as JSON); empty when it has none.
   virtual std::string export_model(const Scenario&, const RunSettings&) const { return {}; }
+  // The build of its library this simulator runs (see LibraryBuild); none by default.
+  virtual LibraryBuild library_build() const { return {}; }
 };
 
 // Makes simulators by name (nullptr when unknown): the catalog's, or a test's own.
@@ -95,5 +110,8 @@ SimulatorDescriptor descriptor_of(const SimulatorCatalog& catalog, const std::st
 // The library version of `name` as the simulator reports it at run time (Simulator::version), "" when the
 // catalog cannot make it: what a result folder records (engines.json, provenance.json).
 std::string version_of(const SimulatorCatalog& catalog, const std::string& name);
+
+// The build of `name`'s library (Simulator::library_build), empty when the catalog cannot make it.
+LibraryBuild library_build_of(const SimulatorCatalog& catalog, const std::string& name);
 
 }  // namespace ib

@@ -19,6 +19,7 @@ benchmark_packages=(
   libcli11-dev                   # command line
   zlib1g-dev                     # gzip: series.csv.gz read back
   libdeflate-dev                 # gzip: the .gz tables written, whole-buffer (faster than zlib)
+  libssl-dev                     # libcrypto's SHA-256: each engine's library file hashed into provenance.json
   libmujoco-dev libqhull-dev      # MuJoCo 2.2.2 (its CMake config names qhull's headers)
   libode-dev                     # ODE 0.16.2, double precision
   libbullet-dev                  # Bullet 3.24, linked as bullet-float64 (double precision)

@@ -191,6 +191,13 @@ class BulletSimulator final : public Simulator {
            (btIsDoublePrecision() ? " (double precision)" : " (single precision)");
   }
 
+  LibraryBuild library_build() const override {
+    // btGetVersion is inline (compiled into the adapter); btTypedConstraint::getFixedBody is defined in
+    // libBulletDynamics, the library of the dynamics worlds and solvers this adapter steps
+    return {reinterpret_cast<const void*>(&btTypedConstraint::getFixedBody), IMPACTBENCH_ENGINE_INSTALL_PREFIX,
+            "BT_BULLET_VERSION " + std::to_string(BT_BULLET_VERSION)};
+  }
+
   std::vector<std::pair<std::string, std::string>> option_help() const override { return kOptions; }
 
   std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {

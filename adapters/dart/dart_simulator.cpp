@@ -7,6 +7,7 @@
 #include <string>
 
 #include <dart/config.hpp>
+#include <dart/simulation/World.hpp>
 
 #include "adapters/common/fixed_step_loop.h"
 #include "adapters/common/rig.h"
@@ -185,6 +186,13 @@ class DartSimulator final : public Simulator {
  public:
   std::string name() const override { return "dart"; }
   std::string version() const override { return std::string("DART ") + DART_VERSION; }
+  LibraryBuild library_build() const override {
+    // World::create(name) is defined in libdart (the other overload is a header template)
+    using CreateWorld = std::shared_ptr<dart::simulation::World> (*)(const std::string&);
+    const CreateWorld create_world = &dart::simulation::World::create;
+    return {reinterpret_cast<const void*>(create_world), IMPACTBENCH_ENGINE_INSTALL_PREFIX,
+            std::string("DART_VERSION ") + DART_VERSION};
+  }
   std::vector<std::pair<std::string, std::string>> option_help() const override { return kOptions; }
   std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {
     return plan_run(scenario, settings).links;

@@ -285,6 +285,11 @@ class MujocoSimulator final : public Simulator {
   MujocoSimulator() { install_mujoco_handlers(); }
   std::string name() const override { return "mujoco"; }
   std::string version() const override { return mujoco_version(); }
+  LibraryBuild library_build() const override {
+    // mj_version is defined in libmujoco itself (not inline): its address lies in the file loaded at run time
+    return {reinterpret_cast<const void*>(&mj_version), IMPACTBENCH_ENGINE_INSTALL_PREFIX,
+            "mjVERSION_HEADER " + std::to_string(mjVERSION_HEADER)};
+  }
   std::vector<std::pair<std::string, std::string>> option_help() const override { return mujoco_options(); }
   std::string export_model(const Scenario& scenario, const RunSettings& settings) const override {
     return mujoco_model_xml(scenario, settings);

@@ -60,6 +60,10 @@ std::string version_text() {
          (dCheckConfiguration("ODE_double_precision") ? " (double precision)" : " (single precision)");
 }
 
+const void* library_function() { return reinterpret_cast<const void*>(&dGetConfiguration); }
+
+std::string header_version_text() { return std::string("dODE_VERSION ") + dODE_VERSION; }
+
 MessageLog::MessageLog() : outer_(current_log) { current_log = this; }
 
 bool MessageLog::add(std::string message) {

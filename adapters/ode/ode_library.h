@@ -17,6 +17,12 @@ void ensure_initialised();
 // "0.16.2 (double precision)": the headers' version and the library's own precision.
 std::string version_text();
 
+// A function defined in ODE's library (dGetConfiguration), whose address dladdr maps to the library's file.
+const void* library_function();
+
+// "dODE_VERSION 0.16.2": the version of the headers this adapter was compiled with.
+std::string header_version_text();
+
 // Collects the messages (warnings) ODE prints through dMessage while it is alive, on the thread that
 // made it. ODE's handlers take no user pointer, so the collector is found through a thread-local
 // pointer; collectors nest. ODE's errors and internal assertions (dError, dDebug) are written to

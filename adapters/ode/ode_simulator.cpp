@@ -209,6 +209,9 @@ class OdeSimulator final : public Simulator {
  public:
   std::string name() const override { return "ode"; }
   std::string version() const override { return ode::version_text(); }
+  LibraryBuild library_build() const override {
+    return {ode::library_function(), IMPACTBENCH_ENGINE_INSTALL_PREFIX, ode::header_version_text()};
+  }
   std::vector<std::pair<std::string, std::string>> option_help() const override { return kOptions; }
   std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {
     return plan_run(scenario, settings).links;

@@ -265,6 +265,11 @@ class SimbodySimulator final : public Simulator {
  public:
   std::string name() const override { return "simbody"; }
   std::string version() const override { return simbody_version(); }
+  LibraryBuild library_build() const override {
+    // Simbody's headers define no version macro: its version is the library's answer (version()) alone
+    return {reinterpret_cast<const void*>(&SimTK_version_simbody), IMPACTBENCH_ENGINE_INSTALL_PREFIX,
+            "not given by its headers"};
+  }
   std::vector<std::pair<std::string, std::string>> option_help() const override { return kOptions; }
   std::optional<int> chain_links(const Scenario& scenario, const RunSettings& settings) const override {
     return plan_run(scenario, settings).links;

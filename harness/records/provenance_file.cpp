@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/records/library_file.h"
 #include "harness/records/run_files.h"
 #include "impactbench_build_info.h"  // generated at build time (cmake/provenance_header.cmake)
 
@@ -54,12 +55,34 @@ Json build_json() {
           {"flags", build_info::kFlags}};
 }
 
+// The build of each simulator's library that this process runs; library_size_bytes -1 and library_sha256 ""
+// say that the file could not be read (written as found, not left out, so that a comparison shows it).
+Json engine_builds_json(const SimulatorCatalog& catalog) {
+  Json builds = Json::object();
+  for (const std::string& name : catalog.names) {
+    const LibraryBuild build = library_build_of(catalog, name);
+    if (!build.library_function) continue;
+    const LibraryFile file = loaded_library_file(build.library_function);
+    builds[name] = {{"library_path", file.path},
+                    {"library_size_bytes", file.size_bytes},
+                    {"library_sha256", file.sha256},
+                    {"install_prefix", build.install_prefix},
+                    {"header_version", build.header_version}};
+  }
+  return builds;
+}
+
 }  // namespace
 
 std::string provenance_json(const SimulatorCatalog& catalog) {
   Json engines = Json::object();
   for (const std::string& name : catalog.names) engines[name] = version_of(catalog, name);
-  return Json{{"build", build_json()}, {"machine", machine_json()}, {"engines", engines}}.dump(2) + "\n";
+  return Json{{"build", build_json()},
+              {"machine", machine_json()},
+              {"engines", engines},
+              {"engine_builds", engine_builds_json(catalog)}}
+             .dump(2) +
+         "\n";
 }
 
 void write_provenance_file(const std::string& dir, const SimulatorCatalog& catalog) {

@@ -2,7 +2,12 @@
 // side by side knowing what differs between them before what moved (impactbench compare):
 //   {"build": {"git_commit", "tracked_files_modified", "compiler", "build_type", "flags"},
 //    "machine": {"cpu_model", "logical_cores", "memory_bytes", "os"},
-//    "engines": {"<name>": "<its library's version>", ...}}
+//    "engines": {"<name>": "<its library's version>", ...},
+//    "engine_builds": {"<name>": {"library_path", "library_size_bytes", "library_sha256", "install_prefix",
+//                                 "header_version"}, ...}}
+// engine_builds: which build of each engine's library ran (Simulator::library_build): the file this process
+// loaded (found with dladdr, hashed with SHA-256), the prefix the adapter was built against and the version macro
+// of the headers it was compiled with. Simulators without a library of their own (the reference) are not in it.
 // The scenario files' digests are in the folder's suite.jsonl (a suite's settings) and sweep records.
 #pragma once
 

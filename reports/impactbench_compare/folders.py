@@ -23,6 +23,9 @@ class ResultFolder:
     sweeps: dict = field(default_factory=dict)  # {job id prefix ("sweeps/NAME/", "" for a sweep's folder): sweep.Sweep}
     provenance: dict = field(default_factory=dict)  # provenance.json, {} for a folder made before it existed
     engine_versions: dict = field(default_factory=dict)  # engines.json: {engine: its library's version}
+    # provenance.json's engine_builds: {engine: {library_path, library_size_bytes, library_sha256, install_prefix,
+    # header_version}}; None for a folder made before they were recorded
+    engine_builds: dict = None
     scenario_digests: dict = field(default_factory=dict)  # {scenario file as the suite named it: digest}
 
     @property
@@ -64,6 +67,18 @@ def read_scenario_digests(path):
     return digests
 
 
+def read_engine_builds(path, provenance):
+    """provenance.json's engine_builds ({engine: {key: value}}), None when the file predates them; a value of
+    another shape is a CompareInputError naming the file."""
+    builds = provenance.get("engine_builds") if isinstance(provenance, dict) else None
+    if builds is None:
+        return None
+    if not isinstance(builds, dict) or not all(isinstance(b, dict) for b in builds.values()):
+        raise CompareInputError(f"{path}: \"engine_builds\" is not an object of one object per engine "
+                                "({engine: {library_path, library_size_bytes, library_sha256, ...}}); the folder is damaged")
+    return builds
+
+
 def read_folder(path):
     """The folder at `path`, or CompareInputError: not a folder, no runs.csv, a damaged record."""
     if not os.path.isdir(path):
@@ -83,6 +98,7 @@ def read_folder(path):
     provenance = os.path.join(path, "provenance.json")
     if os.path.exists(provenance):
         folder.provenance = read_json(provenance)
+        folder.engine_builds = read_engine_builds(provenance, folder.provenance)
     engines = os.path.join(path, "engines.json")
     if os.path.exists(engines):
         folder.engine_versions = {s.get("name", ""): s.get("version", "") for s in read_json(engines).get("simulators", [])}
@@ -105,6 +121,7 @@ def differences(base, new):
         a, b = base.engine_versions.get(name), new.engine_versions.get(name)
         if a != b:
             found.append((f"{name}'s library version", a or "not in the build", b or "not in the build"))
+    found += build_differences(base, new)
     if not base.provenance or not new.provenance:
         if base.provenance or new.provenance:
             found.append(("provenance.json", "present" if base.provenance else "missing (an older folder)",
@@ -115,6 +132,35 @@ def differences(base, new):
         for key in sorted(set(a) | set(b)):
             if a.get(key) != b.get(key):
                 found.append((f"{part} {key}", a.get(key), b.get(key)))
+    return found
+
+
+def library_file_text(build):
+    """"sha256 ab12cd34ef56… (1234567 bytes)": a library file as a difference names it."""
+    sha = build.get("library_sha256") or "unknown"
+    return f"sha256 {sha[:12]}{'…' if len(sha) > 12 else ''} ({build.get('library_size_bytes')} bytes)"
+
+
+def build_differences(base, new):
+    """Which build of each engine's library ran, where both folders record it (provenance.json's engine_builds):
+    a library file of other content, size or path even under the same version string (a rebuilt or patched
+    library), the install prefix and the headers' version the adapter was built against."""
+    if base.engine_builds is None or new.engine_builds is None:
+        if (base.engine_builds is None) != (new.engine_builds is None) and base.provenance and new.provenance:
+            said = {True: "not recorded (an older folder)", False: "recorded"}
+            return [("each engine's library file", said[base.engine_builds is None], said[new.engine_builds is None])]
+        return []
+    found = []
+    for name in sorted(set(base.engine_builds) & set(new.engine_builds)):
+        a, b = base.engine_builds[name], new.engine_builds[name]
+        if any(a.get(k) != b.get(k) for k in ("library_sha256", "library_size_bytes", "library_path")):
+            a_text, b_text = library_file_text(a), library_file_text(b)
+            if a.get("library_path") != b.get("library_path"):
+                a_text, b_text = f"{a_text} at {a.get('library_path')}", f"{b_text} at {b.get('library_path')}"
+            found.append((f"{name}'s library file", a_text, b_text))
+        for key, what in (("install_prefix", "install prefix"), ("header_version", "headers' version")):
+            if a.get(key) != b.get(key):
+                found.append((f"{name}'s {what}", a.get(key), b.get(key)))
     return found
 
 

@@ -152,7 +152,7 @@ class Compare(unittest.TestCase):
     def test_every_result_folder_says_what_made_it(self):
         with open(os.path.join(self.base, "provenance.json")) as f:
             provenance = json.load(f)
-        self.assertEqual(set(provenance), {"build", "machine", "engines"})
+        self.assertEqual(set(provenance), {"build", "machine", "engines", "engine_builds"})
         self.assertIn(self.engine, provenance["engines"])
 
     def test_a_folder_compared_with_itself_moves_nothing(self):
