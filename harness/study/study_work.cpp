@@ -30,7 +30,8 @@ struct Estimate {
   }
 };
 
-// Seconds as a person reads an estimate: two significant figures at most, minutes beyond 10 minutes.
+// Seconds as a person reads an estimate: two significant figures below 10 s, whole seconds to 10 minutes, then
+// minutes.
 std::string seconds_text(double seconds) {
   char text[48];
   if (seconds >= 600)
@@ -38,7 +39,7 @@ std::string seconds_text(double seconds) {
   else if (seconds >= 10)
     std::snprintf(text, sizeof text, "%.0f s", seconds);
   else
-    std::snprintf(text, sizeof text, "%.1f s", seconds);
+    std::snprintf(text, sizeof text, "%.2g s", seconds);
   return text;
 }
 
@@ -135,8 +136,8 @@ std::vector<std::string> describe_study_work(const std::vector<StudyPart>& parts
                                     : "") +
                   ", " + cpu_text(total) + ", about " + seconds_text(total.cpu_s / settings.jobs) + " of wall on " +
                   std::to_string(settings.jobs) + (settings.jobs == 1 ? " worker" : " workers") +
-                  " without the report; an estimate within a factor of 2 (docs/performance.md, \"The plan's CPU "
-                  "estimate\")");
+                  " without the report; an estimate, within a factor of 2 where engines' runs dominate "
+                  "(docs/performance.md, \"The plan's CPU estimate\")");
   return lines;
 }
 
