@@ -60,6 +60,11 @@ TEST(StudyFile, TheShippedStudiesAreValidAndAllMeansEveryEngineOfTheBuild) {
     EXPECT_NE(out.text.find("laws hertz,viscoelastic,newton;"), std::string::npos) << out.text;
     EXPECT_NE(out.text.find("; starts "), std::string::npos)
         << name << " runs the resonance as an ensemble: " << out.text;
+    // under each part its runs and CPU estimate, then the total (every engine of the build has a measured cost)
+    EXPECT_NE(out.text.find("\n  suite \"resonance"), std::string::npos) << name << ": " << out.text;
+    EXPECT_GT(planned_runs(out.text), 100) << name << ": " << out.text;
+    EXPECT_GT(planned_cpu_s(out.text), 60) << name << ": " << out.text;
+    EXPECT_EQ(out.text.find("no measured cost"), std::string::npos) << name << ": " << out.text;
   }
   // The cluster's study names its engines (Simbody's sweep first, the costliest): a build without one of them
   // refuses it, as it should.
