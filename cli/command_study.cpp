@@ -71,7 +71,12 @@ int command_study(const StudyOptions& o) {
   settings.resume = o.resume;
   settings.reference_cache = o.reference_cache;
   if (o.plan) {
-    for (const std::string& line : ib::describe_study(study.parts, settings)) std::printf("%s\n", line.c_str());
+    // each part's settings, then under it what it runs and costs (in the same order), then the total
+    const std::vector<std::string> lines = ib::describe_study(study.parts, settings);
+    const std::vector<std::string> work = ib::describe_study_work(study.parts, settings);
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      std::printf("%s\n%s\n", lines[i].c_str(), i + 1 < work.size() ? work[i].c_str() : "");
+    std::printf("%s\n", work.back().c_str());
     return kExitOk;
   }
   const std::vector<ib::StudyPart> parts = ib::place_study_parts(study.parts, settings);
@@ -118,7 +123,8 @@ Command add_study_command(CLI::App& app) {
                     "a folder that shares reference runs between output folders (as suite --reference-cache)");
   study->add_option("--skip", o->skip, "kinds of parts left out, comma-separated: suite, search, sweep");
   study->add_flag("--no-report", o->no_report, "leave the report out");
-  study->add_flag("--plan", o->plan, "check the file and print what each part runs; run nothing");
+  study->add_flag("--plan", o->plan,
+                  "check the file and print what each part runs, its runs and their estimated CPU time; run nothing");
   return {study, [o] { return command_study(*o); }};
 }
 

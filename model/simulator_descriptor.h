@@ -44,6 +44,13 @@ struct SimulatorDescriptor {
   // with: adapters/CMakeLists.txt); 0 for an adaptive simulator (the reference, null in its descriptor)
   double default_time_step_s = 0;
   std::string default_time_step_note;  // how the step is chosen where a number cannot say it, "" if none
+  // Measured CPU time per simulated second [s] at the default step (an adaptive simulator: at its own steps), on
+  // the resonance with matched Hertz contact (descriptor.json "cpu_s_per_simulated_s"; the command, date and
+  // machine: docs/performance.md, "The plan's CPU estimate"); 0: not measured. `study --plan` estimates from it.
+  double cpu_s_per_simulated_s = 0;
+  // The same for the simulator on a K-link chain (the reference's "chain_cpu_s_per_simulated_s": K -> cost), in
+  // increasing K; empty: none measured.
+  std::vector<std::pair<int, double>> chain_cpu_s_per_simulated_s;
 };
 
 }  // namespace ib

@@ -28,6 +28,20 @@ ib::test::CommandOutput study(const std::string& arguments) {
   return run_impactbench_logged_as("study " + arguments, "study-test-");
 }
 
+// The plan's total line, "total: N runs ..., about X s of CPU, ...": N (-1 when there is no such line) and X (-1).
+int planned_runs(const std::string& plan) {
+  const std::size_t total = plan.find("\ntotal: ");
+  return total == std::string::npos ? -1 : std::stoi(plan.substr(total + 8));
+}
+double planned_cpu_s(const std::string& plan) {
+  const std::size_t total = plan.find("\ntotal: ");
+  const std::size_t about = total == std::string::npos ? total : plan.find(", about ", total);
+  if (about == std::string::npos) return -1;
+  const double value = std::stod(plan.substr(about + 8));
+  const std::size_t unit = plan.find_first_of("sm", plan.find(' ', about + 8));
+  return plan[unit] == 'm' ? 60 * value : value;  // "12 min" or "3.4 s"
+}
+
 const char* kFreeVibration = R"([[suite]]
 name = "free vibration"
 scenarios = ["scenarios/paper/free_vibration.toml"]
@@ -46,6 +60,11 @@ TEST(StudyFile, TheShippedStudiesAreValidAndAllMeansEveryEngineOfTheBuild) {
     EXPECT_NE(out.text.find("laws hertz,viscoelastic,newton;"), std::string::npos) << out.text;
     EXPECT_NE(out.text.find("; starts "), std::string::npos)
         << name << " runs the resonance as an ensemble: " << out.text;
+    // under each part its runs and CPU estimate, then the total (every engine of the build has a measured cost)
+    EXPECT_NE(out.text.find("\n  suite \"resonance"), std::string::npos) << name << ": " << out.text;
+    EXPECT_GT(planned_runs(out.text), 100) << name << ": " << out.text;
+    EXPECT_GT(planned_cpu_s(out.text), 60) << name << ": " << out.text;
+    EXPECT_EQ(out.text.find("no measured cost"), std::string::npos) << name << ": " << out.text;
   }
   // The cluster's study names its engines (Simbody's sweep first, the costliest): a build without one of them
   // refuses it, as it should.
@@ -54,6 +73,24 @@ TEST(StudyFile, TheShippedStudiesAreValidAndAllMeansEveryEngineOfTheBuild) {
     ASSERT_EQ(out.exit_code, 0) << out.text;
     EXPECT_NE(out.text.find("search \"stiff and extreme cases, two steps per octave\""), std::string::npos) << out.text;
   }
+}
+
+// studies/smoke.toml, the one-minute loop (docs/studies.md, "The smoke study"): every engine of this build on both
+// contact paths under every law, and a total line with a positive CPU estimate.
+TEST(StudyFile, TheSmokeStudyNamesEveryEngineAndEveryLaw) {
+  const auto out = study(std::string(IMPACTBENCH_SOURCE_DIR) + "/studies/smoke.toml --plan");
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  std::string every_engine;
+  for (const std::string& engine : ib::simulator_names()) every_engine += (every_engine.empty() ? "" : ",") + engine;
+  for (const char* part : {"suite \"resonance, ", "suite \"free vibration, "}) {
+    const std::size_t line = out.text.find(part);
+    ASSERT_NE(line, std::string::npos) << part << " in: " << out.text;
+    const std::string text = out.text.substr(line, out.text.find('\n', line) - line);
+    EXPECT_NE(text.find("engines " + every_engine + ";"), std::string::npos) << text;
+    EXPECT_NE(text.find("laws hertz,viscoelastic,newton;"), std::string::npos) << text;
+    EXPECT_NE(text.find("paths matched,native;"), std::string::npos) << text;
+  }
+  EXPECT_GT(planned_cpu_s(out.text), 0) << out.text;
 }
 
 TEST(StudyFile, SkipEnginesLeavesThemOutOfAll) {
@@ -271,6 +308,60 @@ TEST(StudyCommand, APartGivesTheResultsOfTheCommandItStandsFor) {
     return line;
   };
   EXPECT_EQ(record(folder / "study" / "suite.jsonl"), record(folder / "suite" / "suite.jsonl"));
+  fs::remove_all(folder);
+}
+
+// The plan's count is what the study records: a suite part and a second one that shares its references (counted
+// once, in the first) and adds a law, an engine's native run answering for two laws (two rows, one run), and a
+// sweep's rows; the CPU estimate is there and positive.
+TEST(StudyCommand, ThePlansCountIsTheRunsItRecords) {
+  const std::vector<std::string> names = ib::simulator_names();
+  const std::string engine = names.size() > 1 ? names[1] : names[0];
+  const fs::path folder = fs::temp_directory_path() / ("impactbench-study-count-" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  const fs::path file = study_file("count", R"([defaults]
+series = "none"
+
+[[suite]]
+name = "first"
+scenarios = ["scenarios/paper/free_vibration.toml"]
+duration_s = 0.2
+engines = ["reference", ")" + engine + R"("]
+laws = ["hertz", "newton"]
+paths = ["matched", "native"]
+
+[[suite]]
+name = "shares the first's references"
+scenarios = ["scenarios/paper/free_vibration.toml"]
+duration_s = 0.2
+engines = ["reference"]
+laws = ["hertz", "viscoelastic"]
+
+[[sweep]]
+name = "coarse"
+scenario = "scenarios/paper/resonance.toml"
+ratios = "0.95:1.00:0.05"
+starts = ["up"]
+engines = ["reference"]
+rest_duration_s = 2
+duration_s = 2
+window_s = 1
+)");
+  const auto plan = study(file.string() + " --plan --jobs 2");
+  ASSERT_EQ(plan.exit_code, 0) << plan.text;
+  EXPECT_NE(plan.text.find("1 more planned by an earlier part"), std::string::npos) << plan.text;
+  EXPECT_GT(planned_cpu_s(plan.text), 0) << plan.text;
+  const auto ran = study(file.string() + " --jobs 2 --no-report --out " + folder.string());
+  fs::remove(file);
+  ASSERT_LE(ran.exit_code, 1) << ran.text;  // 1: a run unstable or inaccurate, a finding
+  const auto rows = [](const fs::path& csv) {
+    std::ifstream in(csv);
+    int lines = 0;
+    for (std::string line; std::getline(in, line);) lines += !line.empty();
+    return lines - 1;  // the header
+  };
+  EXPECT_EQ(planned_runs(plan.text), rows(folder / "runs.csv") + rows(folder / "sweeps" / "coarse" / "sweep.csv"))
+      << plan.text;
   fs::remove_all(folder);
 }
 

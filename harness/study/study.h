@@ -104,4 +104,11 @@ StudyOutcome run_study(const std::vector<StudyPart>& parts, const StudySettings&
 // parts of kinds of their own.
 std::vector<std::string> describe_study(const std::vector<StudyPart>& parts, const StudySettings& settings);
 
+// `study --plan`'s counts, one line per part in describe_study's order, then a total line: the runs each part
+// records (a suite's or search's rows of runs.csv, a job two parts plan counted in the first alone, as it runs
+// there; a sweep's rows) and the CPU time they are estimated to take (study_cost.h: within a factor of about 2);
+// a step search's probes, planned as it goes, and a part of its own kind are named, not counted. The total line
+// also gives the wall time on settings.jobs workers, the report not included. The whole study, whatever the shard.
+std::vector<std::string> describe_study_work(const std::vector<StudyPart>& parts, const StudySettings& settings);
+
 }  // namespace ib

@@ -5,6 +5,7 @@
 // computed once and reused for every engine's errors.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -98,6 +99,24 @@ struct PlannedUnit {
   std::string same_run_as;         // a job scored from another job's run (native contact): that job's id
 };
 std::vector<PlannedUnit> plan_suites(const std::vector<SuiteSettings>& parts);
+
+// What each part of plan_suites' parts runs, for `study --plan`: the whole plan, no shard. A job two parts plan runs
+// once, with the first part's settings, and is counted there alone; a native run that answers for every law is
+// one run but a row per law (each law's row is counted: runs.csv holds it), its process once (to_run).
+struct PlannedRunWork {
+  std::string engine;
+  std::map<std::string, std::string> options;
+  double time_step_s = 0;  // 0: the engine's default
+  double simulated_s = 0;  // the scenario as cut
+};
+struct PartRuns {
+  int runs = 0;                        // the rows the part adds to runs.csv (references, engines, unrunnable jobs)
+  int shared = 0;                      // its jobs an earlier part planned: recorded and counted there
+  int scored_only = 0;                 // of runs, the rows scored from another law's native run (not run again)
+  int step_searches = 0;               // its step searches' groups: their probes are planned as each search goes
+  std::vector<PlannedRunWork> to_run;  // the part's runs that run a process, for the cost estimate
+};
+std::vector<PartRuns> count_part_runs(const std::vector<SuiteSettings>& parts);
 
 // The suites as a source of units for one runner shared with other parts (a study's sweeps): prepare_suites
 // checks and records the settings and plans (throwing as run_suites does), run_units runs the jobs, finish

@@ -153,7 +153,10 @@ void plan_scenario(SuitePlan& plan, std::size_t part_index, std::size_t index, c
   // scenario (JobSpec::warnings), the references included; a scenario file's own window is its author's choice.
   std::vector<std::string> warnings;
   if (cut || part.measurement.window_s)
-    if (std::string w = warn_if_window_in_transient(s, part.measurement); !w.empty()) warnings.push_back(w);
+    if (std::string w = plan.quiet ? window_in_transient_warning(s, part.measurement)
+                                   : warn_if_window_in_transient(s, part.measurement);
+        !w.empty())
+      warnings.push_back(w);
   std::optional<ContactLaw> first_law;
   for (ContactLaw law : part.laws)
     if (!first_law && s.contact.has(law)) first_law = law;
@@ -241,8 +244,9 @@ StepGroup step_group(const SuitePlan& plan, const PlannedJob& job) {
       job.chain_links};
 }
 
-SuitePlan plan_suite(const std::vector<SuiteSettings>& parts) {
+SuitePlan plan_suite(const std::vector<SuiteSettings>& parts, bool quiet) {
   SuitePlan plan;
+  plan.quiet = quiet;
   plan.parts = with_one_tolerance_record(parts);
   std::set<std::string> planned;  // a job two parts plan runs once, with the first part's settings
   plan.part_jobs.resize(plan.parts.size());

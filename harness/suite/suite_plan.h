@@ -74,6 +74,8 @@ struct SuitePlan {
   // A shard's plan (shard_of): the digest of the whole suite's plan and settings, the same in every shard of it
   // (shard.jsonl: merge tells shards of one suite from those of another); "" for a whole suite.
   std::string whole_suite_digest;
+  // Made for `study --plan`'s counts (count_part_runs): the warnings go into the jobs' records, not to stderr.
+  bool quiet = false;
 
   const SuiteSettings& shared() const { return parts.front(); }
   // The part a job belongs to: that of its scenario, as loaded and cut for that part.
@@ -84,8 +86,9 @@ struct SuitePlan {
 // ensemble starts, and the references each job is compared with. A job two parts plan is planned once, with
 // the first part's settings. Throws std::invalid_argument for what no run can fix (a missing file, two
 // scenarios of one name, a run too large or a window outside it); a file that cannot be read as a scenario is
-// planned as unrunnable instead, and the others run.
-SuitePlan plan_suite(const std::vector<SuiteSettings>& parts);
+// planned as unrunnable instead, and the others run. quiet: a window in the start-up transient is recorded with
+// the jobs' warnings but not said on stderr (`study --plan`'s counts: the run says it).
+SuitePlan plan_suite(const std::vector<SuiteSettings>& parts, bool quiet = false);
 
 // A job of the plan's scenario `scenario`, its id made from what decides its run.
 PlannedJob make_job(const SuitePlan& plan, std::size_t scenario, JobKind kind, const std::string& engine,
