@@ -38,13 +38,18 @@ def main():
             recorded = sum(1 for line in rows if line.strip()) - 1
         assert recorded == planned, (recorded, planned)
         folders.append(folder)
-    compared = run([impactbench, "compare", *folders, "--json", scratch / "compare.json"])
-    assert compared.returncode in (0, 1), compared.stdout + compared.stderr
+    # as the loop compares (docs/for-engine-authors.md); a cost can still drift beyond it on a busy machine: exit 1 or
+    # 4 on cost alone is the machine's, checked below
+    compared = run([impactbench, "compare", *folders, "--cost-noise", "1", "--json", scratch / "compare.json"])
+    assert compared.returncode in (0, 1, 4), compared.stdout + compared.stderr
     result = json.loads((scratch / "compare.json").read_text())
     assert result["configurations"], result
     moved, cost_moved = [], []
     for c in result["configurations"]:
-        if c["presence"] != "both" or c["verdicts_changed"] or any(m["moved"] for m in c["metrics"]):
+        impacts_moved = any(i.get("moved") for i in c.get("impacts") or [])
+        instability_moved = (c.get("instability") or {}).get("moved")
+        if (c["presence"] != "both" or c["verdicts_changed"] or any(m["moved"] for m in c["metrics"]) or impacts_moved
+                or instability_moved or c.get("not_comparable")):
             moved.append(c["job_id"])
         if (c.get("cost") or {}).get("moved"):
             cost_moved.append(f"{c['job_id']} x{c['cost'].get('ratio')}")
