@@ -88,16 +88,23 @@ ib::Scenario checked_scenario(const Json& summary, const std::string& run_folder
   return scenario;
 }
 
-// repro.sh's lines that find impactbench: $IMPACTBENCH, else next to the script, else on PATH, so the folder
-// runs on another machine and after a rebuild elsewhere.
+// repro.sh's lines that find impactbench: $IMPACTBENCH (a relative path taken from where the script is run, before
+// it changes to its own folder), else next to the script, else on PATH, so the folder runs on another machine and
+// after a rebuild elsewhere; then into the script's folder, where the run writes ./rerun.
 const char* const kFindImpactbench =
-    "if [ -n \"$IMPACTBENCH\" ]; then impactbench=$IMPACTBENCH\n"
-    "elif [ -x ./impactbench ]; then impactbench=./impactbench\n"
+    "folder=$(cd \"$(dirname \"$0\")\" && pwd)\n"
+    "if [ -n \"$IMPACTBENCH\" ]; then\n"
+    "  case $IMPACTBENCH in\n"
+    "    */*) impactbench=$(cd \"$(dirname \"$IMPACTBENCH\")\" && pwd)/$(basename \"$IMPACTBENCH\") ;;\n"
+    "    *) impactbench=$IMPACTBENCH ;;\n"
+    "  esac\n"
+    "elif [ -x \"$folder/impactbench\" ]; then impactbench=$folder/impactbench\n"
     "elif command -v impactbench >/dev/null 2>&1; then impactbench=impactbench\n"
     "else\n"
     "  echo \"repro.sh: impactbench not found: put it on PATH or next to this script, or set IMPACTBENCH\" >&2\n"
     "  exit 127\n"
-    "fi\n";
+    "fi\n"
+    "cd \"$folder\"\n";
 
 void write_file(const std::string& path, const std::string& text) {
   std::ofstream file(path);
@@ -161,7 +168,7 @@ int command_repro(const std::string& run_folder, const std::string& out, const s
   for (const std::string& a : arguments) command += " " + quoted(a);
   write_file(out + "/repro.sh", "#!/bin/sh\n# Reruns " + text_of(summary, "job_id") +
                                     " alone (impactbench repro; repro.json says what it was). The run goes to ./rerun,"
-                                    " replacing an earlier rerun.\ncd \"$(dirname \"$0\")\"\n" +
+                                    " replacing an earlier rerun.\n" +
                                     kFindImpactbench + command + "\n");
   fs::permissions(out + "/repro.sh", fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
                   fs::perm_options::add, error);

@@ -84,6 +84,12 @@ TEST(ReproScenario, WorksFromAnyFolderAndItsScriptFindsImpactbenchNextToItselfOr
   EXPECT_EQ(on_path.exit_code, 0) << on_path.text;
   EXPECT_TRUE(fs::exists(elsewhere / "out" / "rerun" / "summary.json"));
 
+  // $IMPACTBENCH as a path relative to where the script is run from (it changes to its own folder after)
+  const std::string relative = fs::relative(IMPACTBENCH_EXECUTABLE, folder.root).string();
+  const Output relative_path = ib::test::run_command("cd " + folder.root.string() + " && env IMPACTBENCH=" + relative +
+                                                     " PATH=/usr/bin:/bin sh " + script.string() + " 2>&1");
+  EXPECT_EQ(relative_path.exit_code, 0) << relative << ": " << relative_path.text;
+
   fs::create_symlink(IMPACTBENCH_EXECUTABLE, elsewhere / "out" / "impactbench");
   const Output next_to_it = ib::test::run_command(no_impactbench + "sh " + script.string() + " 2>&1");
   EXPECT_EQ(next_to_it.exit_code, 0) << next_to_it.text;  // and the earlier rerun replaced, not refused
