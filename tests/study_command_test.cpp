@@ -50,6 +50,18 @@ laws = ["hertz", "newton"]
 duration_s = 0.5
 )";
 
+// A sweep of the reference over two ratios, short: a study's sweep part.
+const char* kCoarseSweep = R"([[sweep]]
+name = "coarse"
+scenario = "scenarios/paper/resonance.toml"
+ratios = "0.95:1.00:0.05"
+starts = ["up"]
+engines = ["reference"]
+rest_duration_s = 2
+duration_s = 2
+window_s = 1
+)";
+
 TEST(StudyFile, TheShippedStudiesAreValidAndAllMeansEveryEngineOfTheBuild) {
   for (const char* name : {"default", "full"}) {
     const auto out = study(std::string(IMPACTBENCH_SOURCE_DIR) + "/studies/" + name + ".toml --plan");
@@ -336,17 +348,7 @@ scenarios = ["scenarios/paper/free_vibration.toml"]
 duration_s = 0.2
 engines = ["reference"]
 laws = ["hertz", "viscoelastic"]
-
-[[sweep]]
-name = "coarse"
-scenario = "scenarios/paper/resonance.toml"
-ratios = "0.95:1.00:0.05"
-starts = ["up"]
-engines = ["reference"]
-rest_duration_s = 2
-duration_s = 2
-window_s = 1
-)");
+)" + kCoarseSweep);
   const auto plan = study(file.string() + " --plan --jobs 2");
   ASSERT_EQ(plan.exit_code, 0) << plan.text;
   EXPECT_NE(plan.text.find("1 more planned by an earlier part"), std::string::npos) << plan.text;
@@ -368,17 +370,7 @@ window_s = 1
 TEST(StudyCommand, SweepsGoIntoTheirOwnFoldersAndResumeRunsNothingTwice) {
   const fs::path folder = fs::temp_directory_path() / ("impactbench-study-sweep-" + std::to_string(::getpid()));
   fs::remove_all(folder);
-  const fs::path file = study_file("sweep", std::string(kFreeVibration) + R"(
-[[sweep]]
-name = "coarse"
-scenario = "scenarios/paper/resonance.toml"
-ratios = "0.95:1.00:0.05"
-starts = ["up"]
-engines = ["reference"]
-rest_duration_s = 2
-duration_s = 2
-window_s = 1
-)");
+  const fs::path file = study_file("sweep", std::string(kFreeVibration) + "\n" + kCoarseSweep);
   const auto first = study(file.string() + " --no-report --out " + folder.string());
   ASSERT_EQ(first.exit_code, 0) << first.text;
   EXPECT_TRUE(fs::exists(folder / "runs.csv"));
