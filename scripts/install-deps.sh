@@ -25,6 +25,8 @@ benchmark_packages=(
   libbullet-dev                  # Bullet 3.24, linked as bullet-float64 (double precision)
   libdart-dev                    # DART 6.12.1, its core component only (collision-bullet links float Bullet)
   libsimbody-dev                 # Simbody 3.7 (Hunt-Crossley contact, rigid-contact stepper, CPodes)
+  siconos                        # Siconos 4.4: Moreau-Jean time stepping, Newton's impact law (its CMake config
+                                 # needs the siconos script and all six libraries: the whole package, about 50 more)
   python3-matplotlib             # the report's figures (reports/, run with /usr/bin/python3)
   python3-scipy                  # the report's spectra and scalograms; bench/'s reference against solve_ivp
 )
