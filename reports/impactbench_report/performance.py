@@ -6,7 +6,9 @@
 - reference_vs_scipy/comparison.json: the reference against SciPy's solve_ivp
   (bench/reference_vs_scipy.py --out SUITE/performance/reference_vs_scipy);
 - reference_cvode_scipy/comparison.json: the reference, SUNDIALS CVODE and SciPy side by side, CPU time per
-  simulated second at equal accuracy (bench/reference_cvode_scipy.py --out SUITE/performance/reference_cvode_scipy).
+  simulated second at equal accuracy (bench/reference_cvode_scipy.py --out SUITE/performance/reference_cvode_scipy);
+- reference_siconos/comparison.json: the reference's Newton impacts against a second Newton reference written in
+  another library (bench/reference_siconos.py --out SUITE/performance/reference_siconos).
 
 Every table says what machine and software it was measured with. Nothing here is computed from the
 suite's runs: these are separate, repeated timings."""
@@ -145,12 +147,36 @@ def three_way_table(document):
     return title, header, rows
 
 
+def second_newton_table(document):
+    """The reference's first Newton impacts against the second Newton reference's (issue 49); the comparator is
+    named by the file (its library and version), so that no engine name is written here."""
+    header = ["case", "simulated [s]", "impacts compared", "largest impact time difference [s]",
+              "largest approach velocity difference [-]", "largest restitution difference [-]", "reference CPU [s]",
+              "comparator CPU [s]"]
+    rows = []
+    for c in document.get("cases", []):
+        rows.append([c.get("case", "?"), tables.fmt(c.get("duration_s")), tables.fmt(c.get("impacts_compared")),
+                     tables.fmt(c.get("max_impact_time_difference_s"), 2),
+                     tables.fmt(c.get("max_approach_velocity_relative_difference"), 2),
+                     tables.fmt(c.get("max_restitution_difference"), 2), tables.fmt(c.get("reference_cpu_time_s"), 3),
+                     tables.fmt(c.get("siconos_cpu_time_s"), 3)])
+    m = document.get("machine", {})
+    load = [m.get("proc_loadavg_at_start"), m.get("proc_loadavg_at_end")]
+    load_text = " and ".join(f"{x[0]:.2f}" for x in load if x) or "?"
+    title = (f"The reference's Newton impacts against a second Newton reference, {document.get('comparator', '?')}: "
+             f"the first impacts of each matched in order (the approach velocity relative to the reference's); "
+             f"the reference's CPU time is its whole run, the comparator's its integration up to its last impact "
+             f"compared or the end; load average {load_text} at the start and at the end")
+    return title, header, rows
+
+
 READERS = [("reference_benchmark.json", reference_table, lambda d: d.get("context")),
            ("engine_step_benchmark.json", engine_step_table, lambda d: d.get("context")),
            ("harness_overhead_benchmark.json", overhead_table, lambda d: d.get("context")),
            ("scaling.json", scaling_table, lambda d: d.get("machine")),
            ("reference_vs_scipy/comparison.json", scipy_table, lambda d: d.get("machine")),
-           ("reference_cvode_scipy/comparison.json", three_way_table, lambda d: d.get("machine"))]
+           ("reference_cvode_scipy/comparison.json", three_way_table, lambda d: d.get("machine")),
+           ("reference_siconos/comparison.json", second_newton_table, lambda d: d.get("machine"))]
 
 
 def section(suite_folder):

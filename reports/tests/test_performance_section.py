@@ -98,6 +98,21 @@ class PerformanceSection(unittest.TestCase):
             self.assertIn("load average 1.25 and 1.50 at the start and at the end", text)
             self.assertIn("within 1e-06 s", text)
 
+    def test_the_second_newton_reference_is_shown_from_its_own_record(self):
+        os.makedirs(os.path.join(self.folder, "reference_siconos"))
+        case = {"case": "resonance", "duration_s": 5.0, "impacts_compared": 20, "max_impact_time_difference_s": 8.16e-10,
+                "max_approach_velocity_relative_difference": 6.88e-08, "max_restitution_difference": 7.77e-16,
+                "reference_cpu_time_s": 0.125, "siconos_cpu_time_s": 57.5}
+        self.write("reference_siconos/comparison.json", {
+            "machine": dict(MACHINE, proc_loadavg_at_start=[1.25, 1.0, 0.5], proc_loadavg_at_end=[1.5, 1.1, 0.6]),
+            "comparator": "Comparator 4.4 (event-driven)", "cases": [case]})
+        markdown, page = performance.section(self.suite)
+        self.assertIn("| resonance | 5 | 20 | 8.2e-10 | 6.9e-08 | 7.8e-16 | 0.125 | 57.5 |", markdown)
+        for text in (markdown, page):
+            self.assertIn("a second Newton reference, Comparator 4.4 (event-driven)", text)
+            self.assertIn("load average 1.25 and 1.50 at the start and at the end", text)
+            self.assertIn("Test CPU 9000 x 2 cores", text)
+
     def test_unreadable_json_names_its_file(self):
         with open(os.path.join(self.folder, "scaling.json"), "w") as f:
             f.write("{not json")
