@@ -3,8 +3,10 @@
 reference's Newton impacts: the second, independent Newton reference of issue 49. Agreement only; speed is
 never asserted.
 - bench/reference_siconos.py on the free vibration and the resonance cut to 5 s, Newton law (e = 0.8): the
-  reference at its own settings (rtol 1e-9, atol 1e-12 m sqrt(kg)), Siconos's Lsodar at rtol 1e-12, atol
-  1e-14; the first 20 impacts of each (the free vibration has 8), matched in order: the same count, impact
+  reference at its own settings (rtol 1e-9, atol 1e-12 m sqrt(kg)), Siconos's Lsodar at rtol 1e-10 and atol
+  1e-13 m sqrt(kg) (three quarters of the CPU of the script's defaults 1e-12 and 1e-14; measured, the impact
+  times and approach velocities stay 9 times inside their tolerances; at atol 1e-12 the free vibration's
+  approach velocities come within 1.2 times of theirs); the first 20 impacts of each (the free vibration has 8), matched in order: the same count, impact
   times within 1e-7 s, approach velocities within 1e-5 relative, the realised restitution within 1e-9 of
   the reference's (measured: see docs/performance.md, "Siconos beside the reference (issue 49)");
 - the comparison itself fails on an impact moved by 2e-7 s or a restitution off by 2e-9;
@@ -51,7 +53,8 @@ class AgainstTheReference(unittest.TestCase):
         with tempfile.TemporaryDirectory() as folder:
             done = subprocess.run([sys.executable, os.path.join(BENCH, "reference_siconos.py"), "--impactbench",
                                    IMPACTBENCH, "--siconos", SICONOS, "--out", folder, "--cases",
-                                   "free_vibration,resonance", "--duration", "5", "--max-impacts", str(IMPACTS)],
+                                   "free_vibration,resonance", "--duration", "5", "--max-impacts", str(IMPACTS),
+                                   "--rtol", "1e-10", "--atol", "1e-13"],
                                   capture_output=True, text=True)
             self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
             print(done.stdout, end="", file=sys.stderr)
