@@ -164,29 +164,51 @@ def order_text(entry):
     return f"{entry['observed_order']:.2f}" + (f" ± {spread:.2f}" if spread is not None else "")
 
 
+def every_line(cases):
+    """[(case, line)] over summary.json's cases, every engine's lines in the fronts' order."""
+    return [(case, line) for case in cases for entry in ((case.get("fronts") or {}).get("engines") or {}).values()
+            for line in entry.get("observed_orders", [])]
+
+
 def rows(cases):
-    """The table's rows over summary.json's cases, every engine's lines in the fronts' order."""
+    """The table's rows: the lines with three stable steps or more (a line of fewer is counted under the table, not
+    listed: in a default study most cases' lines have one or two steps, and a table of "no order" says nothing)."""
     found = []
-    for case in cases:
-        for entry in ((case.get("fronts") or {}).get("engines") or {}).values():
-            for line in entry.get("observed_orders", []):
-                name = line["configuration"] + (f", {line['chain_links']} links" if line["chain_links"] else "")
-                found.append([f"{case['scenario']}, {case['law']}", name,
-                              ", ".join(f"{s:.3g}" for s in line["time_steps_s"]),
-                              ", ".join(f"{100 * e:+.3g} %" for e in line["errors"]),
-                              order_text(line), line["remark"]])
+    for case, line in every_line(cases):
+        if line["status"] != "no order":
+            name = line["configuration"] + (f", {line['chain_links']} links" if line["chain_links"] else "")
+            found.append([f"{case['scenario']}, {case['law']}", name,
+                          ", ".join(f"{s:.3g}" for s in line["time_steps_s"]),
+                          ", ".join(f"{100 * e:+.3g} %" for e in line["errors"]),
+                          order_text(line), line["remark"]])
     return found
 
 
-def html_section(document):
-    """The table under the fronts (id "front-orders"), '' without a line of two steps."""
-    found = rows(document.get("cases", []))
-    if not found:
+def too_few_note(cases):
+    """'4 lines with fewer than 3 stable steps give no order (summary.json).', '' without one."""
+    count = sum(line["status"] == "no order" for _, line in every_line(cases))
+    if not count:
         return ""
-    return f"<p class='lede'>{html.escape(INTRO)}</p><div id='front-orders'>{html_table(HEADER, found)}</div>"
+    return (f"{count} line{'s' if count > 1 else ''} with fewer than {MINIMUM_STEPS} stable steps "
+            f"give{'' if count > 1 else 's'} no order (summary.json).")
+
+
+def html_section(document):
+    """The table under the fronts (id "front-orders") and the count of the lines too short for one, '' without a
+    line of two steps."""
+    cases = document.get("cases", [])
+    found, note = rows(cases), too_few_note(cases)
+    if not found and not note:
+        return ""
+    table = html_table(HEADER, found) if found else ""
+    return (f"<p class='lede'>{html.escape(INTRO)}</p><div id='front-orders'>{table}"
+            + (f"<p class='notes'>{html.escape(note)}</p>" if note else "") + "</div>")
 
 
 def markdown(document):
     """The same in Markdown, '' without a line."""
-    found = rows(document.get("cases", []))
-    return "" if not found else INTRO + "\n\n" + markdown_table(HEADER, found)
+    cases = document.get("cases", [])
+    found, note = rows(cases), too_few_note(cases)
+    if not found and not note:
+        return ""
+    return "\n\n".join([INTRO] + ([markdown_table(HEADER, found)] if found else []) + ([note] if note else []))
