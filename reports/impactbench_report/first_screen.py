@@ -4,7 +4,7 @@ ran where. Every number printed here is in summary.json, which names the runs.cs
 
 import html
 
-from . import analysis, engines, fronts, operating_points
+from . import analysis, engines, front_order, fronts, operating_points
 from .answer import error_cell, warning_lines
 from .tables import step_text
 
@@ -131,14 +131,15 @@ def other_sentences(document):
 def html_page_top(document, facts, lead_front_html="", cases_fronts_html="", budget_html=""):
     """The page's first screen: the lead case's answer sentence (id "answer-sentence"), its front
     (front_figures.py) and its error budget (budget_figures.py), what to use (operating_points.py, the element
-    with id "answer"), every other case's sentence (id "answers") and front, then the table of the best contact
+    with id "answer"), every other case's sentence (id "answers") and front, the observed orders of the fronts'
+    lines (front_order.py, id "front-orders"), then the table of the best contact
     handling per case (id "cases"), the engines' lines, the warnings and the error convention."""
     sentence = lead_sentence(document)
     parts = ["<h1>impactbench: which engine, which setting, what error, at what cost</h1>",
              f"<p class='answer-sentence' id='answer-sentence'><b>{html.escape(sentence)}</b></p>" if sentence else "",
              lead_front_html, budget_html, operating_points.html_section(document),
              "<ul id='answers' class='answers'>" + "".join(f"<li>{html.escape(s)}</li>" for s in other_sentences(document))
-             + "</ul>", cases_fronts_html,
+             + "</ul>", cases_fronts_html, front_order.html_section(document),
              "<p class='lede'>For each case and contact law: the configuration whose contact handling comes closest to "
              "the reference on its own chain out of the box (the engine's own contact and defaults) and once tuned "
              "(the law matched in or injected into the engine), a run that passes its verdict first: its largest "
@@ -229,6 +230,8 @@ def markdown(document, facts, lead_front="", cases_fronts="", budget=""):
     lines += operating_points.markdown(document)
     lines += [f"- {s}" for s in other_sentences(document)] + [""]
     lines += [cases_fronts, ""] if cases_fronts else []
+    orders = front_order.markdown(document)
+    lines += [orders, ""] if orders else []
     lines += [markdown_table(ANSWER_HEADER, answer_rows(document)[0]), ""]
     lines += answer_rows(document)[1] + [""]
     lines += [f"- {s['line']}" for s in document["engines"]]

@@ -11,7 +11,7 @@ where its score is at most 1."""
 import math
 from dataclasses import dataclass
 
-from . import analysis, engines, ensembles, significance
+from . import analysis, engines, ensembles, front_order, significance
 
 
 @dataclass
@@ -198,7 +198,8 @@ def recommended_entry(own, law, tolerances, need, budgets=None):
 def case_fronts(runs, tolerances, need, law=None, skip=(), budgets=None):
     """A case's fronts as summary.json holds them: the Pareto front over every engine (job ids, cheapest
     first), and per engine its points, its own front, its operating points and its recommended
-    configuration's point (`law`: the case's); `skip`: the metrics that rank nothing in the case; `budgets`:
+    configuration's point (`law`: the case's), and the observed order of convergence of each of its
+    configurations' lines (front_order.py); `skip`: the metrics that rank nothing in the case; `budgets`:
     {job id: error budget} for every point."""
     every = points(runs, tolerances, skip)
     result = {"pareto_front_job_ids": [p.run["job_id"] for p in pareto(every)], "engines": {}}
@@ -208,7 +209,8 @@ def case_fronts(runs, tolerances, need, law=None, skip=(), budgets=None):
             "points": [point_entry(p, tolerances, need, budgets)
                        for p in sorted(own, key=lambda p: (p.run.config, -p.run.number("time_step_s")))],
             "front_job_ids": [p.run["job_id"] for p in pareto(own)],
-            **operating_points(own, tolerances, need, budgets), **recommended_entry(own, law, tolerances, need, budgets)}
+            **operating_points(own, tolerances, need, budgets), **recommended_entry(own, law, tolerances, need, budgets),
+            "observed_orders": front_order.observed_orders(own, need)}
     return result
 
 
