@@ -80,7 +80,7 @@ TEST(StudyFile, TheShippedStudiesAreValidAndAllMeansEveryEngineOfTheBuild) {
   }
   // The cluster's study names its engines (Simbody's sweep first, the costliest): a build without one of them
   // refuses it, as it should.
-  if (ib::simulator_names().size() == 6) {
+  if (ib::simulator_names().size() == 7) {
     const auto out = study(std::string(IMPACTBENCH_SOURCE_DIR) + "/studies/cluster.toml --plan");
     ASSERT_EQ(out.exit_code, 0) << out.text;
     EXPECT_NE(out.text.find("search \"stiff and extreme cases, two steps per octave\""), std::string::npos) << out.text;

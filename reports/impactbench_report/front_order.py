@@ -20,8 +20,9 @@ What is said instead of a number:
   line's errors lies within its noise band (|error| at most its 95 % half-width: its ensemble interval, or the
   reference's single-start scatter where the case needed an ensemble; significance.error_with_interval); an error
   of exactly 0 (below the printed digits) counts as within;
-- "poor fit": where the errors do not fall with the step (p <= 0) or do not follow one power of it (R² below
-  POOR_FIT_R_SQUARED); the slope is still given, with that remark;
+- "poor fit": where the errors do not fall with the step (p below SLOWEST_ORDER: they level off at a bias the step
+  does not remove) or do not follow one power of it (R² below POOR_FIT_R_SQUARED); the slope is still given, with
+  that remark;
 - "no order": fewer than MINIMUM_STEPS stable steps with an error."""
 
 import html
@@ -38,6 +39,10 @@ MINIMUM_STEPS = 3  # two points always lie on a line: a slope through them says 
 # (a first-order method's errors at 2e-4, 1e-4, 5e-5 s explain over 0.99 of it; a kink from a change of regime
 # brings it under 0.9).
 POOR_FIT_R_SQUARED = 0.9
+# Below this slope the errors do not fall with the step: every consistent time-stepping scheme converges at least at
+# first order (half of it allows for a contact's whole-step timing), so a flatter line is an error the step does not
+# remove (an engine that makes every impact plastic: -41 % at every step).
+SLOWEST_ORDER = 0.5
 
 
 def least_squares(x, y):
@@ -101,7 +106,7 @@ def noise_reason(samples, need):
 
 def fit_status(order, r_squared):
     """(status, remark) of a measured slope."""
-    if order <= 0:
+    if order < SLOWEST_ORDER:
         return "poor fit", "poor fit: the errors do not fall with the step"
     if r_squared < POOR_FIT_R_SQUARED:
         return "poor fit", f"poor fit: R² = {r_squared:.2f}, the errors follow no one power of the step"

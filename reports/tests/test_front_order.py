@@ -98,6 +98,13 @@ class ObservedOrder(unittest.TestCase):
         self.assertEqual(line["status"], "poor fit")
         self.assertIn("do not fall with the step", line["remark"])
 
+    def test_errors_that_level_off_are_a_poor_fit(self):
+        """A slope well above 0 but below half an order: errors that level off at a bias (-41 % at every step)."""
+        [line] = orders([run(f"engine_a/dt={h:g}", h, e) for h, e in ((1e-4, -0.412), (5e-5, -0.407), (2.5e-5, -0.406))])
+        self.assertEqual(line["status"], "poor fit")
+        self.assertIn("do not fall with the step", line["remark"])
+        self.assertLess(line["observed_order"], front_order.SLOWEST_ORDER)
+
     def test_errors_that_follow_no_one_power_are_a_poor_fit(self):
         runs = [run(f"a/dt={h:g}", h, e) for h, e in zip(STEPS_S, (0.2, 0.01, 0.012, 0.009))]
         [line] = orders(runs)
