@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <tuple>
 
 #include "physics/contact_laws.h"
@@ -64,6 +65,8 @@ class SmoothContactChains final : public LagrangianDS {
     setFIntPtr(std::make_shared<SiconosVector>(n));  // gives the system its internal force and Jacobians
     setJacobianFIntqPtr(std::make_shared<SimpleMatrix>(n, n));
     setJacobianFIntqDotPtr(std::make_shared<SimpleMatrix>(n, n));
+    _jacobianqForces = std::make_shared<SimpleMatrix>(n, n);
+    _jacobianqDotForces = std::make_shared<SimpleMatrix>(n, n);
   }
 
   void computeFInt(double, SP::SiconosVector q, SP::SiconosVector v) override {
@@ -73,22 +76,27 @@ class SmoothContactChains final : public LagrangianDS {
         chains_.stiffness * qe + chains_.damping * ve -
         contact_force(law_, indentation_m, rate_m_s) * chains_.gap_gradient;
   }
-  void computeJacobianFIntq(double, SP::SiconosVector q, SP::SiconosVector v) override {
-    const auto [indentation_m, rate_m_s] = indentation(eigen_of(*q), eigen_of(*v));
+  // The forces' Jacobians that Moreau-Jean's iteration matrix W = M - h theta dF/dq' - h^2 theta^2 dF/dq is built
+  // from, at the current state. Siconos's own computeJacobianqForces reaches computeJacobianFIntq only through a
+  // plugin, so without these overrides W would be M alone: the Newton loop then converges only while
+  // omega h theta < 1 for the chain's fastest mode, and costs an iteration per factor (omega h theta)^2.
+  void computeJacobianqForces(double) override {
+    const auto [indentation_m, rate_m_s] = indentation(eigen_of(*q()), eigen_of(*velocity()));
     const double step_m = std::max(1e-13, 1e-6 * std::abs(indentation_m));
     const double slope_n_per_m = (contact_force(law_, indentation_m + step_m, rate_m_s) -
                                   contact_force(law_, indentation_m - step_m, rate_m_s)) /
                                  (2 * step_m);
-    set(*jacobianFIntq(), chains_.stiffness + slope_n_per_m * chains_.gap_gradient * chains_.gap_gradient.transpose());
+    set(*_jacobianqForces,
+        -(chains_.stiffness + slope_n_per_m * chains_.gap_gradient * chains_.gap_gradient.transpose()));
   }
-  void computeJacobianFIntqDot(double, SP::SiconosVector q, SP::SiconosVector v) override {
-    const auto [indentation_m, rate_m_s] = indentation(eigen_of(*q), eigen_of(*v));
+  void computeJacobianvForces(double) override {
+    const auto [indentation_m, rate_m_s] = indentation(eigen_of(*q()), eigen_of(*velocity()));
     const double step_m_s = std::max(1e-10, 1e-6 * std::abs(rate_m_s));
     const double slope_n_s_per_m = (contact_force(law_, indentation_m, rate_m_s + step_m_s) -
                                     contact_force(law_, indentation_m, rate_m_s - step_m_s)) /
                                    (2 * step_m_s);
-    set(*jacobianFIntqDot(),
-        chains_.damping + slope_n_s_per_m * chains_.gap_gradient * chains_.gap_gradient.transpose());
+    set(*_jacobianqDotForces,
+        -(chains_.damping + slope_n_s_per_m * chains_.gap_gradient * chains_.gap_gradient.transpose()));
   }
 
  private:
@@ -143,7 +151,9 @@ SiconosRig::SiconosRig(const RigSpec& rig, const SiconosModelSettings& settings,
   o.external_torques_n_m->zero();
   o.chains->setFExtPtr(o.external_torques_n_m);
   set_tip_forces_n(previous_tip_forces_n[0], previous_tip_forces_n[1]);
-  auto system = std::make_shared<NonSmoothDynamicalSystem>(0.0, rig.duration_s);
+  // no end time: the loop decides when to stop (with a step that does not divide the duration, Siconos's own end
+  // would leave the last step without a next time, and it aborts on that)
+  auto system = std::make_shared<NonSmoothDynamicalSystem>(0.0, std::numeric_limits<double>::infinity());
   system->insertDynamicalSystem(o.chains);
   if (settings.contact == SystemContact::newton_impact) {
     auto gap_at_rest = std::make_shared<SiconosVector>(1);
