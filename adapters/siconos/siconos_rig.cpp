@@ -53,6 +53,23 @@ BothChains both_chains(const RigSpec& rig) {
   return both;
 }
 
+// The law's slopes dF/d delta and dF/d delta' at a state, by central differences of physics/contact_laws.h's force
+// (the one place of the law): only Moreau-Jean's iteration matrix uses them, so they decide how fast its Newton
+// loop converges, not where it converges to.
+struct ContactSlopes {
+  double per_indentation_n_per_m = 0, per_rate_n_s_per_m = 0;
+};
+ContactSlopes contact_slopes(const ContactModel& law, double indentation_m, double rate_m_s) {
+  const double step_m = std::max(1e-13, 1e-6 * std::abs(indentation_m));
+  const double step_m_s = std::max(1e-10, 1e-6 * std::abs(rate_m_s));
+  return {
+      (contact_force(law, indentation_m + step_m, rate_m_s) - contact_force(law, indentation_m - step_m, rate_m_s)) /
+          (2 * step_m),
+      (contact_force(law, indentation_m, rate_m_s + step_m_s) -
+       contact_force(law, indentation_m, rate_m_s - step_m_s)) /
+          (2 * step_m_s)};
+}
+
 // The chains with the contact law as a smooth force of the system (Hertz, the spring-dashpot), which
 // Moreau-Jean integrates implicitly, its Newton loop solving for the force at the step's theta point:
 // M q'' + f_int(q, q') = f_ext with f_int = K q + C q' - F(delta, delta') dy/dq, delta = -y.
@@ -82,19 +99,13 @@ class SmoothContactChains final : public LagrangianDS {
   // omega h theta < 1 for the chain's fastest mode, and costs an iteration per factor (omega h theta)^2.
   void computeJacobianqForces(double) override {
     const auto [indentation_m, rate_m_s] = indentation(eigen_of(*q()), eigen_of(*velocity()));
-    const double step_m = std::max(1e-13, 1e-6 * std::abs(indentation_m));
-    const double slope_n_per_m = (contact_force(law_, indentation_m + step_m, rate_m_s) -
-                                  contact_force(law_, indentation_m - step_m, rate_m_s)) /
-                                 (2 * step_m);
+    const double slope_n_per_m = contact_slopes(law_, indentation_m, rate_m_s).per_indentation_n_per_m;
     set(*_jacobianqForces,
         -(chains_.stiffness + slope_n_per_m * chains_.gap_gradient * chains_.gap_gradient.transpose()));
   }
   void computeJacobianvForces(double) override {
     const auto [indentation_m, rate_m_s] = indentation(eigen_of(*q()), eigen_of(*velocity()));
-    const double step_m_s = std::max(1e-10, 1e-6 * std::abs(rate_m_s));
-    const double slope_n_s_per_m = (contact_force(law_, indentation_m, rate_m_s + step_m_s) -
-                                    contact_force(law_, indentation_m, rate_m_s - step_m_s)) /
-                                   (2 * step_m_s);
+    const double slope_n_s_per_m = contact_slopes(law_, indentation_m, rate_m_s).per_rate_n_s_per_m;
     set(*_jacobianqDotForces,
         -(chains_.damping + slope_n_s_per_m * chains_.gap_gradient * chains_.gap_gradient.transpose()));
   }
