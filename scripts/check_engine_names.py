@@ -30,6 +30,8 @@ ALLOWED = {
                        "harness_overhead_benchmark names engines (issue 49; its CMake in siconos_reference.cmake)",
     "bench/reference_siconos.py": "the second Newton reference's comparison: it runs bench/siconos_reference",
     "bench/tests/test_siconos_reference.py": "the second Newton reference's test",
+    "bench/run-benchmarks.sh": "runs the second Newton reference's comparison (bench/reference_siconos.py) beside "
+                               "the Google Benchmarks, for the report's performance section",
     "scripts/check-mutations.sh": "issue 20's mutations, each a line of source: one is in an engine's contact mapping",
 }
 SUFFIXES = (".h", ".cpp", ".py", ".sh", ".sbatch", ".cmake", ".toml")
