@@ -82,5 +82,7 @@ end_phase "sanitizer build"
 # aborting (MuJoCo's "could not allocate" error relies on it); it hides no memory error.
 export ASAN_OPTIONS="abort_on_error=1:allocator_may_return_null=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
+# leaks that are a library's own, each with why: scripts/lsan-suppressions.txt (Siconos's shared-pointer cycles)
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan-suppressions.txt${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 run_ctest build-sanitize
 end_phase "sanitizer tests ($(grep -c ' Test *#' build-sanitize/ctest.log) in build-sanitize/)"
