@@ -92,13 +92,18 @@ class SiconosStepper final : public FixedStepEngine {
   double time_step_s() const override { return siconos_ ? siconos_->time_step_s() : plan_.model.time_step_s; }
   bool injects_contact() const override { return plan_.model.contact == SystemContact::external; }
 
+  // the hinges as the last step left them (step() copies them out of Siconos once)
   std::optional<std::string> read_tips(double t_s, TipState& tips) override {
+    tips = tip_state();
+    return nonfinite_hinges(t_s, tips, angles_, rates_);
+  }
+  TipState tip_state() const {
+    TipState tips;
     for (int f = 0; f < 2; ++f) {
-      if (siconos_) siconos_->hinge_state(f, angles_[f], rates_[f]);
       tips.displacement_m[f] = tip_lever_m_[f].dot(angles_[f]);
       tips.velocity_m_s[f] = tip_lever_m_[f].dot(rates_[f]);
     }
-    return nonfinite_hinges(t_s, tips, angles_, rates_);
+    return tips;
   }
 
   // Newton's contact stores no energy (RigEnergy takes 0 indentation for it)
@@ -117,6 +122,7 @@ class SiconosStepper final : public FixedStepEngine {
     siconos_->set_tip_forces_n(tip_force_n_[0], tip_force_n_[1]);
     previous_tip_force_n_ = tip_force_n_;
     if (auto trouble = siconos_->step()) return trouble;
+    for (int f = 0; f < 2; ++f) siconos_->hinge_state(f, angles_[f], rates_[f]);
     impulse_n_s_ = siconos_->impulse_n_s();
     if (impulse_n_s_ > 0) ++impact_steps_;
     most_newton_iterations_ = std::max(most_newton_iterations_, siconos_->newton_iterations());
@@ -128,8 +134,7 @@ class SiconosStepper final : public FixedStepEngine {
   double contact_force_n() override {
     if (plan_.model.contact == SystemContact::newton_impact) return impulse_n_s_ / time_step_s();
     if (plan_.model.contact == SystemContact::external || !siconos_) return 0;
-    TipState tips;
-    read_tips(0, tips);
+    const TipState tips = tip_state();
     const double indentation_m = tips.displacement_m[0] - tips.displacement_m[1] - rig_.gap_m;
     return contact_force(rig_.law, indentation_m, tips.velocity_m_s[0] - tips.velocity_m_s[1]);
   }
