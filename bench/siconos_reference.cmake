@@ -9,11 +9,8 @@ set(IMPACTBENCH_SAVED_CXX_STANDARD ${CMAKE_CXX_STANDARD})
 find_package(Boost REQUIRED COMPONENTS serialization filesystem)
 find_package(siconos REQUIRED)
 set(CMAKE_CXX_STANDARD ${IMPACTBENCH_SAVED_CXX_STANDARD})
-execute_process(COMMAND dpkg-query -W -f=\${Version} libsiconos-kernel-dev OUTPUT_VARIABLE IMPACTBENCH_SICONOS_VERSION
-                ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE)
-if(NOT IMPACTBENCH_SICONOS_VERSION)
-  set(IMPACTBENCH_SICONOS_VERSION "unknown (cmake config ${siconos_VERSION})")
-endif()
+include(${PROJECT_SOURCE_DIR}/cmake/debian_package_version.cmake)
+debian_package_version(Siconos::kernel "${siconos_VERSION} (its CMake config's)" IMPACTBENCH_SICONOS_VERSION)
 add_executable(siconos_reference siconos_reference.cpp siconos_event_driven.cpp cvode_modal_model.cpp)
 # one unit (CMakeLists.txt, "Unity builds"): Siconos's kernel headers, about 15 s each time, parsed once
 set_target_properties(siconos_reference PROPERTIES CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON UNITY_BUILD ON
