@@ -152,6 +152,29 @@ inline EngineImpact engine_impact(Simulator& engine, const Scenario& s, const Ru
   return {*impact, std::move(r)};
 }
 
+// The first impact under Newton's law at step h (sampled at 1e5 Hz from 40 ms), as the harness scores it: its
+// metrics, the run, and the realised restitution's relative distance to the scenario's e. Throws, naming the
+// engine, for a run that is not ok.
+struct NewtonFirstImpact {
+  Metrics metrics;
+  RunResult run;
+  double restitution_error = 0;
+};
+inline NewtonFirstImpact newton_first_impact(Simulator& engine, double h) {
+  Scenario s = paper_scenario("free_vibration");
+  s.duration_s = s.scoring_window_s = kFirstImpactEnd_s;
+  RunSettings settings;
+  settings.law = ContactLaw::newton;
+  settings.series_start_s = kFirstImpactSeriesStart_s;
+  settings.output_rate_hz = 1e5;
+  settings.time_step_s = h;
+  RunResult r = engine.run(s, settings);
+  if (r.status != RunStatus::ok) throw std::runtime_error(engine.name() + " run not ok: " + r.reason);
+  const Metrics m = compute_metrics(r.trajectory, MetricSettings{0, s.duration_s});
+  const double target = s.contact.newton->restitution;
+  return {m, std::move(r), std::abs(m.mean_restitution / target - 1)};
+}
+
 // ---- The free vibration without contact: the chains' first mode.
 
 // The published free vibration without contact (gap 1 m), for 1 s. swap: the frames trade places, so that the
