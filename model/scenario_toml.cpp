@@ -335,7 +335,10 @@ std::vector<std::string> find_scenario_files(const std::string& folder) {
   std::vector<std::string> files;
   for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     std::error_code type_ec;
-    if (it->is_regular_file(type_ec) && it->path().extension() == ".toml") {
+    // an *_inputs.toml beside the scenarios is a validation's uncertain inputs (model/uncertain_inputs.h)
+    const std::string file_name = it->path().filename().string();
+    const bool inputs_file = file_name.size() > 12 && file_name.compare(file_name.size() - 12, 12, "_inputs.toml") == 0;
+    if (it->is_regular_file(type_ec) && it->path().extension() == ".toml" && !inputs_file) {
       files.push_back(it->path().string());
     }
   }

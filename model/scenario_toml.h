@@ -42,7 +42,8 @@ Scenario load_scenario(const std::string& path);
 // Checks scenario text; source_path is used in messages and stored in Scenario::source_path.
 Scenario parse_scenario(std::string_view toml_text, const std::string& source_path);
 
-// Every *.toml file below a folder (recursively), sorted. A missing folder gives a ScenarioError.
+// Every *.toml file below a folder (recursively), sorted, but *_inputs.toml (a validation's uncertain inputs,
+// model/uncertain_inputs.h). A missing folder gives a ScenarioError.
 std::vector<std::string> find_scenario_files(const std::string& folder);
 
 }  // namespace ib

@@ -2,7 +2,7 @@
 """The layering rule, checked on every #include of the sources (run by the test command).
 
     model <- physics <- reference, adapters <- simulators <- harness <- cli
-    harness: scoring <- records <- jobs <- suite, sweep <- study
+    harness: scoring <- records <- jobs <- suite, sweep <- study <- validation
 
 A folder's files may include their own folder and the folders this table allows, nothing else; the
 harness is above the simulators in the chain of commands but links only the model and the physics: it
@@ -26,7 +26,7 @@ BASE = {
     "cli": {"model", "physics", "reference", "simulators", "harness"},  # the reference for `modes` (its mode options)
 }
 # The harness's folders, lowest first: each may include the model, the physics and the folders before it.
-HARNESS = ["scoring", "records", "jobs", "suite", "sweep", "study"]
+HARNESS = ["scoring", "records", "jobs", "suite", "sweep", "study", "validation"]
 for i, folder in enumerate(HARNESS):
     BASE[f"harness/{folder}"] = {"model", "physics", *(f"harness/{below}" for below in HARNESS[:i])}
     # a suite and a sweep are siblings: neither includes the other
