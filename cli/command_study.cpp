@@ -23,7 +23,7 @@ namespace {
 // `study FILE --out DIR`: every part of a study file (study_file.h) into one folder, then its report.
 struct StudyOptions {
   std::string file, out, shard;
-  std::string skip;             // kinds of parts left out, comma-separated: suite, search, sweep
+  std::string skip;             // kinds of parts left out, comma-separated: suite, search, sweep, validation
   std::string reference_cache;  // a folder sharing reference runs between output folders
   int jobs = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   bool resume = false, no_report = false;
@@ -34,11 +34,12 @@ struct StudyOptions {
 std::vector<ib::StudyPartKind> kinds_left_out(const std::string& skip) {
   std::vector<ib::StudyPartKind> kinds;
   if (skip.empty()) return kinds;
-  for (const std::string& kind : split_list(skip, "--skip", "suite, search, sweep")) {
-    const ib::StudyPartKind all[] = {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep};
+  for (const std::string& kind : split_list(skip, "--skip", "suite, search, sweep, validation")) {
+    const ib::StudyPartKind all[] = {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep,
+                                     ib::StudyPartKind::validation};
     const auto* known = std::find_if(std::begin(all), std::end(all), [&](auto k) { return kind == ib::to_string(k); });
     if (known == std::end(all))
-      throw std::invalid_argument("--skip " + kind + ": allowed: suite, search, sweep, comma-separated");
+      throw std::invalid_argument("--skip " + kind + ": allowed: suite, search, sweep, validation, comma-separated");
     kinds.push_back(*known);
   }
   return kinds;
@@ -87,8 +88,9 @@ int command_study(const StudyOptions& o) {
       suites.push_back(suite);
     else if (const auto* sweep = std::get_if<ib::SweepSettings>(&part.settings))
       sweeps.push_back(sweep);
-  std::fprintf(stderr, "study: %s, %zu suites and searches into %s, %zu sweeps into %s/sweeps/\n", o.file.c_str(),
-               suites.size(), o.out.c_str(), sweeps.size(), o.out.c_str());
+  std::fprintf(stderr, "study: %s, %zu suites and searches into %s, %zu sweeps into %s/sweeps/, %zu other parts\n",
+               o.file.c_str(), suites.size(), o.out.c_str(), sweeps.size(), o.out.c_str(),
+               parts.size() - suites.size() - sweeps.size());
   // the report names the commands that produced its folder: each suite or search part as one
   for (const ib::StudyPart& part : parts)
     if (const auto* suite = std::get_if<ib::SuiteSettings>(&part.settings))
@@ -97,6 +99,14 @@ int command_study(const StudyOptions& o) {
   // each part says how it ended; the study ends as the worst of them (one rule: harness/jobs/campaign_folder.h)
   if (outcome.suites) suite_exit_code(*suites.front(), *outcome.suites);
   for (std::size_t i = 0; i < sweeps.size(); ++i) sweep_exit_code(*sweeps[i], outcome.sweeps[i].outcome);
+  std::size_t other = 0;
+  for (const ib::StudyPart& part : parts)
+    if (const auto* own = std::get_if<std::shared_ptr<const ib::PartOfItsOwnKind>>(&part.settings)) {
+      const ib::CampaignEnd& end = outcome.others.at(other++).end;
+      std::printf("%s \"%s\": recorded in %s, %d unstable or failed there%s\n", (*own)->kind().c_str(),
+                  part.name.c_str(), ib::folder_of(**own, part.name, settings).c_str(), end.not_ok_recorded,
+                  end.interrupted_by || end.units_stopped ? " (stopped early: --resume continues)" : "");
+    }
   const ib::CampaignResult result = ib::result_of(outcome);
   const int status = exit_code(result);
   if (result.status == ib::CampaignStatus::stopped) return status;  // interrupted: no report of a part of it
@@ -121,7 +131,7 @@ Command add_study_command(CLI::App& app) {
   study->add_flag("--resume", o->resume, "continue the study recorded in --out");
   study->add_option("--reference-cache", o->reference_cache,
                     "a folder that shares reference runs between output folders (as suite --reference-cache)");
-  study->add_option("--skip", o->skip, "kinds of parts left out, comma-separated: suite, search, sweep");
+  study->add_option("--skip", o->skip, "kinds of parts left out, comma-separated: suite, search, sweep, validation");
   study->add_flag("--no-report", o->no_report, "leave the report out");
   study->add_flag("--plan", o->plan,
                   "check the file and print what each part runs, its runs and their estimated CPU time; run nothing");

@@ -13,30 +13,37 @@
 #include "cli/commands.h"
 #include "cli/option_rules.h"
 #include "cli/study_keys.h"
+#include "cli/study_part_options.h"
+#include "cli/study_validation.h"
 #include "model/scenario_toml.h"
 #include "model/toml_schema.h"
 
 namespace cli {
 
-namespace {
-
 namespace fs = std::filesystem;
 using ib::toml_schema::Checker;
+
+std::string scenario_path(const std::string& study_file, const std::string& path) {
+  if (fs::path(path).is_absolute()) return path;
+  const fs::path beside = fs::path(study_file).parent_path() / path;
+  if (fs::exists(beside)) return beside.lexically_normal().string();
+  const fs::path in_project = (fs::path(IMPACTBENCH_SOURCE_DIR) / path).lexically_normal();
+  // as the command line would name it from the project's folder: runs.csv's scenario_file stays short
+  std::error_code error;
+  const fs::path relative = fs::proximate(in_project, fs::current_path(error), error);
+  return !error && !relative.empty() && *relative.begin() != ".." ? relative.string() : in_project.string();
+}
+
+void require_key(const Checker& checker, const GivenKeys& given, const PartOptions& part, const std::string& dotted,
+                 const char* key, const char* meaning) {
+  if (!given.count(key))
+    checker.fail(part.line, dotted + "." + key, dotted + "." + key + ": missing required key; allowed: " + meaning);
+}
+
+namespace {
+
 using ib::toml_schema::line_of;
 using ib::toml_schema::type_name;
-
-// A part as its table gives it, in the terms of the command it stands for: what the options' checks read.
-struct PartOptions {
-  ib::StudyPartKind kind = ib::StudyPartKind::suite;
-  std::string name;    // a sweep's: its folder below OUT/sweeps/; a suite's or search's: for messages
-  std::string file;    // the study file
-  int line = 0;        // its table's header ([[suite]], [[search]], [[sweep]])
-  SuiteOptions suite;  // suite and search
-  SweepOptions sweep;  // sweep
-  MeasurementOptions measurement;
-  std::map<std::string, int> key_lines;  // each key given, by its line: messages about a value name it
-  std::map<std::string, std::vector<std::string>> key_items;  // an array key's items, as given (a comma in one stays)
-};
 
 std::string number_text(double x) {
   char text[32];
@@ -128,28 +135,6 @@ class PartReader {
   std::string dotted_;
   const toml::table* defaults_;
 };
-
-// A relative scenario path: from the study file's folder if it names a file or folder there, else from the
-// project's folder.
-std::string scenario_path(const std::string& study_file, const std::string& path) {
-  if (fs::path(path).is_absolute()) return path;
-  const fs::path beside = fs::path(study_file).parent_path() / path;
-  if (fs::exists(beside)) return beside.lexically_normal().string();
-  const fs::path in_project = (fs::path(IMPACTBENCH_SOURCE_DIR) / path).lexically_normal();
-  // as the command line would name it from the project's folder: runs.csv's scenario_file stays short
-  std::error_code error;
-  const fs::path relative = fs::proximate(in_project, fs::current_path(error), error);
-  return !error && !relative.empty() && *relative.begin() != ".." ? relative.string() : in_project.string();
-}
-
-// The keys a part gives, as its table (or [defaults]) holds them: key -> the command's option text.
-using GivenKeys = std::map<std::string, std::string>;
-
-void require_key(const Checker& checker, const GivenKeys& given, const PartOptions& part, const std::string& dotted,
-                 const char* key, const char* meaning) {
-  if (!given.count(key))
-    checker.fail(part.line, dotted + "." + key, dotted + "." + key + ": missing required key; allowed: " + meaning);
-}
 
 // The keys every kind of part has: the measurement, and the engines, laws, paths, steps and options that a
 // suite and a sweep share. Each number is checked as its command-line option is, as soon as it is read
@@ -261,11 +246,13 @@ PartOptions read_part(const Checker& checker, const toml::table& table, const to
   for (const KeySpec& k : keys)
     if (auto value = reader.text(k, part)) given[k.key] = *value;
   part.name = given.count("name") ? given["name"] : std::string(ib::to_string(kind)) + " " + std::to_string(index + 1);
+  if (kind == ib::StudyPartKind::validation) part.suite.laws = "hertz";  // the published model's law
   read_shared_keys(checker, given, dotted, engines, part);
   if (kind == ib::StudyPartKind::sweep)
     read_sweep_keys(checker, given, dotted, part);
   else
     read_suite_keys(checker, given, dotted, part);
+  if (kind == ib::StudyPartKind::validation) read_validation_keys(checker, given, dotted, part);
   return part;
 }
 
@@ -305,6 +292,7 @@ ib::StudyPart typed_part(PartOptions part) {
   try {
     if (part.kind == ib::StudyPartKind::sweep)
       return {part.kind, part.name, sweep_settings_from(part.sweep, part.measurement)};
+    if (part.kind == ib::StudyPartKind::validation) return validation_part(part);
     return {part.kind, part.name, suite_settings_from(part.suite, part.measurement)};
   } catch (const ib::ScenarioError&) {
     throw;  // a scenario file's own message names that file
@@ -343,14 +331,16 @@ Study read_study(const std::string& path, const std::vector<std::string>& engine
   const toml::table document = checker.parse();
   const ib::toml_schema::Section top{&document, "", 1};
   checker.reject_unknown(
-      top, {"study", "defaults", "suite", "search", "sweep"},
-      "allowed: [study], [defaults], [[suite]], [[search]], [[sweep]] (docs/studies.md, \"Study files\")");
+      top, {"study", "defaults", "suite", "search", "sweep", "validation"},
+      "allowed: [study], [defaults], [[suite]], [[search]], [[sweep]], [[validation]] (docs/studies.md, \"Study "
+      "files\")");
   Study study;
   study.file = path;
   study.description = read_description(checker, document);
   const toml::table* defaults = read_defaults(checker, document);
   std::vector<PartOptions> parts;
-  for (ib::StudyPartKind kind : {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep}) {
+  for (ib::StudyPartKind kind :
+       {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep, ib::StudyPartKind::validation}) {
     const toml::node* node = document.get(ib::to_string(kind));
     if (!node) continue;
     const toml::array* tables = node->as_array();
@@ -363,14 +353,19 @@ Study read_study(const std::string& path, const std::vector<std::string>& engine
       parts.push_back(read_part(checker, *table.as_table(), defaults, kind, index++, path, engines));
   }
   if (parts.empty())
-    throw ib::ScenarioError(path, 1, "", "a study needs at least one [[suite]], [[search]] or [[sweep]]");
-  // Sweeps write into OUT/sweeps/NAME: two of one name would share a folder.
-  std::map<std::string, int> sweep_lines;
-  for (const PartOptions& part : parts)
-    if (part.kind == ib::StudyPartKind::sweep && !sweep_lines.emplace(part.name, part.line).second)
-      throw ib::ScenarioError(path, part.line, "sweep.name",
-                              "sweep.name = \"" + part.name + "\": already the name of the sweep at line " +
-                                  std::to_string(sweep_lines[part.name]) + "; allowed: a name of its own (its folder)");
+    throw ib::ScenarioError(path, 1, "",
+                            "a study needs at least one [[suite]], [[search]], [[sweep]] or [[validation]]");
+  // Sweeps write into OUT/sweeps/NAME, validations into OUT/validation/NAME: two of one name would share a folder.
+  std::map<std::pair<ib::StudyPartKind, std::string>, int> folder_lines;
+  for (const PartOptions& part : parts) {
+    if (part.kind != ib::StudyPartKind::sweep && part.kind != ib::StudyPartKind::validation) continue;
+    const std::string kind = ib::to_string(part.kind);
+    if (!folder_lines.emplace(std::pair(part.kind, part.name), part.line).second)
+      throw ib::ScenarioError(path, part.line, kind + ".name",
+                              kind + ".name = \"" + part.name + "\": already the name of the " + kind + " at line " +
+                                  std::to_string(folder_lines[{part.kind, part.name}]) +
+                                  "; allowed: a name of its own (its folder)");
+  }
   // Every kept part's values, in order, before anything runs; a kind left out is not checked (as if absent).
   for (const PartOptions& part : parts) {
     if (std::find(left_out.begin(), left_out.end(), part.kind) != left_out.end()) continue;

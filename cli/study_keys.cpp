@@ -62,11 +62,29 @@ const std::vector<KeySpec> kSweepKeys = {
     {"ensemble_ratios", Type::texts, "--ensemble-ratios",
      "FROM:TO:STEP ranges or single ratios where the reference's ensemble runs"},
 };
+// A [[validation]] runs the reference alone (docs/validation.md): of the common keys, those that say how it runs
+// and is scored; the engines, paths and steps are not its.
+const std::vector<std::string> kValidationCommonKeys = {
+    "name", "laws", "options", "rate_hz", "sensor_rate_hz", "series", "time_limit_s", "window_s", "duration_s"};
+const std::vector<KeySpec> kValidationKeys = {
+    {"scenarios", Type::texts, "scenarios", "the published cases' scenario files"},
+    {"inputs", Type::text, "", "an uncertain-inputs file (scenarios/paper_inputs.toml)"},
+    {"points", Type::integer, "", "sample points per case (>= 1)"},
+    {"nominal_starts", Type::integer, "", "the nominal cases' starts, whose spread is their chaos (>= 1)"},
+};
 
 }  // namespace
 
 std::vector<KeySpec> keys_of(ib::StudyPartKind kind) {
-  std::vector<KeySpec> keys = kCommonKeys;
+  std::vector<KeySpec> keys;
+  if (kind == ib::StudyPartKind::validation) {
+    for (const KeySpec& k : kCommonKeys)
+      if (std::find(kValidationCommonKeys.begin(), kValidationCommonKeys.end(), k.key) != kValidationCommonKeys.end())
+        keys.push_back(k);
+    keys.insert(keys.end(), kValidationKeys.begin(), kValidationKeys.end());
+    return keys;
+  }
+  keys = kCommonKeys;
   const auto& own = kind == ib::StudyPartKind::suite    ? kSuiteKeys
                     : kind == ib::StudyPartKind::search ? kSearchKeys
                                                         : kSweepKeys;
@@ -77,7 +95,8 @@ std::vector<KeySpec> keys_of(ib::StudyPartKind kind) {
 std::vector<KeySpec> default_keys() {
   std::vector<KeySpec> keys;
   std::set<std::string> seen = {"name", "scenario", "scenarios"};  // what makes a part itself
-  for (ib::StudyPartKind kind : {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep})
+  for (ib::StudyPartKind kind :
+       {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep, ib::StudyPartKind::validation})
     for (const KeySpec& k : keys_of(kind))
       if (seen.insert(k.key).second) keys.push_back(k);
   return keys;
@@ -89,8 +108,11 @@ const KeySpec* key_of_message(ib::StudyPartKind kind, const std::map<std::string
     return !option.empty() && message.rfind(option, 0) == 0 &&
            (message.size() == option.size() || message[option.size()] == ' ' || message[option.size()] == ':');
   };
-  static const std::vector<KeySpec> keys[] = {keys_of(ib::StudyPartKind::suite), keys_of(ib::StudyPartKind::search),
-                                              keys_of(ib::StudyPartKind::sweep)};
+  static const std::vector<KeySpec> keys[] = {keys_of(ib::StudyPartKind::suite),
+                                              keys_of(ib::StudyPartKind::search),
+                                              keys_of(ib::StudyPartKind::sweep),
+                                              {},
+                                              keys_of(ib::StudyPartKind::validation)};
   if (kind == ib::StudyPartKind::other) return nullptr;  // not a study file's: its messages are its own
   for (const KeySpec& k : keys[static_cast<int>(kind)])
     if (key_lines.count(k.key) && (starts_with(k.option) || starts_with(k.also))) return &k;

@@ -20,6 +20,8 @@ const char* to_string(StudyPartKind kind) {
       return "sweep";
     case StudyPartKind::other:
       return "other";
+    case StudyPartKind::validation:
+      return "validation";
   }
   return "";
 }

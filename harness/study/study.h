@@ -22,9 +22,11 @@
 
 namespace ib {
 
-// A study file's kinds of part, and `other`: a part of a kind of its own (PartOfItsOwnKind).
-enum class StudyPartKind { suite, search, sweep, other };
-const char* to_string(StudyPartKind kind);  // "suite", "search", "sweep": the study file's table names; "other"
+// A study file's kinds of part, and `other`: a part of a kind of its own (PartOfItsOwnKind). `validation` is a
+// study file's table ([[validation]]) whose part is of a kind of its own (harness/validation/validation_part.h).
+enum class StudyPartKind { suite, search, sweep, other, validation };
+const char* to_string(
+    StudyPartKind kind);  // "suite", "search", "sweep", "validation": the study file's tables; "other"
 
 struct StudySettings;
 
