@@ -7,7 +7,7 @@ For each published case and response quantity:
   sample point ran from one start, so the sample's variance holds both; the inputs' own share is
   u_input = sqrt(max(0, var_sample - sigma_chaos^2));
 - which inputs matter: first-order global sensitivity indices from the same sample (the correlation ratio,
-  binned), beside the chaos share sigma_chaos^2 / var_sample;
+  binned, its bias removed), beside the chaos share sigma_chaos^2 / var_sample;
 - where the paper measured the quantity, ASME V&V 20: E = S - D against the validation uncertainty u_val.
 
 Plain functions on numbers and the sample; summarise() is what summary.json's `validation` holds."""
@@ -74,8 +74,10 @@ def bin_count(n):
 def first_order_index(x, y):
     """First-order sensitivity index of Y to one input X from a given sample (x, y), the correlation ratio:
     sort by x, split into B = sqrt(N) bins of equal count, eta^2 = sum n_b (mean_b - mean)^2 / sum (y - mean)^2
-    estimates Var(E[Y|X]) / Var(Y). With no dependence eta^2 is (B-1)/(N-1) on average (a bin mean's own noise):
-    that bias is taken off and the result clipped at 0. None where Y does not vary or the sample is too small."""
+    estimates Var(E[Y|X]) / Var(Y). Each bin mean carries its own noise, so that eta^2 averages S + c (1 - S)
+    with c = (B-1)/(N-1), c alone where Y does not depend on X: the index is (eta^2 - c) / (1 - c), clipped at 0.
+    (Taking c off alone, without the division, would leave a bias of -c S: -0.03 for S = 0.68 at N = 512.)
+    None where Y does not vary or the sample is too small."""
     x, y = np.asarray(x, float), np.asarray(y, float)
     keep = np.isfinite(x) & np.isfinite(y)
     x, y = x[keep], y[keep]
@@ -88,17 +90,19 @@ def first_order_index(x, y):
     bins = bin_count(n)
     order = np.argsort(x, kind="stable")
     between = sum(len(b) * (float(np.mean(b)) - y.mean()) ** 2 for b in np.array_split(y[order], bins))
-    return max(0.0, between / total - (bins - 1) / (n - 1))
+    bias = (bins - 1) / (n - 1)
+    return max(0.0, (between / total - bias) / (1 - bias))
 
 
 def index_noise_floor(n):
     """Twice the standard deviation of an index's estimate for an input Y does not depend on: below it an index is
     not told apart from none. Without dependence (Y normal) eta^2 is Beta((B-1)/2, (N-B)/2), of variance
-    2 (B-1) (N-B) / ((N-1)^2 (N+1)); the bias correction shifts it and does not change its spread."""
+    2 (B-1) (N-B) / ((N-1)^2 (N+1)), which the bias correction divides by (1 - c)^2."""
     if n < 4:
         return None
     bins = bin_count(n)
-    return 2 * math.sqrt(2 * (bins - 1) * (n - bins) / ((n - 1) ** 2 * (n + 1)))
+    bias = (bins - 1) / (n - 1)
+    return 2 * math.sqrt(2 * (bins - 1) * (n - bins) / ((n - 1) ** 2 * (n + 1))) / (1 - bias)
 
 
 def ranked_indices(inputs, y):
