@@ -11,7 +11,7 @@ import numpy as np
 
 from . import tables, validation_sample
 from .validation import TOP_INPUTS
-from .figures import REPOSITORY, legend_axis, plt, proxy, save
+from .figures import REPOSITORY, plt, proxy, save
 from .page_writer import figure_html, markdown_figure
 
 TITLE = "The reference against the experiment"
@@ -177,10 +177,12 @@ def case_figure(entry, case, sample, folder, stamp):
         ax.tick_params(labelsize=7)
         ax.grid(True, axis="x", linewidth=0.3)
     axes[-1].axis("off")
-    legend_axis(axes[-1], [proxy("sample runs (one start each)", marker="o", color="#1f77b4", linestyle=""),
-                           proxy("sample's 2.5-97.5 %", color="#1f77b4", linewidth=2),
-                           proxy("nominal reference: starts (|), mean (◆)", marker="D", color="black", linestyle=""),
-                           proxy("measured ± 2 u_D", color="#2ca02c", linewidth=6, alpha=0.4)])
+    axes[-1].legend(handles=[proxy("sample runs (one start each)", marker="o", color="#1f77b4"),
+                             proxy("sample's 2.5-97.5 %", color="#1f77b4", linewidth=2, linestyle="-"),
+                             proxy("nominal reference: starts (|), mean (◆)", marker="D", color="black"),
+                             proxy("measured", color="#2ca02c", linewidth=1.5, linestyle="-"),
+                             proxy("measured ± 2 u_D (assumed)", color="#2ca02c", linewidth=7, alpha=0.25, linestyle="-")],
+                    loc="upper left", ncol=2, fontsize=7, frameon=False)
     caption = (f"{case['case']}: each measured quantity over the sampled inputs ({entry['name']}, {case['points']} points) "
                f"beside the nominal reference's starts and the measurement with twice its assumed standard "
                f"uncertainty (reports/experiment.toml); {stamp}")
