@@ -254,7 +254,8 @@ def quantity_entry(sample, case, quantity, ensemble, experiment):
         d, u_d, source = measured
         entry["measured"] = {"d": d, "u_d": u_d, "source": source}
         if entry["nominal"]["mean"] is None:
-            notes.append("the nominal reference does not define it: no simulated value to compare, no verdict")
+            notes.append(("the nominal reference does not define it" if ensemble else "no nominal reference") +
+                         ": no simulated value to compare, no verdict")
         else:
             u_solver, solver_note = solver_uncertainty(ensemble, column)
             comparison = compare(entry["nominal"]["mean"], d, u_solver, sigma, n, entry["u_input"] or 0.0, u_d,

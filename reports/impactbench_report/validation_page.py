@@ -81,10 +81,9 @@ def reading(case):
                 lines.append(f"{q['label'].capitalize()}: measured {number(q['measured']['d'])}{unit}, but the nominal "
                              "reference does not define it in this case, so there is nothing to compare.")
             continue
-        side = "above" if v["e"] > 0 else "below"
-        text = (f"{q['label'].capitalize()}: the reference gives {number(v['s'])}{unit}, {number(abs(v['e']))}{unit} "
-                f"{side} the measured {number(v['d'])}{unit}, against a validation uncertainty u_val of "
-                f"{number(v['u_val'])}{unit}")
+        side = (f"{number(abs(v['e']))}{unit} {'above' if v['e'] > 0 else 'below'}" if v["e"] else "equal to")
+        text = (f"{q['label'].capitalize()}: the reference gives {number(v['s'])}{unit}, {side} the measured "
+                f"{number(v['d'])}{unit}, against a validation uncertainty u_val of {number(v['u_val'])}{unit}")
         if v["model_form_error_at_least"] is None:
             text += " — within it: these uncertainties can explain the difference."
         else:
@@ -116,9 +115,11 @@ def listed(case):
     return lines
 
 
-def intro(entry, out):
+def intro(entry, out, named=False):
+    """What the section shows, for a reader who knows the rig, and where its method is written."""
     link = os.path.relpath(DOC, out)
-    text = (f"Each published case ran at {entry['sample_size']} points of the rig's uncertain inputs "
+    text = ((f"Sample {entry['name']}: each" if named else "Each") +
+            f" published case ran at {entry['sample_size']} points of the rig's uncertain inputs "
             f"({entry['inputs_file'] or 'inputs file not recorded'}, {entry['design'] or 'design not recorded'} "
             "design), one start each, beside the nominal reference from several starts. u_input is how far the rig's "
             "tolerances move a response, the chaos share the part of the sample's spread that one start's chaotic "
@@ -129,9 +130,10 @@ def intro(entry, out):
             html.escape(text) + f" {method}<a href='{html.escape(link)}'>docs/validation.md</a>.")
 
 
-def case_text(entry, case):
-    """(markdown, html) of one case."""
-    heading = f"{case['case']} ({case['points']} sample points, nominal reference: {len(case['nominal_job_ids'])} starts)"
+def case_text(entry, case, named=False):
+    """(markdown, html) of one case; `named`: the sample's name in its heading (a study with several)."""
+    heading = (f"{case['case']}" + (f", sample {entry['name']}" if named else "") +
+               f" ({case['points']} sample points, nominal reference: {len(case['nominal_job_ids'])} starts)")
     said = reading(case)
     others = listed(case)
     md = [f"### {heading}", ""] + [line for s in said for line in (s, "")]  # a paragraph each
@@ -199,13 +201,13 @@ def section(document, suite_folder, out):
     os.makedirs(folder, exist_ok=True)
     md, page = [], []
     for entry in entries:
-        text, text_html = intro(entry, out)
+        text, text_html = intro(entry, out, named=len(entries) > 1)
         md += [text, ""]
         page.append(f"<p class='lede'>{text_html}</p>")
         path = os.path.join(suite_folder, "validation", entry["name"])
         sample = validation_sample.read_sample(path) if os.path.isdir(path) else None
         for case in entry["cases"]:
-            case_md, case_html = case_text(entry, case)
+            case_md, case_html = case_text(entry, case, named=len(entries) > 1)
             md += [case_md, ""]
             page.append(case_html)
             figure = case_figure(entry, case, sample, folder, stamp)
