@@ -202,52 +202,71 @@ def solver_uncertainty(ensemble, column):
     return abs(tight - nominal), f"|{ensemble.tight['job_id']} - {first['job_id']}|"
 
 
+def sample_part(points, column):
+    """The sample's side of a quantity: its values (NaN where a run is not ok or does not define it), and the entry's
+    distribution, runs not ok and runs that leave it undefined."""
+    y = np.asarray([p.value(column) for p in points], float)
+    not_ok = [{"point": p.point, "scenario": p.scenario, "status": p.status, "reason": (p.run or {}).get("reason", "")}
+              for p in points if p.status != validation_sample.OK]
+    dist = distribution(y)
+    return y, dist, {"sample": {**asdict(dist), "runs_not_ok": len(not_ok)}, "runs_not_ok": not_ok,
+                     "not_defined": [p.scenario for p, v in zip(points, y) if p.status == validation_sample.OK
+                                     and math.isnan(v)]}
+
+
+def nominal_part(ensemble, column):
+    """The nominal reference's side: its starts' values, their mean and sigma_chaos."""
+    values = ensemble.values(column) if ensemble else []
+    sigma, n = chaos_scatter([v for _, v in values])
+    return {"law": ensemble.law if ensemble else None, "starts": len(ensemble.members) if ensemble else 0, "n": n,
+            "mean": float(np.mean([v for _, v in values])) if values else None, "sigma_chaos": sigma,
+            "values": [v for _, v in values], "job_ids": [j for j, _ in values],
+            "left_out": ensemble.left_out(column) if ensemble else []}
+
+
+def sensitivity_part(sample, points, y):
+    """The inputs' first-order indices over the runs that define the quantity, ranked, with B and the noise floor."""
+    defined = [i for i in range(len(points)) if math.isfinite(y[i])]
+    inputs = {name: np.asarray([points[i].inputs[name] for i in defined]) for name in sample.input_names}
+    ranked = ranked_indices(inputs, y[defined]) if len(defined) >= 4 else []
+    return {"bins": bin_count(len(defined)) if ranked else None, "noise_floor": index_noise_floor(len(defined)),
+            "ranked": [{"input": name, "index": index} for name, index in ranked]}
+
+
+def limits(entry, dist, has_ensemble):
+    """What the numbers cannot say, once each, the most telling reason first."""
+    nominal = entry["nominal"]
+    if not has_ensemble:
+        return ["no nominal reference of this case in the study's runs.csv: the chaos is not separated"]
+    if dist.n == 0:
+        return ["no run of the sample defines it" + ("" if nominal["n"] else ", nor does the nominal reference")]
+    if dist.n > 1 and dist.standard_deviation == 0:
+        return ["the same value in every run of the sample: no input moves it"]
+    notes = []
+    if nominal["n"] < 2:
+        notes.append("the nominal reference defines it in fewer than two starts: its chaotic scatter is not measured, "
+                     "and u_input holds it")
+    if entry["u_input"] == 0.0:
+        notes.append("the sample spreads no more than one start's chaotic scatter: the inputs' effect is not resolved")
+    if all(r["index"] is None for r in entry["sensitivity"]["ranked"]):
+        notes.append("no sensitivity indices: fewer than four runs define it")
+    return notes
+
+
 def quantity_entry(sample, case, quantity, ensemble, experiment):
     """One case's quantity: the sample's distribution, the chaos kept apart, the indices, V&V 20 where measured."""
     points = sample.of_case(case)
-    column = quantity.column
-    y = np.asarray([p.value(column) for p in points], float)
-    dist = distribution(y)
-    notes = []
-    entry = {"quantity": column, "label": quantity.label, "unit": quantity.unit, "sample": asdict(dist),
-             "runs_not_ok": [{"point": p.point, "scenario": p.scenario, "status": p.status,
-                              "reason": (p.run or {}).get("reason", "")} for p in points if p.status != validation_sample.OK],
-             "not_defined": [p.scenario for p in points if p.status == validation_sample.OK and math.isnan(p.value(column))]}
-    entry["sample"]["runs_not_ok"] = len(entry["runs_not_ok"])
-    values = ensemble.values(column) if ensemble else []
-    sigma, n = chaos_scatter([v for _, v in values])
-    entry["nominal"] = {"law": ensemble.law if ensemble else None, "starts": len(ensemble.members) if ensemble else 0,
-                        "n": n, "mean": float(np.mean([v for _, v in values])) if values else None,
-                        "sigma_chaos": sigma, "values": [v for _, v in values], "job_ids": [j for j, _ in values],
-                        "left_out": ensemble.left_out(column) if ensemble else []}
-    if ensemble is None:
-        notes.append(f"no nominal reference of {case} in the study's runs.csv: the chaos is not separated")
+    y, dist, entry = sample_part(points, quantity.column)
+    entry = {"quantity": quantity.column, "label": quantity.label, "unit": quantity.unit, **entry,
+             "nominal": nominal_part(ensemble, quantity.column)}
+    sigma, n = entry["nominal"]["sigma_chaos"], entry["nominal"]["n"]
     variance = dist.standard_deviation ** 2 if dist.n > 1 else math.nan
     entry["u_input"] = input_uncertainty(variance, sigma) if dist.n > 1 else None
     entry["chaos_share"] = sigma ** 2 / variance if dist.n > 1 and variance > 0 and not math.isnan(sigma) else None
-    defined = [i for i, p in enumerate(points) if math.isfinite(y[i])]
-    inputs = {name: np.asarray([points[i].inputs[name] for i in defined]) for name in sample.input_names}
-    ranked = ranked_indices(inputs, y[defined]) if len(defined) >= 4 else []
-    entry["sensitivity"] = {"bins": bin_count(len(defined)) if ranked else None,
-                            "noise_floor": index_noise_floor(len(defined)),
-                            "ranked": [{"input": name, "index": index} for name, index in ranked]}
-    # what the numbers cannot say, once each, the most telling reason first
-    if dist.n == 0:
-        notes.append("no run of the sample defines it" + ("" if values else ", nor does the nominal reference"))
-    elif dist.n > 1 and dist.standard_deviation == 0:
-        notes.append("the same value in every run of the sample: no input moves it")
-    else:
-        if ensemble is not None and n < 2:
-            notes.append("the nominal reference defines it in fewer than two starts: its chaotic scatter is not "
-                         "measured, and u_input holds it")
-        if entry["u_input"] == 0.0:
-            notes.append("the sample spreads no more than one start's chaotic scatter: the inputs' effect is not "
-                         "resolved")
-        if not ranked or all(index is None for _, index in ranked):
-            notes.append("no sensitivity indices: fewer than four runs define it")
+    entry["sensitivity"] = sensitivity_part(sample, points, y)
+    notes = limits(entry, dist, ensemble is not None)
     measured = measurement(experiment, case, quantity)
-    entry["measured"] = None
-    entry["vv20"] = None
+    entry["measured"] = entry["vv20"] = None
     if measured is None:
         notes.append("not measured in the experiment: its distribution alone, no verdict")
     else:
@@ -257,7 +276,7 @@ def quantity_entry(sample, case, quantity, ensemble, experiment):
             notes.append(("the nominal reference does not define it" if ensemble else "no nominal reference") +
                          ": no simulated value to compare, no verdict")
         else:
-            u_solver, solver_note = solver_uncertainty(ensemble, column)
+            u_solver, solver_note = solver_uncertainty(ensemble, quantity.column)
             comparison = compare(entry["nominal"]["mean"], d, u_solver, sigma, n, entry["u_input"] or 0.0, u_d,
                                  quantity.unit)
             entry["vv20"] = {**asdict(comparison), "u_solver_from": solver_note, "coverage": COVERAGE}

@@ -98,7 +98,7 @@ def listed(case):
     lines = []
     floors = [q["sensitivity"]["noise_floor"] for q in case["quantities"] if q["sensitivity"]["noise_floor"]]
     if floors:
-        lines.append(f"An index below {number(max(floors))} (twice its noise from {case['points']} points) is not told "
+        lines.append(f"An index below {number(max(floors))} (twice an index's noise at this sample size) is not told "
                      "apart from no effect and is not listed.")
     bad = case["quantities"][0]["runs_not_ok"] if case["quantities"] else []
     if bad:
