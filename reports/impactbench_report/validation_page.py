@@ -49,15 +49,19 @@ def verdict_rows(case):
     return rows
 
 
+def above_floor(quantity):
+    """The ranked indices above the noise floor, the largest first."""
+    floor = quantity["sensitivity"]["noise_floor"]
+    return [r for r in quantity["sensitivity"]["ranked"] if r["index"] is not None and r["index"] > floor]
+
+
 def top_inputs(quantity):
     """The (at most) three largest indices above the noise floor, named; what else where none is."""
-    sensitivity = quantity["sensitivity"]
-    floor = sensitivity["noise_floor"]
-    ranked = [r for r in sensitivity["ranked"] if r["index"] is not None]
-    if not ranked:
+    if not any(r["index"] is not None for r in quantity["sensitivity"]["ranked"]):
         return "–"
-    above = [r for r in ranked if r["index"] > floor][:TOP_INPUTS]
-    return ", ".join(f"{r['input']} {number(r['index'])}" for r in above) or f"none above {number(floor)}"
+    above = above_floor(quantity)[:TOP_INPUTS]
+    return (", ".join(f"{r['input']} {number(r['index'])}" for r in above)
+            or f"none above {number(quantity['sensitivity']['noise_floor'])}")
 
 
 def spread_rows(case):
@@ -78,8 +82,8 @@ def reading(case):
         v, unit = q["vv20"], unit_text(q)
         if v is None:
             if q["measured"]:
-                lines.append(f"{q['label'].capitalize()}: measured {number(q['measured']['d'])}{unit}, but the nominal "
-                             "reference does not define it in this case, so there is nothing to compare.")
+                lines.append(f"{q['label'].capitalize()}: measured {number(q['measured']['d'])}{unit}, but "
+                             f"{q['notes'][-1]}.")
             continue
         side = (f"{number(abs(v['e']))}{unit} {'above' if v['e'] > 0 else 'below'}" if v["e"] else "equal to")
         text = (f"{q['label'].capitalize()}: the reference gives {number(v['s'])}{unit}, {side} the measured "
@@ -89,6 +93,12 @@ def reading(case):
         else:
             text += (f" — beyond twice it: a model-form error of at least {number(v['model_form_error_at_least'])}"
                      f"{unit} that the inputs, the chaos, the solver and the measurement do not explain.")
+        top = above_floor(q)[:1]
+        if q["u_input"] is not None:
+            text += (f" The rig's tolerances move it by u_input = {number(q['u_input'])}{unit}"
+                     + "".join(f", most through {r['input']} (index {number(r['index'])})" for r in top)
+                     + ("" if q["chaos_share"] is None else
+                        f"; one start's chaos makes a share {number(q['chaos_share'])} of the sample's variance") + ".")
         lines.append(text)
     return lines
 
@@ -105,12 +115,15 @@ def listed(case):
         lines.append("Runs not ok, left out of every quantity: " + "; ".join(
             f"point {r['point']} ({r['scenario']}): {r['status']}" + (f", {r['reason']}" if r["reason"] else "")
             for r in bad) + ".")
+    # a note every quantity has (no nominal reference) is said once
+    common = set.intersection(*(set(q["notes"]) for q in case["quantities"])) if case["quantities"] else set()
+    lines += [f"Every quantity: {note}." for note in sorted(common)]
     for q in case["quantities"]:
         if q["not_defined"] and q["sample"]["n"]:  # where no run defines it, its note says so
             lines.append(f"{q['label'].capitalize()}: not defined in {len(q['not_defined'])} of {case['points']} runs "
                          f"({', '.join(q['not_defined'][:8])}{', …' if len(q['not_defined']) > 8 else ''}).")
         for note in q["notes"]:
-            if not note.startswith("not measured"):
+            if not note.startswith("not measured") and note not in common:
                 lines.append(f"{q['label'].capitalize()}: {note}.")
     return lines
 
