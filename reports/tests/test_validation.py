@@ -1,12 +1,14 @@
 """The reference against the experiment (reports/impactbench_report/validation.py, validation_page.py,
 docs/validation.md): the first-order index, u_input and the verdict against closed forms on synthetic data; a
-small synthetic study with a validation folder (written here, seeded) whose summary.json holds what its pages
-print; a study without one gets no key and no section.
+small synthetic study with a validation folder (written here, seeded), whose report's summary.json holds what its
+summary.md and index.html print; a study without one gets no key and no section.
 
     /usr/bin/python3 reports/tests/test_validation.py
 """
 
+import contextlib
 import csv
+import io
 import json
 import math
 import os
@@ -15,6 +17,7 @@ import shutil
 import sys
 import tempfile
 import unittest
+import warnings
 import xml.etree.ElementTree as ElementTree
 
 import numpy as np
@@ -231,6 +234,37 @@ def section_of(markdown, title):
     return markdown[start:end if end >= 0 else len(markdown)]
 
 
+def check_pages_print_the_json(test, summary, markdown, page):
+    """Every cell of each case's two tables, in both pages, is summary.json's number as the page formats it (four
+    significant digits), written here from the JSON alone."""
+    text = section_of(markdown, "The reference against the experiment")
+    tables = markdown_tables(text)
+    fmt = lambda x: "–" if x is None else f"{x:.4g}"  # noqa: E731
+    cases = summary["validation"][0]["cases"]
+    test.assertEqual(len(tables), 2 * len(cases))
+    for case, verdicts, spread in zip(cases, tables[0::2], tables[1::2]):
+        measured = [q for q in case["quantities"] if q["vv20"]]
+        test.assertEqual(verdicts[0][:4], ["quantity", "measured D", "reference S", "E = S − D"])
+        test.assertEqual(len(verdicts) - 1, len(measured))
+        for q, cells in zip(measured, verdicts[1:]):
+            v = q["vv20"]
+            test.assertEqual(cells[1:], [fmt(v[k]) for k in ("d", "s", "e", "u_num", "u_input", "u_d", "u_val")]
+                             + [v["verdict"]])
+        test.assertEqual(len(spread) - 1, len(case["quantities"]))
+        for q, cells in zip(case["quantities"], spread[1:]):
+            s = q["sample"]
+            test.assertEqual(cells[1:6], [fmt(s["mean"]), fmt(s["standard_deviation"]), fmt(s["p2_5"]),
+                                          fmt(s["p97_5"]), str(s["runs_not_ok"])])
+            floor = q["sensitivity"]["noise_floor"]
+            ranked = [r for r in q["sensitivity"]["ranked"] if r["index"] is not None]
+            top = [r for r in ranked if r["index"] > floor][:3]
+            test.assertEqual(cells[6], ", ".join(f"{r['input']} {fmt(r['index'])}" for r in top)
+                             or (f"none above {fmt(floor)}" if ranked else "–"))
+            test.assertEqual(cells[7], fmt(q["chaos_share"]))
+        for cells in verdicts[1:] + spread[1:]:  # the same cells in index.html
+            test.assertIn("".join(f"<td>{c.replace('&', '&amp;').replace('<', '&lt;')}</td>" for c in cells), page)
+
+
 class StudyWithValidation(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -319,34 +353,8 @@ class StudyWithValidation(unittest.TestCase):
         self.assertEqual(ranked[0]["input"], "gap_m")
 
     def test_the_pages_print_the_jsons_numbers(self):
-        """Every cell of each case's two tables, in both pages, is summary.json's number as the page formats it
-        (four significant digits), written here from the JSON alone."""
         self.assertEqual(self.titles[0], "The reference against the experiment")
-        text = section_of(self.markdown, "The reference against the experiment")
-        tables = markdown_tables(text)
-        fmt = lambda x: "–" if x is None else f"{x:.4g}"  # noqa: E731
-        cases = self.summary["validation"][0]["cases"]
-        self.assertEqual(len(tables), 2 * len(cases))
-        for case, verdicts, spread in zip(cases, tables[0::2], tables[1::2]):
-            measured = [q for q in case["quantities"] if q["vv20"]]
-            self.assertEqual(verdicts[0][:4], ["quantity", "measured D", "reference S", "E = S − D"])
-            for q, cells in zip(measured, verdicts[1:]):
-                v = q["vv20"]
-                self.assertEqual(cells[1:], [fmt(v[k]) for k in ("d", "s", "e", "u_num", "u_input", "u_d", "u_val")]
-                                 + [v["verdict"]])
-            self.assertEqual(len(spread) - 1, len(case["quantities"]))
-            for q, cells in zip(case["quantities"], spread[1:]):
-                s = q["sample"]
-                self.assertEqual(cells[1:6], [fmt(s["mean"]), fmt(s["standard_deviation"]), fmt(s["p2_5"]),
-                                              fmt(s["p97_5"]), str(s["runs_not_ok"])])
-                floor = q["sensitivity"]["noise_floor"]
-                ranked = [r for r in q["sensitivity"]["ranked"] if r["index"] is not None]
-                top = [r for r in ranked if r["index"] > floor][:3]
-                self.assertEqual(cells[6], ", ".join(f"{r['input']} {fmt(r['index'])}" for r in top)
-                                 or (f"none above {fmt(floor)}" if ranked else "–"))
-                self.assertEqual(cells[7], fmt(q["chaos_share"]))
-            for cells in verdicts[1:] + spread[1:]:  # the same cells in index.html
-                self.assertIn("".join(f"<td>{c.replace('&', '&amp;').replace('<', '&lt;')}</td>" for c in cells), self.html)
+        check_pages_print_the_json(self, self.summary, self.markdown, self.html)
 
     def test_the_reading_states_the_verdict_in_words(self):
         v = self.quantity("resonance", "frame1_sensor_peak_acceleration_g")["vv20"]
@@ -361,6 +369,43 @@ class StudyWithValidation(unittest.TestCase):
         for path in figures:
             ElementTree.parse(os.path.join(self.out, path))  # a parseable SVG
             self.assertIn(os.path.join("figures", "validation_paper_"), path)
+
+
+class ReportOfTheStudy(unittest.TestCase):
+    """The whole report (suite_report.make) of the synthetic study, with and without its validation folder: the files
+    a reader opens."""
+
+    def make(self, with_validation):
+        folder = tempfile.mkdtemp(prefix="impactbench_validation_report_")
+        self.addCleanup(shutil.rmtree, folder)
+        study = os.path.join(folder, "study")
+        write_study(study, with_validation)
+        out = os.path.join(study, "report")
+        os.makedirs(out)
+        with contextlib.redirect_stdout(io.StringIO()), warnings.catch_warnings():
+            # a study of reference runs alone leaves each case's error-against-cost figure without an engine's panel
+            warnings.filterwarnings("ignore", "constrained_layout not applied", UserWarning)
+            suite_report.make(study, out)
+        with open(os.path.join(out, "summary.json")) as f:
+            summary = json.load(f)
+        with open(os.path.join(out, "summary.md")) as f:
+            markdown = f.read()
+        with open(os.path.join(out, "index.html")) as f:
+            page = f.read()
+        return out, summary, markdown, page
+
+    def test_summary_json_holds_what_the_pages_print(self):
+        out, summary, markdown, page = self.make(True)
+        check_pages_print_the_json(self, summary, markdown, page)
+        self.assertIn("<h2 id='the-reference-against-the-experiment'>The reference against the experiment</h2>", page)
+        self.assertIn("href='#the-reference-against-the-experiment'", page)  # in the page's navigation
+
+    def test_without_a_validation_folder_no_key_and_no_section(self):
+        out, summary, markdown, page = self.make(False)
+        self.assertNotIn("validation", summary)
+        self.assertNotIn("The reference against the experiment", markdown)
+        self.assertNotIn("The reference against the experiment", page)
+        self.assertFalse([f for f in os.listdir(os.path.join(out, "figures")) if f.startswith("validation_")])
 
 
 class StudyWithoutValidation(unittest.TestCase):
