@@ -408,21 +408,5 @@ class ReportOfTheStudy(unittest.TestCase):
         self.assertFalse([f for f in os.listdir(os.path.join(out, "figures")) if f.startswith("validation_")])
 
 
-class StudyWithoutValidation(unittest.TestCase):
-    def test_no_folder_no_key_no_section(self):
-        folder = tempfile.mkdtemp(prefix="impactbench_validation_test_")
-        try:
-            write_study(folder, with_validation=False)
-            document = {"suite": {"made": "now"}, "cases": [], "ablation": []}
-            before = json.dumps(document, sort_keys=True)
-            suite_report.add_validation(document, data.read_runs(folder), data.read_experiment())
-            self.assertEqual(json.dumps(document, sort_keys=True), before)
-            sections = report_views.sections(report_views.AFTER_CASES, report_views.ViewInputs(folder, document, folder))
-            self.assertNotIn(validation_page.TITLE, [s[0] for s in sections])
-            self.assertFalse(os.path.exists(os.path.join(folder, "figures")))
-        finally:
-            shutil.rmtree(folder)
-
-
 if __name__ == "__main__":
     unittest.main()
