@@ -196,9 +196,11 @@ def case_figure(entry, case, sample, folder, stamp):
                              proxy("sample's 2.5-97.5 %", color="#1f77b4", linewidth=2, linestyle="-"),
                              proxy("nominal reference: starts (|), mean (◆)", marker="D", color="black"),
                              proxy("measured", color="#2ca02c", linewidth=1.5, linestyle="-"),
-                             proxy("measured ± 2 u_D (assumed)", color="#2ca02c", linewidth=7, alpha=0.25, linestyle="-")],
+                             proxy("measured ± 2 u_D (assumed)", color="#2ca02c", linewidth=7, alpha=0.25,
+                                   linestyle="-")],
                     loc="upper left", ncol=2, fontsize=7, frameon=False)
-    caption = (f"{case['case']}: each measured quantity over the sampled inputs ({entry['name']}, {case['points']} points) "
+    caption = (f"{case['case']}: each measured quantity over the sampled inputs ({entry['name']}, "
+               f"{case['points']} points) "
                f"beside the nominal reference's starts and the measurement with twice its assumed standard "
                f"uncertainty (reports/experiment.toml); {stamp}")
     return save(figure, folder, f"validation_{entry['name']}_{case['case']}", caption)

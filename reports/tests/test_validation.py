@@ -98,7 +98,8 @@ def write_study(folder, with_validation=True, seed=50):
             rows.append(row(job, case, response(case, None, rng), start=start, starts=STARTS))
     first = next(r for r in rows if r["job_id"] == "resonance/reference/hertz")
     tight = dict(first, job_id="resonance/reference/hertz/atol=1e-15;rtol=1e-12", options="atol=1e-15;rtol=1e-12",
-                 ensemble_starts="1", frame1_sensor_peak_acceleration_g=repr(float(first["frame1_sensor_peak_acceleration_g"]) + 0.02))
+                 ensemble_starts="1",
+                 frame1_sensor_peak_acceleration_g=repr(float(first["frame1_sensor_peak_acceleration_g"]) + 0.02))
     rows.append(tight)
     os.makedirs(folder, exist_ok=True)
     write_csv(os.path.join(folder, "runs.csv"), rows, COLUMNS)
@@ -280,7 +281,8 @@ class StudyWithValidation(unittest.TestCase):
             json.dump(document, f, indent=1, allow_nan=False)  # as the report writes it: no NaN
         with open(os.path.join(cls.out, "summary.json")) as f:
             cls.summary = json.load(f)
-        sections = report_views.sections(report_views.AFTER_CASES, report_views.ViewInputs(cls.study, document, cls.out))
+        inputs = report_views.ViewInputs(cls.study, document, cls.out)
+        sections = report_views.sections(report_views.AFTER_CASES, inputs)
         cls.titles = [s[0] for s in sections]
         cls.markdown = "\n".join(page_writer.sections_markdown(sections, cls.out))
         cls.html = "\n".join(page_writer.sections_html(sections, cls.out))
@@ -364,7 +366,8 @@ class StudyWithValidation(unittest.TestCase):
         self.assertTrue(os.path.exists(validation_page.DOC), "the page links docs/validation.md")
 
     def test_each_case_has_its_figure(self):
-        figures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", section_of(self.markdown, "The reference against the experiment"))
+        section = section_of(self.markdown, "The reference against the experiment")
+        figures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", section)
         self.assertEqual(len(figures), 3)
         for path in figures:
             ElementTree.parse(os.path.join(self.out, path))  # a parseable SVG
