@@ -139,7 +139,10 @@ def read_sample(folder):
     meta = {}
     if os.path.exists(os.path.join(folder, "inputs.json")):
         with open(os.path.join(folder, "inputs.json")) as f:
-            meta = json.load(f)
+            try:
+                meta = json.load(f)
+            except json.JSONDecodeError as error:
+                raise data.ResultsError(f"{os.path.join(folder, 'inputs.json')}: not JSON ({error})") from None
     runs = read_validation_runs(folder)
     with open(path, newline="") as f:
         reader = csv.DictReader(f)
@@ -152,6 +155,8 @@ def read_sample(folder):
         for row in reader:
             line = reader.line_num
             point = number(row["point"], path, line, "point")
+            if math.isnan(point):
+                raise data.ResultsError(f"{path}:{line}: point is empty")
             points.append(SamplePoint(row["case"], int(point), row["scenario"],
                                       {n: number(row[n], path, line, n) for n in names}, runs.get(row["scenario"])))
     laws = {r.get("law") for r in runs.values() if r.get("law")}
