@@ -6,7 +6,7 @@ view is one function (in its own module when it computes something) and its line
 
 from dataclasses import dataclass
 
-from . import ablation, convergence_table, performance
+from . import ablation, convergence_table, performance, validation_page
 
 
 @dataclass(frozen=True)
@@ -34,8 +34,14 @@ def performance_view(inputs):
     return ("Performance", measured[0], measured[1], []) if measured else None
 
 
+def validation_view(inputs):
+    """The reference against the experiment, where the study sampled the rig's uncertain inputs ([[validation]]):
+    after the laws' comparisons with the experiment, which show single runs at the nominal inputs."""
+    return validation_page.section(inputs.document, inputs.suite_folder, inputs.out)
+
+
 BEFORE_CASES = [chain_resolution]
-AFTER_CASES = [ablation_view, performance_view]
+AFTER_CASES = [validation_view, ablation_view, performance_view]
 
 
 def sections(views, inputs):

@@ -13,7 +13,7 @@ import sys
 
 from . import answer, data, figures, first_screen, machine, metric_catalog, report_views, tables
 from . import budget_figures, front_figures, step_figures, zoom_figures
-from . import dynamics, named_runs, spectral, sweep, sweep_starts
+from . import dynamics, named_runs, spectral, sweep, sweep_starts, validation
 from .page_writer import anchor, figure_html, html_head, markdown_figure, sections_html, sections_markdown
 
 CAVEATS = [
@@ -165,6 +165,17 @@ def draw_figures(suite, cases, chosen_by_law, experiment, steps, tolerances, fol
             [by_task[("sweep", i)] for i in range(len(sweeps))])
 
 
+def add_validation(document, suite, experiment):
+    """summary.json's `validation` (validation.py) where the study has OUT/validation/NAME/ folders; a study
+    without one gets no key, and its page no section."""
+    try:
+        entries = validation.summarise(suite, experiment)
+    except data.ResultsError as error:
+        sys.exit(f"make_report: {error}")
+    if entries:
+        document["validation"] = entries
+
+
 def make(suite_folder, out):
     """The report of a suite's or a study's folder into OUT."""
     if not os.path.exists(os.path.join(suite_folder, "runs.csv")):
@@ -186,6 +197,7 @@ def make(suite_folder, out):
     ran_on = machine.of_results(suite_folder)
     facts = provenance(suite, commands, ran_on)
     document = answer.summarise(suite, steps, experiment, tolerances, facts)
+    add_validation(document, suite, experiment)
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(document, f, indent=1, allow_nan=False)
     stamp = f"impactbench, {facts['made']}, {ran_on.stamp}"
