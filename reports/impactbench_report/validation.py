@@ -288,7 +288,7 @@ def summarise_sample(sample, suite, experiment):
     """One validation folder's entry of summary.json's `validation`."""
     cases = []
     for case in sample.cases():
-        ensemble = validation_sample.nominal_ensemble(suite, case, sample.law)
+        ensemble = validation_sample.nominal_ensemble(suite, case, sample.law, sample)
         cases.append({"case": case, "points": len(sample.of_case(case)),
                       "nominal_job_ids": [r["job_id"] for r in ensemble.members] if ensemble else [],
                       "tight_job_id": ensemble.tight["job_id"] if ensemble and ensemble.tight is not None else None,

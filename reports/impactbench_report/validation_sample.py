@@ -6,9 +6,10 @@ study's results:
   scenarios/paper_inputs.toml names them; the variant scenario it ran as), inputs.json (each input's nominal
   value, distribution and source) and runs.csv (one reference run per variant scenario, a single start, scored
   over the case's window);
-- the nominal reference of each published case from several starts (the study's own runs.csv, read by data.py):
-  the chaotic scatter the sample's single starts carry as well, and the same reference rerun at tolerances a
-  thousand times tighter (budget.tight_reference), the reference's own numerical error.
+- the nominal reference of each published case from several starts, in the same folder's runs.csv (the part runs
+  it beside the sample, cut and scored alike; else the study's own runs.csv, read by data.py): the chaotic scatter
+  the sample's single starts carry as well, and the same reference rerun at tolerances a thousand times tighter,
+  the reference's own numerical error.
 
 The input columns are read from sample.csv's header, never named here: the C++ side decides their names (with
 their units). Nothing is dropped: a sample point without a run, or with a run that is not ok, is kept with
@@ -83,6 +84,8 @@ class ValidationSample:
     input_names: list      # sample.csv's input columns, in its order
     points: list = field(default_factory=list)
     law: str = "hertz"     # the law its runs used (the nominal ensemble is that law's)
+    # the published cases' own runs in the folder: the nominal ensemble's starts and the tight rerun
+    nominal_rows: list = field(default_factory=list)
 
     def cases(self):
         present = {p.case for p in self.points}
@@ -112,13 +115,13 @@ def number(text, path, line, column):
 
 
 def read_validation_runs(folder):
-    """runs.csv of a validation folder: {variant scenario: row}, numbers as floats (NaN where empty), text columns
-    (data.TEXT_COLUMNS, and `status` should the C++ side name the verdict so) as text. The reference's rows only;
-    a scenario run twice is an error, not a choice the report makes."""
+    """runs.csv of a validation folder, the reference's rows in the file's order, numbers as floats (NaN where
+    empty), text columns (data.TEXT_COLUMNS, and `status` should the C++ side name the verdict so) as text, each
+    with the line it was read from."""
     path = os.path.join(folder, "runs.csv")
-    rows = {}
     if not os.path.exists(path):
-        return rows
+        return []
+    rows = []
     with open(path, newline="") as f:
         reader = csv.DictReader(f)
         for row in reader:
@@ -126,11 +129,23 @@ def read_validation_runs(folder):
                 continue
             values = {name: text if name in data.TEXT_COLUMNS or name == "status" else
                       number(text, path, reader.line_num, name) for name, text in row.items()}
-            if values["scenario"] in rows:
-                raise data.ResultsError(f"{path}:{reader.line_num}: scenario {values['scenario']} recorded again: one "
-                                        "reference run per variant scenario")
-            rows[values["scenario"]] = values
+            rows.append((reader.line_num, values))
     return rows
+
+
+def split_runs(folder, rows, variants):
+    """The sample's runs, {variant scenario: row}, and the rest: the published cases' own (their nominal
+    ensemble's starts and tight rerun). A variant run twice is an error, not a choice the report makes."""
+    runs, nominal = {}, []
+    for line, values in rows:
+        if values["scenario"] not in variants:
+            nominal.append(values)
+            continue
+        if values["scenario"] in runs:
+            raise data.ResultsError(f"{os.path.join(folder, 'runs.csv')}:{line}: scenario {values['scenario']} "
+                                    "recorded again: one reference run per variant scenario")
+        runs[values["scenario"]] = values
+    return runs, nominal
 
 
 def read_sample(folder):
@@ -143,7 +158,7 @@ def read_sample(folder):
                 meta = json.load(f)
             except json.JSONDecodeError as error:
                 raise data.ResultsError(f"{os.path.join(folder, 'inputs.json')}: not JSON ({error})") from None
-    runs = read_validation_runs(folder)
+    all_runs = read_validation_runs(folder)
     with open(path, newline="") as f:
         reader = csv.DictReader(f)
         header = reader.fieldnames or []
@@ -151,18 +166,21 @@ def read_sample(folder):
         if missing:
             raise data.ResultsError(f"{path}:1: no column {', '.join(missing)} (is this a validation sample?)")
         names = [c for c in header if c not in POINT_COLUMNS]
-        points = []
-        for row in reader:
-            line = reader.line_num
-            point = number(row["point"], path, line, "point")
-            if math.isnan(point):
-                raise data.ResultsError(f"{path}:{line}: point is empty")
-            points.append(SamplePoint(row["case"], int(point), row["scenario"],
-                                      {n: number(row[n], path, line, n) for n in names}, runs.get(row["scenario"])))
+        rows = [(reader.line_num, row) for row in reader]
+    runs, nominal_rows = split_runs(folder, all_runs, {row["scenario"] for _, row in rows})
+    points = []
+    for line, row in rows:
+        point = number(row["point"], path, line, "point")
+        if math.isnan(point):
+            raise data.ResultsError(f"{path}:{line}: point is empty")
+        points.append(SamplePoint(row["case"], int(point), row["scenario"],
+                                  {n: number(row[n], path, line, n) for n in names}, runs.get(row["scenario"])))
     laws = {r.get("law") for r in runs.values() if r.get("law")}
-    return ValidationSample(os.path.basename(os.path.normpath(folder)), folder, meta.get("inputs_file", ""),
-                            meta.get("design", ""), int(meta.get("points", 0) or 0), meta.get("inputs", []), names,
-                            points, law=laws.pop() if len(laws) == 1 else "hertz")
+    sample = ValidationSample(os.path.basename(os.path.normpath(folder)), folder, meta.get("inputs_file", ""),
+                              meta.get("design", ""), int(meta.get("points", 0) or 0), meta.get("inputs", []), names,
+                              points, law=laws.pop() if len(laws) == 1 else "hertz")
+    sample.nominal_rows = [data.Run(r) for r in nominal_rows]
+    return sample
 
 
 @dataclass
@@ -195,9 +213,16 @@ class NominalEnsemble:
         return self.members[0] if self.members else None
 
 
-def nominal_ensemble(suite, case, law):
-    """The case's beam reference from all its starts (member 0 first) and its tight rerun; None without a beam
-    reference of that case and law in the study's runs.csv."""
+def nominal_ensemble(suite, case, law, sample=None):
+    """The case's nominal reference from all its starts (start 0 first) and its tight rerun: the validation
+    folder's own (a [[validation]] part runs them beside its sample, cut and scored as the sample is) where it
+    holds them, else the study's beam reference; None without either."""
+    if sample is not None:
+        own = [r for r in sample.nominal_rows if r["scenario"] == case and r["law"] == law]
+        members = sorted((r for r in own if not r["options"]), key=ensemble_groups.start_of)
+        tight = [r for r in own if "rtol" in r["options"] and r["verdict"] in data.STABLE_VERDICTS]
+        if members:
+            return NominalEnsemble(case, law, members, tight[0] if tight else None)
     reference = suite.beam_reference(case, law)
     if reference is None:
         return None

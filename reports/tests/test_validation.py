@@ -363,7 +363,7 @@ class StudyWithValidation(unittest.TestCase):
         said = f"the reference gives {v['s']:.4g} g, {abs(v['e']):.4g} g"
         self.assertIn(said, self.markdown)
         self.assertIn("docs/validation.md", self.markdown)
-        self.assertTrue(os.path.exists(validation_page.DOC), "the page links docs/validation.md")
+        self.assertTrue(os.path.exists(validation_page.DOC), "the page names docs/validation.md")
 
     def test_each_case_has_its_figure(self):
         section = section_of(self.markdown, "The reference against the experiment")
@@ -372,6 +372,42 @@ class StudyWithValidation(unittest.TestCase):
         for path in figures:
             ElementTree.parse(os.path.join(self.out, path))  # a parseable SVG
             self.assertIn(os.path.join("figures", "validation_paper_"), path)
+
+
+class NominalEnsembleInTheFolder(unittest.TestCase):
+    """A [[validation]] part runs each case's nominal reference from its starts and at tight tolerances in its own
+    folder, cut and scored as its sample is: those are S, the chaos and u_solver, not the study's runs."""
+
+    def test_the_folders_own_nominal_runs_are_used(self):
+        folder = tempfile.mkdtemp(prefix="impactbench_validation_nominal_")
+        try:
+            study = os.path.join(folder, "study")
+            write_study(study)
+            rng = np.random.default_rng(7)
+            own = []
+            for start in range(3):  # the folder's ensemble: 3 starts, 2 g above the study's
+                values = {k: v + 2 for k, v in response("resonance", None, rng).items()}
+                job = "resonance/reference/hertz" + (f"/start={start}" if start else "")
+                own.append(row(job, "resonance", values, start=start, starts=3))
+            tight = dict(own[0], job_id="resonance/reference/hertz/atol=1e-15;rtol=1e-12",
+                         options="atol=1e-15;rtol=1e-12", ensemble_starts="1",
+                         frame1_sensor_peak_acceleration_g=repr(float(own[0]["frame1_sensor_peak_acceleration_g"]) +
+                                                                0.5))
+            runs_csv = os.path.join(study, "validation", "paper", "runs.csv")
+            with open(runs_csv, newline="") as f:
+                sample_rows = list(csv.DictReader(f))
+            write_csv(runs_csv, sample_rows + own + [tight], COLUMNS)
+            entry = validation.summarise(data.read_runs(study), data.read_experiment())[0]
+            case = next(c for c in entry["cases"] if c["case"] == "resonance")
+            self.assertEqual(case["nominal_job_ids"], [r["job_id"] for r in own])
+            self.assertEqual(case["tight_job_id"], tight["job_id"])
+            q = next(q for q in case["quantities"] if q["quantity"] == "frame1_sensor_peak_acceleration_g")
+            peaks = [float(r["frame1_sensor_peak_acceleration_g"]) for r in own]
+            self.assertAlmostEqual(q["vv20"]["s"], np.mean(peaks), places=12)
+            self.assertAlmostEqual(q["vv20"]["u_solver"], 0.5, places=9)
+            self.assertEqual(q["nominal"]["n"], 3)
+        finally:
+            shutil.rmtree(folder)
 
 
 class ReportOfTheStudy(unittest.TestCase):
