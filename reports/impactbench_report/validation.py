@@ -166,15 +166,31 @@ class Comparison:
     u_val: float
     verdict: str
     model_form_error_at_least: float = None
+    u_input_sampling_error: float = 0.0  # u_input's own standard error from the sample's size (0: not estimated)
 
 
-def compare(s, d, u_solver, sigma_chaos, n_starts, u_input, u_d, unit=""):
+def undecided(e, u_num, u_input, u_d, sampling_error):
+    """Whether the verdict turns within u_input's own sampling error: 2 u_val computed with u_input - se and with
+    u_input + se on either side of |E|."""
+    def u_val(u):
+        return math.sqrt(u_num ** 2 + max(0.0, u) ** 2 + u_d ** 2)
+    return (abs(e) > COVERAGE * u_val(u_input - sampling_error)) != (abs(e) > COVERAGE * u_val(u_input + sampling_error))
+
+
+def compare(s, d, u_solver, sigma_chaos, n_starts, u_input, u_d, unit="", n_sample=0):
+    """V&V 20 for one quantity. n_sample (the sample's runs, >= 2): u_input is a standard deviation estimated from
+    them, good to about u_input / sqrt(2 (n_sample - 1)); where the verdict turns within that, it is undecided at
+    this sample size, and says so, rather than naming a side."""
     chaos = 0.0 if math.isnan(sigma_chaos) else sigma_chaos
     u_num = math.sqrt(u_solver ** 2 + chaos ** 2 + (chaos ** 2 / n_starts if n_starts else 0.0))
     u_val = math.sqrt(u_num ** 2 + u_input ** 2 + u_d ** 2)
     e = s - d
     words, excess = verdict(e, u_val, unit)
-    return Comparison(d, s, e, u_solver, u_num, u_input, u_d, u_val, words, excess)
+    sampling_error = u_input / math.sqrt(2 * (n_sample - 1)) if n_sample >= 2 else 0.0
+    if sampling_error > 0 and undecided(e, u_num, u_input, u_d, sampling_error):
+        words, excess = (f"undecided at {n_sample} sample points: the verdict turns within u_input's sampling error "
+                         f"(+-{sampling_error:.4g}{unit_text(unit)})"), None
+    return Comparison(d, s, e, u_solver, u_num, u_input, u_d, u_val, words, excess, sampling_error)
 
 
 def none_if_nan(x):
@@ -278,7 +294,7 @@ def quantity_entry(sample, case, quantity, ensemble, experiment):
         else:
             u_solver, solver_note = solver_uncertainty(ensemble, quantity.column)
             comparison = compare(entry["nominal"]["mean"], d, u_solver, sigma, n, entry["u_input"] or 0.0, u_d,
-                                 quantity.unit)
+                                 quantity.unit, entry["sample"]["n"])
             entry["vv20"] = {**asdict(comparison), "u_solver_from": solver_note, "coverage": COVERAGE}
     entry["notes"] = notes
     return entry

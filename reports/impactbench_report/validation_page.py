@@ -88,7 +88,10 @@ def reading(case):
         side = (f"{number(abs(v['e']))}{unit} {'above' if v['e'] > 0 else 'below'}" if v["e"] else "equal to")
         text = (f"{q['label'].capitalize()}: the reference gives {number(v['s'])}{unit}, {side} the measured "
                 f"{number(v['d'])}{unit}, against a validation uncertainty u_val of {number(v['u_val'])}{unit}")
-        if v["model_form_error_at_least"] is None:
+        if v["verdict"].startswith("undecided"):
+            text += (f" — at the edge of twice it, closer than u_input's own sampling error "
+                     f"(+-{number(v['u_input_sampling_error'])}{unit}) allows: a larger sample decides.")
+        elif v["model_form_error_at_least"] is None:
             text += " — within it: these uncertainties can explain the difference."
         else:
             text += (f" — beyond twice it: a model-form error of at least {number(v['model_form_error_at_least'])}"

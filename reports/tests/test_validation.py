@@ -8,12 +8,14 @@ summary.md and index.html print; a study without one gets no key and no section.
 
 import contextlib
 import csv
+import html
 import io
 import json
 import math
 import os
 import re
 import shutil
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -195,6 +197,20 @@ class ClosedForms(unittest.TestCase):
         below = validation.compare(9.0, 10.0, 0.0, 0.0, 8, 0.0, 0.5)  # the sign does not matter
         self.assertEqual(below.verdict, "within the validation uncertainty")
 
+    def test_a_verdict_within_u_inputs_sampling_error_is_undecided(self):
+        """u_input from N runs is good to u_input / sqrt(2 (N - 1)): |E| = 2 u_val + a hair is undecided at 16
+        points (se 0.18 of u_input = 1) and a model-form error at 10^6 points."""
+        u_val = math.sqrt(0.1 ** 2 + 1.0 ** 2 + 0.5 ** 2)
+        e = -(2 * u_val + 0.05)
+        few = validation.compare(e, 0.0, 0.0, 0.1, 0, 1.0, 0.5, "g", n_sample=16)
+        self.assertTrue(few.verdict.startswith("undecided at 16 sample points"), few.verdict)
+        self.assertIsNone(few.model_form_error_at_least)
+        self.assertAlmostEqual(few.u_input_sampling_error, 1 / math.sqrt(30), places=12)
+        many = validation.compare(e, 0.0, 0.0, 0.1, 0, 1.0, 0.5, "g", n_sample=10 ** 6)
+        self.assertAlmostEqual(many.model_form_error_at_least, 0.05, places=9)
+        far = validation.compare(-10 * u_val, 0.0, 0.0, 0.1, 0, 1.0, 0.5, "g", n_sample=16)
+        self.assertGreater(far.model_form_error_at_least, 0)  # far beyond: decided whatever the sample
+
     def test_u_num_holds_the_solver_the_one_window_and_the_means_noise(self):
         c = validation.compare(5.0, 4.0, 0.03, 0.2, 8, 0.1, 0.25)
         self.assertAlmostEqual(c.u_num, math.sqrt(0.03 ** 2 + 0.2 ** 2 + 0.2 ** 2 / 8), places=15)
@@ -263,7 +279,7 @@ def check_pages_print_the_json(test, summary, markdown, page):
                              or (f"none above {fmt(floor)}" if ranked else "–"))
             test.assertEqual(cells[7], fmt(q["chaos_share"]))
         for cells in verdicts[1:] + spread[1:]:  # the same cells in index.html
-            test.assertIn("".join(f"<td>{c.replace('&', '&amp;').replace('<', '&lt;')}</td>" for c in cells), page)
+            test.assertIn("".join(f"<td>{html.escape(c)}</td>" for c in cells), page)
 
 
 class StudyWithValidation(unittest.TestCase):
@@ -447,5 +463,84 @@ class ReportOfTheStudy(unittest.TestCase):
         self.assertFalse([f for f in os.listdir(os.path.join(out, "figures")) if f.startswith("validation_")])
 
 
+class FromARealStudy(unittest.TestCase):
+    """The C++ side's own output: `impactbench study` with a small suite and a [[validation]] part (two cases at
+    4 points, their nominal cases from 2 starts and at tight tolerances, 1 s each), then its report: summary.json's
+    numbers are the validation folder's CSV files', and the pages print them. Runs only with the executable
+    (ctest gives it: report_validation)."""
+
+    @classmethod
+    def setUpClass(cls):
+        if EXECUTABLE is None:
+            raise unittest.SkipTest("no impactbench executable given (test_validation.py IMPACTBENCH)")
+        cls.folder = tempfile.mkdtemp(prefix="impactbench_validation_study_")
+        study_file = os.path.join(cls.folder, "study.toml")
+        with open(study_file, "w") as f:
+            f.write(f"""[[suite]]
+name = "nominal"
+scenarios = ["{ROOT}/scenarios/paper/resonance.toml"]
+laws = ["hertz"]
+duration_s = 1
+window_s = 0.5
+
+[[validation]]
+name = "tiny"
+scenarios = ["{ROOT}/scenarios/paper/resonance.toml", "{ROOT}/scenarios/paper/pre_resonance.toml"]
+inputs = "{ROOT}/scenarios/paper_inputs.toml"
+points = 4
+nominal_starts = 2
+duration_s = 1
+window_s = 0.5
+""")
+        cls.study = os.path.join(cls.folder, "study")
+        run = subprocess.run([EXECUTABLE, "study", study_file, "--out", cls.study], capture_output=True, text=True)
+        if run.returncode != 0:
+            raise AssertionError(f"impactbench study failed ({run.returncode}): {run.stdout}{run.stderr}")
+        report = os.path.join(cls.study, "report")
+        with open(os.path.join(report, "summary.json")) as f:
+            cls.summary = json.load(f)
+        with open(os.path.join(report, "summary.md")) as f:
+            cls.markdown = f.read()
+        with open(os.path.join(report, "index.html")) as f:
+            cls.html = f.read()
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.folder)
+
+    def test_the_summary_holds_the_folders_numbers(self):
+        entry = self.summary["validation"][0]
+        self.assertEqual((entry["name"], entry["sample_size"]), ("tiny", 4))
+        self.assertEqual(entry["input_names"][0], "frame1_column_thickness_m")
+        folder = os.path.join(self.study, "validation", "tiny")
+        with open(os.path.join(folder, "runs.csv")) as f:
+            rows = list(csv.DictReader(f))
+        with open(os.path.join(folder, "sample.csv")) as f:
+            points = list(csv.DictReader(f))
+        for case in entry["cases"]:
+            variants = {p["scenario"] for p in points if p["case"] == case["case"]}
+            y = [float(r["frame1_sensor_peak_acceleration_g"]) for r in rows if r["scenario"] in variants]
+            nominal = [r for r in rows if r["scenario"] == case["case"] and r["options"] == ""]
+            tight = [r for r in rows if r["scenario"] == case["case"] and "rtol" in r["options"]]
+            q = next(q for q in case["quantities"] if q["quantity"] == "frame1_sensor_peak_acceleration_g")
+            self.assertEqual(q["sample"]["n"], 4)
+            self.assertAlmostEqual(q["sample"]["mean"], np.mean(y), places=9)
+            self.assertEqual(case["nominal_job_ids"], [r["job_id"] for r in sorted(nominal, key=lambda r: int(r["ensemble_start"]))])
+            self.assertEqual(case["tight_job_id"], tight[0]["job_id"])
+            v = q["vv20"]
+            self.assertAlmostEqual(v["s"], np.mean([float(r["frame1_sensor_peak_acceleration_g"]) for r in nominal]),
+                                   places=9)
+            self.assertAlmostEqual(v["u_solver"], abs(float(tight[0]["frame1_sensor_peak_acceleration_g"]) -
+                                                      float(nominal[0]["frame1_sensor_peak_acceleration_g"])), places=9)
+
+    def test_the_pages_print_the_jsons_numbers(self):
+        check_pages_print_the_json(self, self.summary, self.markdown, self.html)
+
+
+EXECUTABLE = None
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
 if __name__ == "__main__":
+    if len(sys.argv) > 1 and not sys.argv[1].startswith("-"):
+        EXECUTABLE = sys.argv.pop(1)
     unittest.main()
