@@ -53,6 +53,8 @@ TEST(ValidationStudy, EachCaseRunsAtEveryPointIntoItsOwnFolderAndAResumeRunsNoth
   const auto plan = study(file.string() + " --plan --out " + folder.string());
   ASSERT_EQ(plan.exit_code, 0) << plan.text;
   EXPECT_NE(plan.text.find("3 points of"), std::string::npos) << plan.text;
+  EXPECT_NE(plan.text.find("  validation \"tiny\": 12 runs, about "), std::string::npos) << plan.text;
+  EXPECT_NE(plan.text.find("\ntotal: 12 runs, about "), std::string::npos) << plan.text;  // counted in the total
   const auto first = study(file.string() + " --no-report --out " + folder.string());
   ASSERT_EQ(first.exit_code, 0) << first.text;
   const fs::path part = folder / "validation" / "tiny";

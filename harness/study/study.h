@@ -40,6 +40,13 @@ class PartOfItsOwnKind {
   // runs; its units then run on the study's pool with every other part's (study: workers, shard, resume).
   virtual std::unique_ptr<UnitSource> prepare(const std::string& folder, const StudySettings& study) const = 0;
   virtual std::string plan(const std::string& folder) const = 0;  // --plan's line after `KIND "NAME": `
+  // --plan's count under that line: the runs it records and their estimated CPU time [s] (study_cost.h), none
+  // where the kind cannot say before it runs (the plan then names it as not counted).
+  struct Work {
+    int runs = 0;
+    double cpu_s = 0;
+  };
+  virtual std::optional<Work> planned_work() const { return std::nullopt; }
   // How it ended (campaign_folder.h), asked once the study's units have run, with the source prepare made: the
   // study's exit code counts it as it counts a suite's or a sweep's.
   virtual CampaignEnd finish(UnitSource& source) const = 0;

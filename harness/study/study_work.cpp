@@ -127,7 +127,16 @@ std::vector<std::string> describe_study_work(const std::vector<StudyPart>& parts
     }
   for (const StudyPart& part : placed)
     if (const auto* own = std::get_if<std::shared_ptr<const PartOfItsOwnKind>>(&part.settings)) {
-      lines.push_back("  " + (*own)->kind() + " \"" + part.name + "\": not counted (a part of a kind of its own)");
+      const std::string head = "  " + (*own)->kind() + " \"" + part.name + "\": ";
+      if (const auto work = (*own)->planned_work()) {
+        Estimate estimate;
+        estimate.cpu_s = work->cpu_s;
+        lines.push_back(head + runs_text(work->runs) + ", " + cpu_text(estimate));
+        runs += work->runs;
+        total.add(estimate);
+        continue;
+      }
+      lines.push_back(head + "not counted (a part of a kind of its own)");
       ++not_counted;
     }
   lines.push_back("total: " + runs_text(runs) +

@@ -6,7 +6,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "harness/study/study_cost.h"
 #include "harness/validation/input_sample.h"
+#include "model/scenario_toml.h"
 
 namespace ib {
 
@@ -37,6 +39,25 @@ std::string ValidationPart::plan(const std::string& folder) const {
        << " inputs) x " << settings_.sample.inputs.size() << " cases, the reference alone, the nominal cases from "
        << settings_.nominal.ensemble.reference_starts << " starts and at tight tolerances beside -> " << folder;
   return line.str();
+}
+
+std::optional<PartOfItsOwnKind::Work> ValidationPart::planned_work() const {
+  Work work;
+  const int runs_per_case = settings_.points + settings_.nominal.ensemble.reference_starts + 1;
+  for (const std::string& file : settings_.sample.inputs) {
+    Scenario scenario;
+    try {
+      scenario = load_scenario(file);
+    } catch (const std::exception&) {  // the study refused it already; the plan counts the runs anyway
+      continue;
+    }
+    if (settings_.sample.max_duration_s > 0) cut_run(scenario, settings_.sample.max_duration_s);
+    work.runs += runs_per_case;
+    const auto cpu_s = estimated_cpu_s(settings_.sample.simulators, "reference", settings_.sample.reference_options, 0,
+                                       scenario.duration_s);
+    work.cpu_s += runs_per_case * cpu_s.value_or(0);
+  }
+  return work;
 }
 
 CampaignEnd ValidationPart::finish(UnitSource& source) const {

@@ -32,6 +32,9 @@ class ValidationPart final : public PartOfItsOwnKind {
   std::string kind() const override { return "validation"; }
   std::unique_ptr<UnitSource> prepare(const std::string& folder, const StudySettings& study) const override;
   std::string plan(const std::string& folder) const override;
+  // every case at every point, from its nominal starts and once at tight tolerances; the reference's CPU from its
+  // measured cost over each case as cut (a post-resonance point costs far more than it: no impacts, its tips near)
+  std::optional<Work> planned_work() const override;
   CampaignEnd finish(UnitSource& source) const override;
 
  private:
