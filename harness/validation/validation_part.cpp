@@ -48,7 +48,7 @@ std::optional<PartOfItsOwnKind::Work> ValidationPart::planned_work() const {
     Scenario scenario;
     try {
       scenario = load_scenario(file);
-    } catch (const std::exception&) {  // the study refused it already; the plan counts the runs anyway
+    } catch (const std::exception&) {  // the study refused it already (the plan is made after the check)
       continue;
     }
     if (settings_.sample.max_duration_s > 0) cut_run(scenario, settings_.sample.max_duration_s);
