@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/study_file.h"
+#include "cli/study_keys.h"
 #include "harness/study/study.h"
 #include "model/scenario_toml.h"
 #include "simulators/catalog.h"
@@ -34,12 +35,12 @@ struct StudyOptions {
 std::vector<ib::StudyPartKind> kinds_left_out(const std::string& skip) {
   std::vector<ib::StudyPartKind> kinds;
   if (skip.empty()) return kinds;
-  for (const std::string& kind : split_list(skip, "--skip", "suite, search, sweep, validation")) {
-    const ib::StudyPartKind all[] = {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep,
-                                     ib::StudyPartKind::validation};
-    const auto* known = std::find_if(std::begin(all), std::end(all), [&](auto k) { return kind == ib::to_string(k); });
-    if (known == std::end(all))
-      throw std::invalid_argument("--skip " + kind + ": allowed: suite, search, sweep, validation, comma-separated");
+  const std::vector<ib::StudyPartKind>& all = study_file_kinds();
+  std::string names;
+  for (ib::StudyPartKind k : all) names += (names.empty() ? "" : ", ") + std::string(ib::to_string(k));
+  for (const std::string& kind : split_list(skip, "--skip", names)) {
+    const auto known = std::find_if(all.begin(), all.end(), [&](auto k) { return kind == ib::to_string(k); });
+    if (known == all.end()) throw std::invalid_argument("--skip " + kind + ": allowed: " + names + ", comma-separated");
     kinds.push_back(*known);
   }
   return kinds;

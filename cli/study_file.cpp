@@ -40,6 +40,17 @@ void require_key(const Checker& checker, const GivenKeys& given, const PartOptio
     checker.fail(part.line, dotted + "." + key, dotted + "." + key + ": missing required key; allowed: " + meaning);
 }
 
+void require_folder_name(const Checker& checker, const GivenKeys& given, PartOptions& part, const std::string& dotted,
+                         const std::string& folder_below) {
+  const std::string kind = ib::to_string(part.kind);
+  const std::string meaning = "the " + kind + "'s folder below " + folder_below + " (a-z, 0-9, _ and -)";
+  require_key(checker, given, part, dotted, "name", meaning.c_str());
+  if (part.name.empty() || part.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
+    checker.fail(part.key_lines["name"], dotted + ".name",
+                 dotted + ".name = \"" + part.name + "\": not allowed; allowed: 1 or more of a-z, 0-9, _ and - (the " +
+                     kind + "'s folder)");
+}
+
 namespace {
 
 using ib::toml_schema::line_of;
@@ -179,12 +190,8 @@ void read_shared_keys(const Checker& checker, GivenKeys& given, const std::strin
 
 // A [[sweep]]'s own keys: its folder's name, its scenario, its ratios, starts and lengths.
 void read_sweep_keys(const Checker& checker, GivenKeys& given, const std::string& dotted, PartOptions& part) {
-  require_key(checker, given, part, dotted, "name", "the sweep's folder below OUT/sweeps/ (a-z, 0-9, _ and -)");
+  require_folder_name(checker, given, part, dotted, "OUT/sweeps/");
   require_key(checker, given, part, dotted, "scenario", "a scenario file with a motor");
-  if (part.name.empty() || part.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
-    checker.fail(part.key_lines["name"], dotted + ".name",
-                 dotted + ".name = \"" + part.name +
-                     "\": not allowed; allowed: 1 or more of a-z, 0-9, _ and - (the sweep's folder)");
   SweepOptions& s = part.sweep;
   part.measurement.series = given.count("series") ? given["series"] : "none";  // a sweep's tables are its results
   s.scenario = scenario_path(part.file, given["scenario"]);
@@ -339,8 +346,7 @@ Study read_study(const std::string& path, const std::vector<std::string>& engine
   study.description = read_description(checker, document);
   const toml::table* defaults = read_defaults(checker, document);
   std::vector<PartOptions> parts;
-  for (ib::StudyPartKind kind :
-       {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep, ib::StudyPartKind::validation}) {
+  for (ib::StudyPartKind kind : study_file_kinds()) {
     const toml::node* node = document.get(ib::to_string(kind));
     if (!node) continue;
     const toml::array* tables = node->as_array();

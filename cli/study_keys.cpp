@@ -75,6 +75,12 @@ const std::vector<KeySpec> kValidationKeys = {
 
 }  // namespace
 
+const std::vector<ib::StudyPartKind>& study_file_kinds() {
+  static const std::vector<ib::StudyPartKind> kinds = {ib::StudyPartKind::suite, ib::StudyPartKind::search,
+                                                       ib::StudyPartKind::sweep, ib::StudyPartKind::validation};
+  return kinds;
+}
+
 std::vector<KeySpec> keys_of(ib::StudyPartKind kind) {
   std::vector<KeySpec> keys;
   if (kind == ib::StudyPartKind::validation) {
@@ -95,8 +101,7 @@ std::vector<KeySpec> keys_of(ib::StudyPartKind kind) {
 std::vector<KeySpec> default_keys() {
   std::vector<KeySpec> keys;
   std::set<std::string> seen = {"name", "scenario", "scenarios"};  // what makes a part itself
-  for (ib::StudyPartKind kind :
-       {ib::StudyPartKind::suite, ib::StudyPartKind::search, ib::StudyPartKind::sweep, ib::StudyPartKind::validation})
+  for (ib::StudyPartKind kind : study_file_kinds())
     for (const KeySpec& k : keys_of(kind))
       if (seen.insert(k.key).second) keys.push_back(k);
   return keys;

@@ -20,6 +20,10 @@ struct KeySpec {
   const char* also = "";  // another start of the messages about it ("engine 'x': not in this build")
 };
 
+// The kinds of part a study file's tables hold, in the order it reads them ([[suite]], [[search]], [[sweep]],
+// [[validation]]): each named by ib::to_string, as --skip names them too.
+const std::vector<ib::StudyPartKind>& study_file_kinds();
+
 // The keys of one kind of part: those every kind has, then its own.
 std::vector<KeySpec> keys_of(ib::StudyPartKind kind);
 

@@ -37,6 +37,11 @@ using GivenKeys = std::map<std::string, std::string>;
 // project's folder.
 std::string scenario_path(const std::string& study_file, const std::string& path);
 
+// Fails (naming the key's line) unless the part's name can be its folder below OUT/KIND/: required, 1 or more of
+// a-z, 0-9, _ and - (a sweep's, a validation's).
+void require_folder_name(const ib::toml_schema::Checker& checker, const GivenKeys& given, PartOptions& part,
+                         const std::string& dotted, const std::string& folder_below);
+
 // Fails (naming the part's header line) when `key` is not given; `meaning` says what is allowed.
 void require_key(const ib::toml_schema::Checker& checker, const GivenKeys& given, const PartOptions& part,
                  const std::string& dotted, const char* key, const char* meaning);

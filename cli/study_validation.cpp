@@ -17,13 +17,8 @@ using ib::toml_schema::Checker;
 
 // A [[validation]]'s own keys beyond a suite's: its inputs file and sample size.
 void read_validation_keys(const Checker& checker, GivenKeys& given, const std::string& dotted, PartOptions& part) {
-  require_key(checker, given, part, dotted, "name",
-              "the validation's folder below OUT/validation/ (a-z, 0-9, _ and -)");
+  require_folder_name(checker, given, part, dotted, "OUT/validation/");
   require_key(checker, given, part, dotted, "inputs", "an uncertain-inputs file (scenarios/paper_inputs.toml)");
-  if (part.name.empty() || part.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
-    checker.fail(part.key_lines["name"], dotted + ".name",
-                 dotted + ".name = \"" + part.name +
-                     "\": not allowed; allowed: 1 or more of a-z, 0-9, _ and - (the validation's folder)");
   part.inputs = scenario_path(part.file, given["inputs"]);
   if (given.count("points")) part.points = std::stoi(given["points"]);
   if (given.count("nominal_starts")) part.nominal_starts = std::stoi(given["nominal_starts"]);
