@@ -296,33 +296,35 @@ Scenario parse_scenario(std::string_view toml_text, const std::string& source_pa
   return s;
 }
 
-Scenario load_scenario(const std::string& path) {
+std::string read_toml_file(const std::string& path, const std::string& what) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
-    throw ScenarioError(path, 0, "", "cannot read scenario file: it is a directory");
+    throw ScenarioError(path, 0, "", "cannot read " + what + ": it is a directory");
   }
-  // A FIFO would block forever and /dev/zero never end: a scenario is a regular file of at most 1 MB (the
-  // published ones are 2 kB).
+  // A FIFO would block forever and /dev/zero never end: a scenario (or an inputs file) is a regular file of at
+  // most 1 MB (the published ones are 2 kB).
   constexpr std::uintmax_t kMaxScenarioBytes = 1 << 20;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
     throw ScenarioError(path, 0, "",
-                        "cannot read scenario file: not a regular file (a FIFO, a device?); allowed: a .toml file");
+                        "cannot read " + what + ": not a regular file (a FIFO, a device?); allowed: a .toml file");
   if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) > kMaxScenarioBytes)
     throw ScenarioError(path, 0, "",
-                        "cannot read scenario file: " + std::to_string(std::filesystem::file_size(path, ec)) +
+                        "cannot read " + what + ": " + std::to_string(std::filesystem::file_size(path, ec)) +
                             " bytes; allowed: at most 1 MB");
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     const int error = errno;
     throw ScenarioError(path, 0, "",
-                        "cannot read scenario file: " + std::string(error != 0 ? std::strerror(error) : "cannot open"));
+                        "cannot read " + what + ": " + std::string(error != 0 ? std::strerror(error) : "cannot open"));
   }
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw ScenarioError(path, 0, "", "cannot read scenario file: read error");
-  return parse_scenario(text.str(), path);
+  if (in.bad()) throw ScenarioError(path, 0, "", "cannot read " + what + ": read error");
+  return text.str();
 }
+
+Scenario load_scenario(const std::string& path) { return parse_scenario(read_toml_file(path, "scenario file"), path); }
 
 std::vector<std::string> find_scenario_files(const std::string& folder) {
   namespace fs = std::filesystem;

@@ -36,6 +36,10 @@ class ScenarioError : public std::runtime_error {
   std::string message_;
 };
 
+// The text of a TOML input file (a scenario, an uncertain-inputs file): a regular file of at most 1 MB. Anything
+// else, or a file that cannot be read, gives a ScenarioError naming the path: "cannot read WHAT: why".
+std::string read_toml_file(const std::string& path, const std::string& what);
+
 // Reads and checks a scenario file; an unreadable file gives a ScenarioError naming the path.
 Scenario load_scenario(const std::string& path);
 

@@ -3,7 +3,6 @@
 
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <sstream>
 
@@ -154,11 +153,7 @@ UncertainInputs parse_uncertain_inputs(std::string_view toml_text, const std::st
 }
 
 UncertainInputs load_uncertain_inputs(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(path, 0, "", "cannot read the uncertain-inputs file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_uncertain_inputs(text.str(), path);
+  return parse_uncertain_inputs(read_toml_file(path, "uncertain-inputs file"), path);
 }
 
 std::string scenario_with_inputs(const std::string& base_text, const std::string& base_path,
