@@ -52,6 +52,16 @@ inline CommandOutput run_impactbench_logged_as(const std::string& arguments, con
   return out;
 }
 
+// A file of this process in the temporary directory, PREFIX + pid + "-" + NAME + ".toml", holding `text` (a study
+// file a test writes).
+inline std::filesystem::path temporary_toml_file(const std::string& prefix, const std::string& name,
+                                                 const std::string& text) {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid()) + "-" + name + ".toml");
+  std::ofstream(path) << text;
+  return path;
+}
+
 // A published scenario's file: scenarios/paper/NAME.toml.
 inline std::string paper_scenario(const std::string& name) {
   return std::string(IMPACTBENCH_SOURCE_DIR) + "/scenarios/paper/" + name + ".toml";

@@ -18,10 +18,7 @@ using ib::test::run_impactbench_logged_as;
 
 // A study file of this test in the temporary folder.
 fs::path study_file(const std::string& name, const std::string& text) {
-  const fs::path path =
-      fs::temp_directory_path() / ("impactbench-study-" + std::to_string(::getpid()) + "-" + name + ".toml");
-  std::ofstream(path) << text;
-  return path;
+  return ib::test::temporary_toml_file("impactbench-study-", name, text);
 }
 
 ib::test::CommandOutput study(const std::string& arguments) {

@@ -15,10 +15,7 @@ namespace validation_study_test {
 namespace fs = std::filesystem;
 
 fs::path study_file(const std::string& name, const std::string& text) {
-  const fs::path path =
-      fs::temp_directory_path() / ("impactbench-validation-" + std::to_string(::getpid()) + "-" + name + ".toml");
-  std::ofstream(path) << text;
-  return path;
+  return ib::test::temporary_toml_file("impactbench-validation-", name, text);
 }
 
 ib::test::CommandOutput study(const std::string& arguments) {
